@@ -1,0 +1,99 @@
+# bowg_engine: the ROS-free BoWG library, its tests, benchmarks and tools.
+#
+# Included by engine/CMakeLists.txt (standalone build: cmake -S engine -B b)
+# and by the catkin package's top-level CMakeLists.txt, where the tests become
+# catkin gtests so that catkin_test_results sees them.
+set(BOWG_ENGINE_DIR ${CMAKE_CURRENT_LIST_DIR})
+
+option(BOWG_ENGINE_TESTS "Build the engine's gtests" ON)
+option(BOWG_ENGINE_BENCHMARKS "Build the Google Benchmark programs" ON)
+option(BOWG_SANITIZE "Build with AddressSanitizer and UBSan" OFF)
+
+find_package(OpenCV REQUIRED COMPONENTS core imgproc imgcodecs features2d calib3d)
+find_package(ZLIB REQUIRED)
+
+if(BOWG_SANITIZE)
+  add_compile_options(-fsanitize=address,undefined -fno-omit-frame-pointer)
+  link_libraries(-fsanitize=address,undefined)
+endif()
+
+include(CheckCXXCompilerFlag)
+check_cxx_compiler_flag(-mpopcnt BOWG_HAS_MPOPCNT)
+
+file(GLOB BOWG_ENGINE_SOURCES ${BOWG_ENGINE_DIR}/src/*.cpp)
+add_library(bowg_engine ${BOWG_ENGINE_SOURCES})
+target_include_directories(bowg_engine PUBLIC
+  $<BUILD_INTERFACE:${BOWG_ENGINE_DIR}/include>
+  ${OpenCV_INCLUDE_DIRS})
+target_link_libraries(bowg_engine PUBLIC ${OpenCV_LIBS} ZLIB::ZLIB)
+target_compile_options(bowg_engine PRIVATE -Wall -Wextra)
+if(BOWG_HAS_MPOPCNT)
+  # Hardware popcount for the 256-bit Hamming distance (x86-64 only; ARM
+  # robots get their own instruction from the compiler's default).
+  target_compile_options(bowg_engine PUBLIC -mpopcnt)
+endif()
+set_target_properties(bowg_engine PROPERTIES POSITION_INDEPENDENT_CODE ON)
+
+# Engine tests: one gtest executable per test/*_test.cpp. Test data written by
+# the tests themselves goes to the build tree; shared third-party data is read
+# from BOWG_SHARED_DATA_DIR (tests skip with a message where it is absent).
+# REALPATH: the catkin workspace reaches the repository through a symlink.
+get_filename_component(BOWG_REPO_DIR ${BOWG_ENGINE_DIR}/.. REALPATH)
+set(BOWG_SHARED_DATA_DIR_DEFAULT ${BOWG_REPO_DIR}/../shared/data)
+set(BOWG_SHARED_DATA_DIR ${BOWG_SHARED_DATA_DIR_DEFAULT} CACHE PATH
+  "The shared third-party data folder (../shared/data)")
+
+function(bowg_engine_test name source)
+  if(COMMAND catkin_add_gtest)
+    catkin_add_gtest(${name} ${source} ${ARGN})
+  else()
+    find_package(GTest REQUIRED)
+    add_executable(${name} ${source} ${ARGN})
+    target_link_libraries(${name} GTest::gtest GTest::gtest_main)
+    add_test(NAME ${name} COMMAND ${name})
+  endif()
+  if(TARGET ${name})
+    target_link_libraries(${name} bowg_engine)
+    if(COMMAND catkin_add_gtest)
+      target_link_libraries(${name} gtest_main)
+    endif()
+    target_compile_definitions(${name} PRIVATE
+      BOWG_SHARED_DATA_DIR="${BOWG_SHARED_DATA_DIR}"
+      BOWG_TEST_OUTPUT_DIR="${CMAKE_CURRENT_BINARY_DIR}")
+    target_include_directories(${name} PRIVATE ${BOWG_ENGINE_DIR}/test)
+  endif()
+endfunction()
+
+if(BOWG_ENGINE_TESTS)
+  if(NOT COMMAND catkin_add_gtest)
+    enable_testing()
+  endif()
+  file(GLOB BOWG_ENGINE_TEST_SOURCES ${BOWG_ENGINE_DIR}/test/*_test.cpp)
+  foreach(test_source ${BOWG_ENGINE_TEST_SOURCES})
+    get_filename_component(test_name ${test_source} NAME_WE)
+    bowg_engine_test(bowg_${test_name} ${test_source})
+  endforeach()
+endif()
+
+if(BOWG_ENGINE_BENCHMARKS)
+  find_package(benchmark QUIET)
+  if(benchmark_FOUND)
+    file(GLOB BOWG_BENCH_SOURCES ${BOWG_ENGINE_DIR}/bench/*_bench.cpp)
+    foreach(bench_source ${BOWG_BENCH_SOURCES})
+      get_filename_component(bench_name ${bench_source} NAME_WE)
+      add_executable(bowg_${bench_name} ${bench_source})
+      target_link_libraries(bowg_${bench_name} bowg_engine benchmark::benchmark)
+    endforeach()
+  else()
+    message(STATUS "bowg_engine: Google Benchmark not found, benchmarks not built")
+  endif()
+endif()
+
+# ROS-free command-line tools (vocabulary training and conversion on image
+# folders). The rosbag-aware tools live in ../tools and link rosbag.
+file(GLOB BOWG_ENGINE_TOOL_SOURCES ${BOWG_ENGINE_DIR}/tools/*.cpp)
+foreach(tool_source ${BOWG_ENGINE_TOOL_SOURCES})
+  get_filename_component(tool_name ${tool_source} NAME_WE)
+  add_executable(bowg_${tool_name} ${tool_source})
+  target_link_libraries(bowg_${tool_name} bowg_engine)
+endforeach()

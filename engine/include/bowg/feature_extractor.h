@@ -1,0 +1,69 @@
+// Feature extraction (paper Sec. III-A; the pipe experiments use GFTT, the
+// public datasets multi-scale ORB/FAST). Produces 256-bit binary descriptors
+// and keeps the keypoint size, which is the word-group radius.
+#pragma once
+
+#include <string>
+
+#include <opencv2/core.hpp>
+
+#include "bowg/types.h"
+
+namespace bowg {
+
+struct FeatureOptions {
+  enum class Detector { kGftt, kOrb };
+  enum class DescriptorType { kOrb, kBrief };
+
+  Detector detector = Detector::kGftt;
+  DescriptorType descriptor = DescriptorType::kOrb;
+
+  // GFTT (Shi-Tomasi) corners.
+  int gftt_max_corners = 500;
+  double gftt_quality_level = 0.01;
+  double gftt_min_distance = 10.0;  ///< px
+  int gftt_block_size = 3;          ///< px
+  bool gftt_use_harris = false;
+  /// Keypoint size given to GFTT corners (px). GFTT has no scale; this is
+  /// the word-group radius and the descriptor patch diameter.
+  double gftt_keypoint_size = 31.0;
+
+  // Multi-scale ORB/FAST.
+  int orb_max_features = 500;
+  double orb_scale_factor = 1.2;
+  int orb_levels = 8;
+  int orb_fast_threshold = 20;
+
+  /// rBRIEF: steer the descriptor by the intensity-centroid orientation
+  /// (pipe robots roll). Off = unoriented (upright) descriptors.
+  bool compute_orientation = true;
+  /// Plain BRIEF: path of a pattern file in the layout of VINS'
+  /// brief_pattern.yml (256 pairs x1 y1 x2 y2), needed for brief_k10L6.bin.
+  std::string brief_pattern_path;
+  /// Optional 8-bit mask image (non-zero = usable), e.g. to blank burned-in
+  /// text overlays; must match the image size.
+  std::string mask_path;
+
+  void validate() const;  ///< throws InvalidParameter naming the field
+};
+
+class FeatureExtractor {
+ public:
+  /// Validates options, loads pattern and mask files (throws IoError /
+  /// FormatError with the path on failure).
+  explicit FeatureExtractor(const FeatureOptions& options);
+
+  /// `image` must be 8-bit single-channel and non-empty (throws
+  /// std::invalid_argument otherwise). Keypoints whose descriptor patch
+  /// would leave the image are dropped.
+  ImageFeatures extract(const cv::Mat& image) const;
+
+  const FeatureOptions& options() const { return options_; }
+
+ private:
+  FeatureOptions options_;
+  cv::Mat mask_;
+  std::vector<cv::Vec4i> brief_pattern_;  // (x1, y1, x2, y2) per bit
+};
+
+}  // namespace bowg

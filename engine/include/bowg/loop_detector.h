@@ -1,0 +1,145 @@
+// The BoWG loop detector: one call per keyframe runs the whole method of the
+// paper (Fig. 2): words -> word groups -> scores (word, group, distribution)
+// -> normalisation -> temporal score -> islands -> temporal verification ->
+// geometric verification, then adds the keyframe to the database.
+//
+// Not thread-safe: one thread calls process(); setOptions() may be called
+// between keyframes (the nodelet serialises both with a mutex).
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "bowg/options.h"
+#include "bowg/types.h"
+
+namespace bowg {
+
+class Vocabulary;
+class Database;
+
+/// Why a keyframe did or did not yield a loop (cf. DLoopDetector's
+/// DetectionStatus). Exactly one per keyframe.
+enum class LoopStatus {
+  kLoopDetected = 0,
+  kNoFeatures,             ///< the keyframe has no features: added, not queried
+  kDatabaseTooSmall,       ///< nothing older than the recent-exclusion window
+  kLowNormaliser,          ///< score against the previous keyframe too small
+  kNoCandidates,           ///< no database entry shares a word or group
+  kNoScoreAboveThreshold,  ///< no candidate reached islands.min_score
+  kNoTemporalConsistency,  ///< best island not consistent with k previous
+  kTooFewCorrespondences,  ///< fewer than 8 correspondences for RANSAC
+  kTooFewInliers,          ///< RANSAC found fewer than min_inliers
+};
+const char* toString(LoopStatus s);
+
+/// Wall-clock milliseconds spent per stage for one keyframe.
+struct StageTimings {
+  double transform_ms = 0;     ///< descriptors -> words (+ direct index)
+  double word_groups_ms = 0;   ///< word groups and refined weights
+  double query_ms = 0;         ///< inverse-index scoring, normalisation, temporal
+  double islands_ms = 0;       ///< islands and temporal verification
+  double verification_ms = 0;  ///< geometric verification
+  double total_ms = 0;
+};
+
+/// One point correspondence that survived geometric verification.
+struct Correspondence {
+  std::uint32_t query_index = 0;  ///< feature index in the query keyframe
+  std::uint32_t match_index = 0;  ///< feature index in the matched keyframe
+  float query_x = 0, query_y = 0, match_x = 0, match_y = 0;
+};
+
+/// The scores of one candidate against the query (paper notation).
+struct CandidateScores {
+  EntryId entry = 0;
+  double eta_w = 0;     ///< normalised word score (eq. 2)
+  double eta_g = 0;     ///< normalised word-group score (eq. 4)
+  double eta_d = 0;     ///< normalised distribution score
+  double eta_sim = 0;   ///< combined similarity (eq. 5 or 9)
+  double eta = 0;       ///< final score: eta_temp (eq. 7) or eta_sim
+};
+
+struct KeyframeInput {
+  double stamp = 0;  ///< seconds; must increase from keyframe to keyframe
+  ImageFeatures features;
+  /// Optional: enables the relative pose from the essential matrix and sets
+  /// the centre of the distribution fan (else the image centre).
+  CameraIntrinsics intrinsics;
+};
+
+struct LoopResult {
+  EntryId query_id = 0;
+  double stamp = 0;
+  LoopStatus status = LoopStatus::kNoFeatures;
+
+  /// Best candidate before verification (valid when has_candidate).
+  bool has_candidate = false;
+  CandidateScores best;
+  /// Best island (valid when has_candidate).
+  EntryId island_first = 0, island_last = 0;
+  double island_score = 0;
+
+  /// The loop (valid when status == kLoopDetected).
+  EntryId match_id = 0;
+  double match_stamp = 0;
+  int correspondences = 0;
+  int inliers = 0;
+  std::vector<Correspondence> inlier_correspondences;
+  /// Relative pose of the match camera in the query camera frame, from the
+  /// essential matrix, when intrinsics are known: R (row-major 3x3) and the
+  /// unit translation direction (scale is unobservable from two views).
+  bool has_relative_pose = false;
+  double rotation[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+  double translation_direction[3] = {0, 0, 0};
+
+  /// Normaliser scores against the previous keyframe (s(I_t, I_t-1)).
+  double word_normaliser = 0, group_normaliser = 0, distribution_normaliser = 0;
+  std::size_t candidates_scored = 0;
+  StageTimings timings;
+};
+
+class LoopDetector {
+ public:
+  /// Throws InvalidParameter when options are invalid.
+  LoopDetector(std::shared_ptr<const Vocabulary> vocabulary, const LoopDetectorOptions& options);
+  ~LoopDetector();
+  LoopDetector(const LoopDetector&) = delete;
+  LoopDetector& operator=(const LoopDetector&) = delete;
+
+  /// Validates, then applies from the next keyframe (database kept).
+  void setOptions(const LoopDetectorOptions& options);
+  const LoopDetectorOptions& options() const { return options_; }
+
+  /// Runs the method for one keyframe and adds it to the database.
+  /// Throws std::invalid_argument when the stamp does not increase or the
+  /// keypoints and descriptors differ in number (the keyframe is not added).
+  LoopResult process(const KeyframeInput& keyframe);
+
+  /// The scores of every candidate of the last process() call (for
+  /// evaluation and debugging), sorted by entry id.
+  const std::vector<CandidateScores>& lastCandidates() const { return last_candidates_; }
+
+  const Database& database() const { return *database_; }
+  const Vocabulary& vocabulary() const { return *vocabulary_; }
+
+  /// Atomic save (temporary file + rename) of the database and the detector
+  /// state; throws IoError.
+  void save(const std::string& path) const;
+  /// Loads a saved file. Throws FormatError/IoError and leaves the current
+  /// state untouched on any error (other vocabulary, corrupt, truncated).
+  void load(const std::string& path);
+  /// Forgets every keyframe.
+  void reset();
+
+ private:
+  struct State;
+  std::shared_ptr<const Vocabulary> vocabulary_;
+  LoopDetectorOptions options_;
+  std::unique_ptr<Database> database_;
+  std::unique_ptr<State> state_;
+  std::vector<CandidateScores> last_candidates_;
+};
+
+}  // namespace bowg

@@ -1,0 +1,129 @@
+// Options of every stage of the BoWG pipeline, one struct per stage, each with
+// documented defaults and a validate() that throws InvalidParameter naming the
+// offending field. LoopDetectorOptions gathers them; it may be swapped between
+// keyframes (the nodelet tunes it live).
+#pragma once
+
+#include <string>
+
+#include "bowg/bow_vector.h"
+
+namespace bowg {
+
+/// Word groups (paper Sec. III-A "Word Group Definition").
+struct WordGroupOptions {
+  /// Off = pure bag of words (ablation row 1).
+  bool enabled = true;
+  /// A neighbour joins the group of feature i when its distance is
+  /// < radius_scale * size_i. The paper uses the keypoint size itself (1.0).
+  double radius_scale = 1.0;
+  void validate() const;
+};
+
+/// Feature-distribution score (paper Sec. III-C) over m fan bins.
+struct DistributionOptions {
+  /// Off for generic scenes; on in pipes (the paper disables it on public
+  /// datasets).
+  bool enabled = false;
+  /// m, the number of fan-shaped bins of angle 2*pi/m. >= 1.
+  int fan_bins = 8;
+  void validate() const;
+};
+
+/// Similarity combination (paper eqs. 2-5, 9) and normalisation.
+struct SimilarityOptions {
+  /// lambda_1: weight of the normalised word score eta_w, in [0, 1].
+  double lambda_1 = 0.5;
+  /// lambda_2: weight of eta_g when the distribution score is on (eq. 9),
+  /// in [0, 1], lambda_1 + lambda_2 <= 1. With the distribution score off,
+  /// eq. 5 applies: lambda_1*eta_w + (1 - lambda_1)*eta_g.
+  double lambda_2 = 0.3;
+  /// Scores are normalised by the score against the previous keyframe
+  /// (eta = s(I_t, I_tj) / s(I_t, I_t-1)). Below these minimum normaliser
+  /// scores the keyframe yields no loop (DLoopDetector's min_nss_factor).
+  double min_word_normaliser = 0.005;
+  double min_group_normaliser = 0.005;
+  double min_distribution_normaliser = 0.005;
+  void validate() const;
+};
+
+/// Adaptive temporal score (paper eqs. 6-7).
+struct TemporalScoreOptions {
+  bool enabled = true;
+  /// w_max: the largest weight the previous query's score can get, [0, 1).
+  double w_max = 0.6;
+  /// alpha: scale of the score difference in eq. 6, > 0.
+  double alpha = 0.2;
+  void validate() const;
+};
+
+/// Candidate selection and islands (paper Sec. III-D "Islands Matching",
+/// after DLoopDetector).
+struct IslandOptions {
+  /// Acceptance threshold on eta (the paper's second "alpha"), >= 0.
+  double min_score = 0.3;
+  /// The most recent keyframes are never candidates (the robot just saw
+  /// them). >= 0.
+  int recent_exclusion = 20;
+  /// Entries whose ids differ by at most this belong to one island. >= 0.
+  int max_intra_island_gap = 3;
+  /// Islands with fewer members are ignored. >= 1.
+  int min_island_size = 1;
+  void validate() const;
+};
+
+/// Temporal verification (paper Sec. III-D, DLoopDetector's k).
+struct TemporalVerificationOptions {
+  /// k: number of previous consecutive queries whose best islands must be
+  /// consistent with the current one. 0 disables the check.
+  int k = 3;
+  /// Two islands are consistent when the gap between their id intervals is
+  /// at most this (0 = they must overlap). >= 0.
+  int max_island_distance = 3;
+  void validate() const;
+};
+
+/// Geometric verification (paper Sec. III-D): fundamental matrix by RANSAC on
+/// correspondences found through the direct index.
+struct GeometricVerificationOptions {
+  bool enabled = true;
+  /// Depth of the vocabulary level the direct index is built at (1..L); the
+  /// paper's Table III uses levels 3-5 of an L=6 tree, 4 is its sweet spot.
+  int direct_index_level = 4;
+  /// Match every feature against every feature instead (slower, ~same recall).
+  bool exhaustive = false;
+  /// Correspondences: Hamming distance at most max_hamming and best/second
+  /// best ratio below max_neighbour_ratio.
+  int max_hamming = 64;
+  double max_neighbour_ratio = 0.8;
+  /// RANSAC: reprojection threshold (px) and confidence.
+  double ransac_threshold_px = 2.0;
+  double ransac_confidence = 0.99;
+  /// Accept with at least this many inliers. >= 8.
+  int min_inliers = 15;
+  void validate() const;
+};
+
+/// Everything the loop detector needs per keyframe.
+struct LoopDetectorOptions {
+  ScoringType scoring = ScoringType::kL1;
+  WordGroupOptions word_groups;
+  DistributionOptions distribution;
+  SimilarityOptions similarity;
+  TemporalScoreOptions temporal_score;
+  IslandOptions islands;
+  TemporalVerificationOptions temporal_verification;
+  GeometricVerificationOptions geometric;
+
+  /// Throws InvalidParameter("<stage>.<field>: <why>") on the first invalid
+  /// value, e.g. "similarity.lambda_1 + similarity.lambda_2 must be <= 1".
+  void validate() const;
+
+  /// The ablation presets: "bow" (pure bag of words), "word_groups",
+  /// "temporal" (+ temporal score), "distribution" (+ distribution score).
+  /// Each row switches on one more module on top of the previous one.
+  static LoopDetectorOptions ablation(const std::string& row,
+                                      const LoopDetectorOptions& base);
+};
+
+}  // namespace bowg

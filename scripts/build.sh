@@ -1,0 +1,26 @@
+#!/usr/bin/env bash
+# Builds bowg_ros in a catkin workspace that this script creates itself
+# (default: <repo>/.ws, override with BOWG_WS), so nobody has to set one up by
+# hand. Extra arguments go to catkin_make (e.g. run_tests, or -DFOO=bar).
+set -euo pipefail
+repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+ws="${BOWG_WS:-$repo/.ws}"
+
+# Debian's ROS 1 lives in /usr; a pyenv or venv python first on PATH lacks the
+# ROS modules, so put the system interpreter first.
+export PATH="/usr/bin:$PATH"
+
+mkdir -p "$ws/src"
+if [ ! -e "$ws/src/bowg_ros" ]; then
+  ln -s "$repo" "$ws/src/bowg_ros"
+fi
+
+jobs="${BOWG_JOBS:-$(nproc)}"
+cd "$ws"
+catkin_make -j"$jobs" \
+  -DCMAKE_BUILD_TYPE="${BOWG_BUILD_TYPE:-Release}" \
+  -DCMAKE_CXX_STANDARD=14 \
+  -DPYTHON_EXECUTABLE=/usr/bin/python3 \
+  -DPython3_EXECUTABLE=/usr/bin/python3 \
+  -DCATKIN_ENABLE_TESTING=ON \
+  "$@"

@@ -1,0 +1,46 @@
+#!/usr/bin/env bash
+# Installs everything bowg_ros needs on Debian 12 (bookworm) from Debian's own
+# ROS 1 packages. Idempotent: installs only what is missing, so a second run
+# does nothing. Run as root, or as a user with sudo.
+set -euo pipefail
+
+PACKAGES=(
+  build-essential cmake pkg-config zlib1g-dev
+  catkin catkin-lint ros-message-generation ros-message-runtime
+  libroscpp-dev rosout python3-rosmaster python3-roslaunch rosbash
+  python3-rostopic python3-rosnode python3-rosparam python3-rosservice
+  libnodeletlib-dev libnodelet-dev libnodeletlib-tools pluginlib-dev
+  libcv-bridge-dev libimage-transport-dev image-transport-tools
+  libopencv-dev libeigen3-dev
+  libdynamic-reconfigure-config-init-mutex-dev python3-dynamic-reconfigure
+  libdiagnostic-updater-dev python3-diagnostic-updater
+  libdiagnostic-msgs-dev ros-diagnostic-msgs python3-diagnostic-msgs
+  libstd-msgs-dev ros-std-msgs python3-std-msgs
+  libstd-srvs-dev ros-std-srvs python3-std-srvs
+  libgeometry-msgs-dev ros-geometry-msgs python3-geometry-msgs
+  libsensor-msgs-dev ros-sensor-msgs python3-sensor-msgs
+  libnav-msgs-dev ros-nav-msgs python3-nav-msgs
+  librosbag-dev python3-rosbag
+  libgtest-dev googletest librostest-dev python3-rostest
+  libbenchmark-dev python3-numpy python3-yaml
+)
+
+missing=()
+for p in "${PACKAGES[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "install_deps: all ${#PACKAGES[@]} packages already installed"
+  exit 0
+fi
+
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+echo "install_deps: installing ${#missing[@]} missing packages: ${missing[*]}"
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+echo "install_deps: done"

@@ -1,0 +1,41 @@
+#!/usr/bin/env bash
+# README command 2: set up, build and run every test on a fresh Debian 12
+# machine. Exits non-zero if anything fails. Run from anywhere.
+set -euo pipefail
+repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+ws="${BOWG_WS:-$repo/.ws}"
+export PATH="/usr/bin:$PATH"
+
+echo "== install dependencies"
+bash "$repo/scripts/install_deps.sh"
+
+echo "== static checks"
+bash "$repo/scripts/check_engine_is_ros_free.sh"
+(cd "$repo" && catkin_lint -W2 --strict --ignore uninstalled_script,missing_install_target .)
+
+echo "== build (C++14) and tests"
+bash "$repo/scripts/build.sh"
+bash "$repo/scripts/build.sh" tests
+# catkin_make run_tests exits 0 even when tests fail: the verdict comes from
+# catkin_test_results below.
+bash "$repo/scripts/build.sh" run_tests -j1 || true
+
+echo "== results"
+set +e
+summary=$(catkin_test_results --verbose "$ws/build/test_results" 2>&1)
+status=$?
+set -e
+echo "$summary"
+# A plain closing line for CI: "N passed, N failed".
+line=$(echo "$summary" | grep -E '^Summary:' | tail -n 1)
+tests=$(echo "$line" | sed -nE 's/.* ([0-9]+) tests.*/\1/p')
+errors=$(echo "$line" | sed -nE 's/.* ([0-9]+) errors.*/\1/p')
+failures=$(echo "$line" | sed -nE 's/.* ([0-9]+) failures.*/\1/p')
+skipped=$(echo "$line" | sed -nE 's/.* ([0-9]+) skipped.*/\1/p')
+if [ -z "$tests" ] || [ "$tests" -eq 0 ]; then
+  echo "FAIL: no test ran" >&2
+  exit 1
+fi
+bad=$(( ${errors:-0} + ${failures:-0} ))
+echo "$(( tests - bad - ${skipped:-0} )) passed, $bad failed, ${skipped:-0} skipped"
+exit $status
