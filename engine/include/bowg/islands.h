@@ -1,0 +1,56 @@
+// Islands (paper Sec. III-D "Islands Matching", after DLoopDetector) and the
+// temporal verification over k previous queries.
+#pragma once
+
+#include <deque>
+#include <utility>
+#include <vector>
+
+#include "bowg/options.h"
+#include "bowg/types.h"
+
+namespace bowg {
+
+struct Island {
+  EntryId first = 0, last = 0;  ///< id interval [first, last]
+  double score = 0;             ///< H = sum of eta over the members (eq. 10)
+  EntryId best_entry = 0;       ///< member with the highest eta
+  double best_score = 0;
+  int size = 0;
+};
+
+/// Groups (entry, eta) candidates with eta >= options.min_score into islands:
+/// sorted by id, a new island starts where the id gap exceeds
+/// max_intra_island_gap; islands smaller than min_island_size are dropped.
+/// Returned sorted by score, best first (ties: the more recent island).
+std::vector<Island> computeIslands(std::vector<std::pair<EntryId, double>> candidates,
+                                   const IslandOptions& options);
+
+/// True when the id intervals of a and b are close: their gap
+/// max(a.first, b.first) - min(a.last, b.last) is at most max_distance
+/// (overlapping intervals have a gap <= 0).
+bool islandsConsistent(const Island& a, const Island& b, int max_distance);
+
+/// DLoopDetector-style temporal verification: remembers the best island of
+/// each previous query; a match is temporally consistent when the islands of
+/// the k previous consecutive queries form a chain of consistent islands
+/// ending at the current one.
+class TemporalConsistency {
+ public:
+  /// Records the current query's best island and returns whether it is
+  /// consistent with the k previous ones (always true for k = 0).
+  bool update(const Island& island, const TemporalVerificationOptions& options);
+  /// A query without an island breaks the chain.
+  void breakChain();
+  void reset() { breakChain(); }
+  int chainLength() const { return chain_length_; }
+  /// For persistence.
+  const Island& lastIsland() const { return last_; }
+  void restore(const Island& last, int chain_length);
+
+ private:
+  Island last_;
+  int chain_length_ = 0;  ///< consecutive consistent queries ending at last_
+};
+
+}  // namespace bowg
