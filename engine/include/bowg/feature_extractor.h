@@ -25,7 +25,8 @@ struct FeatureOptions {
   int gftt_block_size = 3;          ///< px
   bool gftt_use_harris = false;
   /// Keypoint size given to GFTT corners (px). GFTT has no scale; this is
-  /// the word-group radius and the descriptor patch diameter.
+  /// the word-group radius. (Descriptor patches are fixed: ORB's 31x31,
+  /// BRIEF's pattern extent.)
   double gftt_keypoint_size = 31.0;
 
   // Multi-scale ORB/FAST.

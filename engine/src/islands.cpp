@@ -1,0 +1,121 @@
+// Islands (paper Sec. III-D "Islands Matching", eq. 10) and the temporal
+// verification, after DLoopDetector (Galvez-Lopez & Tardos, T-RO 2012).
+//
+// Where this file departs from DLoopDetector's TemplatedLoopDetector, it
+// follows the agreed header (bowg/islands.h, options.h):
+//  - ids a and b join one island when b - a <= max_intra_island_gap
+//    (DLoopDetector: b - a < max_intragroup_gap);
+//  - min_island_size counts the members above the threshold
+//    (DLoopDetector: the id span last - first + 1);
+//  - ties are broken towards the more recent island / entry.
+// The temporal chain rule is DLoopDetector's (see TemporalConsistency::update).
+#include "bowg/islands.h"
+
+#include <algorithm>
+#include <cstdint>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+namespace bowg {
+
+std::vector<Island> computeIslands(std::vector<std::pair<EntryId, double>> candidates,
+                                   const IslandOptions& options) {
+  options.validate();
+  // Keep candidates with eta >= min_score (NaN scores fail the test).
+  candidates.erase(std::remove_if(candidates.begin(), candidates.end(),
+                                  [&options](const std::pair<EntryId, double>& c) {
+                                    return !(c.second >= options.min_score);
+                                  }),
+                   candidates.end());
+  std::sort(candidates.begin(), candidates.end(),
+            [](const std::pair<EntryId, double>& a, const std::pair<EntryId, double>& b) {
+              return a.first < b.first;
+            });
+
+  std::vector<Island> islands;
+  const auto close_island = [&islands, &options](const Island& island) {
+    if (island.size >= options.min_island_size) islands.push_back(island);
+  };
+  Island current;
+  for (std::size_t i = 0; i < candidates.size(); ++i) {
+    const EntryId id = candidates[i].first;
+    const double eta = candidates[i].second;
+    if (i > 0 && id == current.last) {
+      throw std::invalid_argument("computeIslands: entry " + std::to_string(id) +
+                                  " appears twice among the candidates");
+    }
+    const bool starts_new =
+        i == 0 || static_cast<std::int64_t>(id) - static_cast<std::int64_t>(current.last) >
+                      options.max_intra_island_gap;
+    if (starts_new) {
+      if (i > 0) close_island(current);
+      current = Island();
+      current.first = id;
+      current.best_entry = id;
+      current.best_score = eta;
+    }
+    current.last = id;
+    current.score += eta;  // eq. 10: H = sum of eta over the island
+    ++current.size;
+    if (eta >= current.best_score) {  // ties: the more recent entry
+      current.best_score = eta;
+      current.best_entry = id;
+    }
+  }
+  if (!candidates.empty()) close_island(current);
+
+  // Best first; islands are disjoint, so "more recent" = larger first id.
+  std::sort(islands.begin(), islands.end(), [](const Island& a, const Island& b) {
+    if (a.score != b.score) return a.score > b.score;
+    return a.first > b.first;
+  });
+  return islands;
+}
+
+bool islandsConsistent(const Island& a, const Island& b, int max_distance) {
+  const std::int64_t gap = static_cast<std::int64_t>(std::max(a.first, b.first)) -
+                           static_cast<std::int64_t>(std::min(a.last, b.last));
+  return gap <= max_distance;
+}
+
+bool TemporalConsistency::update(const Island& island, const TemporalVerificationOptions& options) {
+  options.validate();
+  // DLoopDetector's updateTemporalWindow: the chain counts the queries whose
+  // best islands were pairwise consistent with their predecessor, including
+  // the current one. It restarts at 1 when the new island is not consistent
+  // with the last one (or after breakChain()), and a match passes when the
+  // chain is longer than k, i.e. the current island and the islands of the k
+  // previous consecutive queries form one chain. k = 0 always passes.
+  if (chain_length_ > 0 && islandsConsistent(last_, island, options.max_island_distance)) {
+    if (chain_length_ < std::numeric_limits<int>::max()) ++chain_length_;
+  } else {
+    chain_length_ = 1;
+  }
+  last_ = island;
+  return chain_length_ > options.k;
+}
+
+void TemporalConsistency::breakChain() {
+  // DLoopDetector restarts its window when a query is further than
+  // max_distance_between_queries from the last matched one; here the caller
+  // breaks the chain on every query that yields no island.
+  last_ = Island();
+  chain_length_ = 0;
+}
+
+void TemporalConsistency::restore(const Island& last, int chain_length) {
+  if (chain_length < 0) {
+    throw std::invalid_argument("TemporalConsistency::restore: chain_length must be >= 0 (got " +
+                                std::to_string(chain_length) + ")");
+  }
+  if (chain_length > 0 && last.first > last.last) {
+    throw std::invalid_argument("TemporalConsistency::restore: island first " +
+                                std::to_string(last.first) + " > last " +
+                                std::to_string(last.last));
+  }
+  last_ = chain_length > 0 ? last : Island();
+  chain_length_ = chain_length;
+}
+
+}  // namespace bowg

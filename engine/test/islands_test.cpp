@@ -1,0 +1,239 @@
+// Islands (paper Sec. III-D, eq. 10) and the temporal verification over k
+// previous queries, on hand-made candidate lists.
+#include "bowg/islands.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <random>
+#include <stdexcept>
+#include <utility>
+#include <vector>
+
+#include "bowg/errors.h"
+
+namespace bowg {
+namespace {
+
+using Candidates = std::vector<std::pair<EntryId, double>>;
+
+// min_score 0.3, gap 3, min size 1 (the defaults, spelled out).
+IslandOptions islandOptions() {
+  IslandOptions o;
+  o.min_score = 0.3;
+  o.max_intra_island_gap = 3;
+  o.min_island_size = 1;
+  return o;
+}
+
+// After dropping entry 8 (0.2 < 0.3):
+//   5 (0.5), 6 (0.4), 9 (0.6): gaps 1 and 3 <= 3  -> [5, 9]  H = 1.5, best 9
+//   20 (0.9): gap 11                               -> [20,20] H = 0.9
+//   30 (0.35), 31 (0.35), 33 (0.4): gaps 1, 2      -> [30,33] H = 1.1, best 33
+Candidates handCandidates() {
+  return {{20, 0.9}, {5, 0.5}, {31, 0.35}, {8, 0.2}, {6, 0.4}, {33, 0.4}, {9, 0.6}, {30, 0.35}};
+}
+
+void expectIsland(const Island& i, EntryId first, EntryId last, double score, EntryId best,
+                  double best_score, int size) {
+  EXPECT_EQ(i.first, first);
+  EXPECT_EQ(i.last, last);
+  EXPECT_NEAR(i.score, score, 1e-12);
+  EXPECT_EQ(i.best_entry, best);
+  EXPECT_DOUBLE_EQ(i.best_score, best_score);
+  EXPECT_EQ(i.size, size);
+}
+
+TEST(ComputeIslands, HandMadeCandidates) {
+  const std::vector<Island> islands = computeIslands(handCandidates(), islandOptions());
+  ASSERT_EQ(islands.size(), 3u);
+  // Sorted by score: 1.5 > 1.1 > 0.9. Entry 8 is below the threshold, so it
+  // adds nothing to [5, 9] (H would be 1.7 otherwise).
+  expectIsland(islands[0], 5, 9, 1.5, 9, 0.6, 3);
+  expectIsland(islands[1], 30, 33, 1.1, 33, 0.4, 3);
+  expectIsland(islands[2], 20, 20, 0.9, 20, 0.9, 1);
+}
+
+TEST(ComputeIslands, InputOrderDoesNotMatter) {
+  Candidates c = handCandidates();
+  std::mt19937 rng(7);
+  for (int round = 0; round < 5; ++round) {
+    std::shuffle(c.begin(), c.end(), rng);
+    const std::vector<Island> islands = computeIslands(c, islandOptions());
+    ASSERT_EQ(islands.size(), 3u);
+    expectIsland(islands[0], 5, 9, 1.5, 9, 0.6, 3);
+  }
+}
+
+TEST(ComputeIslands, MinIslandSizeDropsSmallIslands) {
+  IslandOptions o = islandOptions();
+  o.min_island_size = 2;
+  const std::vector<Island> islands = computeIslands(handCandidates(), o);
+  ASSERT_EQ(islands.size(), 2u);
+  expectIsland(islands[0], 5, 9, 1.5, 9, 0.6, 3);
+  expectIsland(islands[1], 30, 33, 1.1, 33, 0.4, 3);
+  o.min_island_size = 4;
+  EXPECT_TRUE(computeIslands(handCandidates(), o).empty());
+}
+
+TEST(ComputeIslands, ThresholdSplitsIslands) {
+  // min_score 0.5 keeps 5 (0.5, >= is kept), 9 (0.6) and 20 (0.9). Without 6
+  // the gap 5 -> 9 is 4 > 3: three singletons, best first.
+  IslandOptions o = islandOptions();
+  o.min_score = 0.5;
+  const std::vector<Island> islands = computeIslands(handCandidates(), o);
+  ASSERT_EQ(islands.size(), 3u);
+  expectIsland(islands[0], 20, 20, 0.9, 20, 0.9, 1);
+  expectIsland(islands[1], 9, 9, 0.6, 9, 0.6, 1);
+  expectIsland(islands[2], 5, 5, 0.5, 5, 0.5, 1);
+  o.min_score = 0.95;
+  EXPECT_TRUE(computeIslands(handCandidates(), o).empty());
+}
+
+TEST(ComputeIslands, GapIsInclusive) {
+  // Ids 10 and 12 differ by 2: one island for gap 2, two for gap 1.
+  const Candidates c{{10, 0.5}, {12, 0.5}};
+  IslandOptions o = islandOptions();
+  o.max_intra_island_gap = 2;
+  EXPECT_EQ(computeIslands(c, o).size(), 1u);
+  o.max_intra_island_gap = 1;
+  EXPECT_EQ(computeIslands(c, o).size(), 2u);
+  o.max_intra_island_gap = 0;  // every entry alone, even consecutive ones
+  EXPECT_EQ(computeIslands({{10, 0.5}, {11, 0.5}}, o).size(), 2u);
+}
+
+TEST(ComputeIslands, TiesGoToTheMoreRecent) {
+  // Two islands with H = 0.8: [40, 41] before [10, 11]. Inside [40, 41] both
+  // members score 0.4: best entry 41.
+  const std::vector<Island> islands =
+      computeIslands({{10, 0.4}, {11, 0.4}, {40, 0.4}, {41, 0.4}}, islandOptions());
+  ASSERT_EQ(islands.size(), 2u);
+  EXPECT_EQ(islands[0].first, 40u);
+  EXPECT_EQ(islands[0].best_entry, 41u);
+  EXPECT_EQ(islands[1].first, 10u);
+}
+
+TEST(ComputeIslands, EmptyAndInvalidInput) {
+  EXPECT_TRUE(computeIslands({}, islandOptions()).empty());
+  EXPECT_THROW(computeIslands({{3, 0.5}, {3, 0.6}}, islandOptions()), std::invalid_argument);
+  IslandOptions bad = islandOptions();
+  bad.min_island_size = 0;
+  EXPECT_THROW(computeIslands(handCandidates(), bad), InvalidParameter);
+}
+
+Island island(EntryId first, EntryId last) {
+  Island i;
+  i.first = first;
+  i.last = last;
+  i.size = static_cast<int>(last - first + 1);
+  return i;
+}
+
+TEST(IslandsConsistent, GapBetweenIntervals) {
+  // [10, 15] and [17, 20]: gap 17 - 15 = 2.
+  EXPECT_TRUE(islandsConsistent(island(10, 15), island(17, 20), 2));
+  EXPECT_FALSE(islandsConsistent(island(10, 15), island(17, 20), 1));
+  EXPECT_TRUE(islandsConsistent(island(17, 20), island(10, 15), 2));  // symmetric
+  // Overlap: gap 12 - 14 = -2 <= 0.
+  EXPECT_TRUE(islandsConsistent(island(10, 15), island(12, 14), 0));
+  // Adjacent [10, 15], [16, 18]: gap 1, not an overlap.
+  EXPECT_FALSE(islandsConsistent(island(10, 15), island(16, 18), 0));
+  // Unsigned ids far apart: no wrap-around.
+  EXPECT_FALSE(islandsConsistent(island(0, 0), island(4000000000u, 4000000000u), 3));
+}
+
+TemporalVerificationOptions verification(int k, int max_distance = 3) {
+  TemporalVerificationOptions o;
+  o.k = k;
+  o.max_island_distance = max_distance;
+  return o;
+}
+
+TEST(TemporalConsistency, ChainOfKPreviousConsistentIslands) {
+  // k = 2: the current island and the islands of the 2 previous queries must
+  // form a chain, so the third consistent query is the first to pass.
+  TemporalConsistency tc;
+  const TemporalVerificationOptions o = verification(2);
+  EXPECT_FALSE(tc.update(island(10, 12), o));
+  EXPECT_EQ(tc.chainLength(), 1);
+  EXPECT_FALSE(tc.update(island(11, 13), o));  // overlaps
+  EXPECT_EQ(tc.chainLength(), 2);
+  EXPECT_TRUE(tc.update(island(15, 16), o));  // gap 15 - 13 = 2 <= 3
+  EXPECT_EQ(tc.chainLength(), 3);
+  EXPECT_TRUE(tc.update(island(17, 17), o));  // the chain goes on
+  EXPECT_EQ(tc.chainLength(), 4);
+  EXPECT_EQ(tc.lastIsland().first, 17u);
+}
+
+TEST(TemporalConsistency, InconsistentIslandRestartsTheChain) {
+  TemporalConsistency tc;
+  const TemporalVerificationOptions o = verification(2);
+  tc.update(island(10, 12), o);
+  tc.update(island(11, 13), o);
+  // [100, 102] is 87 ids away: chain restarts at 1 with it.
+  EXPECT_FALSE(tc.update(island(100, 102), o));
+  EXPECT_EQ(tc.chainLength(), 1);
+  EXPECT_FALSE(tc.update(island(101, 103), o));
+  EXPECT_TRUE(tc.update(island(102, 104), o));
+}
+
+TEST(TemporalConsistency, ConsistencyIsJudgedAgainstTheLastIslandOnly) {
+  // Each island is close to its predecessor although the first and the last
+  // are 8 ids apart: a chain, as in DLoopDetector.
+  TemporalConsistency tc;
+  const TemporalVerificationOptions o = verification(2, 3);
+  tc.update(island(10, 10), o);
+  tc.update(island(13, 13), o);
+  EXPECT_TRUE(tc.update(island(16, 16), o));
+}
+
+TEST(TemporalConsistency, BreakChainForgetsThePast) {
+  TemporalConsistency tc;
+  const TemporalVerificationOptions o = verification(2);
+  tc.update(island(10, 12), o);
+  tc.update(island(11, 13), o);
+  tc.breakChain();  // a query without any island
+  EXPECT_EQ(tc.chainLength(), 0);
+  EXPECT_FALSE(tc.update(island(12, 14), o));  // would have been the third
+  EXPECT_EQ(tc.chainLength(), 1);
+  tc.update(island(12, 14), o);
+  tc.reset();
+  EXPECT_EQ(tc.chainLength(), 0);
+}
+
+TEST(TemporalConsistency, KZeroAlwaysPasses) {
+  TemporalConsistency tc;
+  const TemporalVerificationOptions o = verification(0);
+  EXPECT_TRUE(tc.update(island(10, 12), o));
+  EXPECT_TRUE(tc.update(island(500, 501), o));  // inconsistent, still passes
+  tc.breakChain();
+  EXPECT_TRUE(tc.update(island(7, 7), o));
+}
+
+TEST(TemporalConsistency, KOneNeedsOnePreviousConsistentQuery) {
+  TemporalConsistency tc;
+  const TemporalVerificationOptions o = verification(1, 0);
+  EXPECT_FALSE(tc.update(island(10, 12), o));
+  EXPECT_FALSE(tc.update(island(14, 15), o));  // gap 2 > 0
+  EXPECT_TRUE(tc.update(island(15, 16), o));   // overlaps [14, 15]
+}
+
+TEST(TemporalConsistency, RestoreResumesTheChain) {
+  TemporalConsistency tc;
+  tc.restore(island(11, 13), 2);
+  EXPECT_EQ(tc.chainLength(), 2);
+  EXPECT_EQ(tc.lastIsland().last, 13u);
+  EXPECT_TRUE(tc.update(island(14, 15), verification(2)));
+  EXPECT_THROW(tc.restore(island(11, 13), -1), std::invalid_argument);
+  EXPECT_THROW(tc.restore(island(13, 11), 1), std::invalid_argument);
+  EXPECT_EQ(tc.chainLength(), 3);  // failed restores change nothing
+}
+
+TEST(TemporalConsistency, InvalidOptionsThrow) {
+  TemporalConsistency tc;
+  EXPECT_THROW(tc.update(island(1, 1), verification(-1)), InvalidParameter);
+  EXPECT_THROW(tc.update(island(1, 1), verification(1, -2)), InvalidParameter);
+}
+
+}  // namespace
+}  // namespace bowg
