@@ -1,0 +1,88 @@
+// Feature extraction cost per 640x480 frame (paper Sec. III-A; the paper's
+// whole pipeline budget is 8-19 ms per image on an i9, method-notes).
+// The image is synthetic texture drawn once; each run reports the features
+// found as the counter "features".
+#include <benchmark/benchmark.h>
+
+#include <cstdlib>
+#include <fstream>
+#include <string>
+
+#include "../test/feature_test_images.h"
+#include "bowg/feature_extractor.h"
+
+namespace {
+
+// Benchmarks get no BOWG_SHARED_DATA_DIR definition from the build: take the
+// environment variable of that name, else ../shared/data beside the
+// repository, found from this file's path (engine/bench/features_bench.cpp).
+std::string sharedDataDir() {
+  if (const char* env = std::getenv("BOWG_SHARED_DATA_DIR")) return env;
+  const std::string file = __FILE__;
+  const std::string marker = "/engine/bench/";
+  const std::size_t at = file.rfind(marker);
+  return at == std::string::npos ? "../shared/data" : file.substr(0, at) + "/../shared/data";
+}
+
+const cv::Mat& frame() {
+  static const cv::Mat img = bowg::test::texturedImage(640, 480, 400, 42);
+  return img;
+}
+
+void run(benchmark::State& state, const bowg::FeatureOptions& options) {
+  const bowg::FeatureExtractor fx(options);
+  std::size_t n = 0;
+  for (auto _ : state) {
+    const bowg::ImageFeatures f = fx.extract(frame());
+    n = f.size();
+    benchmark::DoNotOptimize(f.descriptors.data());
+  }
+  state.counters["features"] = static_cast<double>(n);
+}
+
+void BM_GfttOrientedOrb(benchmark::State& state) {
+  bowg::FeatureOptions o;
+  run(state, o);
+}
+
+void BM_GfttUprightOrb(benchmark::State& state) {
+  bowg::FeatureOptions o;
+  o.compute_orientation = false;
+  run(state, o);
+}
+
+void BM_OrbMultiScaleOriented(benchmark::State& state) {
+  bowg::FeatureOptions o;
+  o.detector = bowg::FeatureOptions::Detector::kOrb;
+  run(state, o);
+}
+
+void BM_OrbMultiScaleUpright(benchmark::State& state) {
+  bowg::FeatureOptions o;
+  o.detector = bowg::FeatureOptions::Detector::kOrb;
+  o.compute_orientation = false;
+  run(state, o);
+}
+
+void BM_GfttVinsBrief(benchmark::State& state) {
+  const std::string pattern = sharedDataDir() + "/vocabularies/brief_pattern.yml";
+  if (!std::ifstream(pattern).good()) {
+    state.SkipWithError(("shared BRIEF pattern absent: " + pattern).c_str());
+    return;
+  }
+  bowg::FeatureOptions o;
+  o.descriptor = bowg::FeatureOptions::DescriptorType::kBrief;
+  o.compute_orientation = false;
+  o.brief_pattern_path = pattern;
+  run(state, o);
+}
+
+}  // namespace
+
+BENCHMARK(BM_GfttOrientedOrb)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_GfttUprightOrb)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_OrbMultiScaleOriented)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_OrbMultiScaleUpright)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_GfttVinsBrief)->Unit(benchmark::kMillisecond);
+
+BENCHMARK_MAIN();
