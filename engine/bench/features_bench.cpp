@@ -8,20 +8,16 @@
 #include <fstream>
 #include <string>
 
-#include "../test/feature_test_images.h"
+#include "feature_test_images.h"
 #include "bowg/feature_extractor.h"
 
 namespace {
 
-// Benchmarks get no BOWG_SHARED_DATA_DIR definition from the build: take the
-// environment variable of that name, else ../shared/data beside the
-// repository, found from this file's path (engine/bench/features_bench.cpp).
+// The shared data folder comes from the build (BOWG_SHARED_DATA_DIR), and
+// may be overridden by the environment variable of the same name.
 std::string sharedDataDir() {
   if (const char* env = std::getenv("BOWG_SHARED_DATA_DIR")) return env;
-  const std::string file = __FILE__;
-  const std::string marker = "/engine/bench/";
-  const std::size_t at = file.rfind(marker);
-  return at == std::string::npos ? "../shared/data" : file.substr(0, at) + "/../shared/data";
+  return BOWG_SHARED_DATA_DIR;
 }
 
 const cv::Mat& frame() {
