@@ -1,0 +1,46 @@
+// Atomic file replacement: write a temporary file in the destination's
+// directory, fsync it, rename it over the destination, fsync the directory.
+// A crash or a full disk leaves either the old file or the new one, never a
+// half-written file (the databases and vocabularies are large and precious).
+#pragma once
+
+#include <cstddef>
+#include <string>
+
+namespace bowg {
+
+/// For writers that need a path of their own (e.g. cv::FileStorage): hands out
+/// a temporary path in the destination's directory that keeps the
+/// destination's file name as a suffix (so extensions such as ".yml.gz" that
+/// select the writer's behaviour still apply). commit() publishes it; if the
+/// object is destroyed without commit() the temporary file is removed.
+class AtomicFileWriter {
+ public:
+  /// Throws IoError if `path` is empty or names a directory.
+  explicit AtomicFileWriter(const std::string& path);
+  ~AtomicFileWriter();
+  AtomicFileWriter(const AtomicFileWriter&) = delete;
+  AtomicFileWriter& operator=(const AtomicFileWriter&) = delete;
+
+  const std::string& path() const { return path_; }
+  const std::string& tempPath() const { return temp_path_; }
+
+  /// fsyncs the temporary file, renames it onto path(), fsyncs the
+  /// directory. Throws IoError naming the path on any failure (the
+  /// temporary file is then removed).
+  void commit();
+
+ private:
+  std::string path_;
+  std::string temp_path_;
+  bool committed_ = false;
+};
+
+/// Writes `size` bytes atomically to `path` (throws IoError with the path and
+/// the system error on failure).
+void writeFileAtomically(const std::string& path, const void* data, std::size_t size);
+inline void writeFileAtomically(const std::string& path, const std::string& bytes) {
+  writeFileAtomically(path, bytes.data(), bytes.size());
+}
+
+}  // namespace bowg
