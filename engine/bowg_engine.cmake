@@ -34,6 +34,15 @@ if(BOWG_HAS_MPOPCNT)
 endif()
 set_target_properties(bowg_engine PROPERTIES POSITION_INDEPENDENT_CODE ON)
 
+# ROS-free command-line tools (vocabulary training and conversion on image
+# folders). The rosbag-aware tools live in ../tools and link rosbag.
+file(GLOB BOWG_ENGINE_TOOL_SOURCES ${BOWG_ENGINE_DIR}/tools/*.cpp)
+foreach(tool_source ${BOWG_ENGINE_TOOL_SOURCES})
+  get_filename_component(tool_name ${tool_source} NAME_WE)
+  add_executable(bowg_${tool_name} ${tool_source})
+  target_link_libraries(bowg_${tool_name} bowg_engine)
+endforeach()
+
 # Engine tests: one gtest executable per test/*_test.cpp. Test data written by
 # the tests themselves goes to the build tree; shared third-party data is read
 # from BOWG_SHARED_DATA_DIR (tests skip with a message where it is absent).
@@ -59,7 +68,10 @@ function(bowg_engine_test name source)
     endif()
     target_compile_definitions(${name} PRIVATE
       BOWG_SHARED_DATA_DIR="${BOWG_SHARED_DATA_DIR}"
-      BOWG_TEST_OUTPUT_DIR="${CMAKE_CURRENT_BINARY_DIR}")
+      BOWG_TEST_OUTPUT_DIR="${CMAKE_CURRENT_BINARY_DIR}"
+      BOWG_TRAIN_VOCABULARY_BIN="$<TARGET_FILE:bowg_train_vocabulary>"
+      BOWG_CONVERT_VOCABULARY_BIN="$<TARGET_FILE:bowg_convert_vocabulary>")
+    add_dependencies(${name} bowg_train_vocabulary bowg_convert_vocabulary)
     target_include_directories(${name} PRIVATE ${BOWG_ENGINE_DIR}/test)
   endif()
 endfunction()
@@ -92,11 +104,3 @@ if(BOWG_ENGINE_BENCHMARKS)
   endif()
 endif()
 
-# ROS-free command-line tools (vocabulary training and conversion on image
-# folders). The rosbag-aware tools live in ../tools and link rosbag.
-file(GLOB BOWG_ENGINE_TOOL_SOURCES ${BOWG_ENGINE_DIR}/tools/*.cpp)
-foreach(tool_source ${BOWG_ENGINE_TOOL_SOURCES})
-  get_filename_component(tool_name ${tool_source} NAME_WE)
-  add_executable(bowg_${tool_name} ${tool_source})
-  target_link_libraries(bowg_${tool_name} bowg_engine)
-endforeach()
