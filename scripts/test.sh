@@ -20,6 +20,23 @@ bash "$repo/scripts/build.sh" tests
 # catkin_test_results below.
 bash "$repo/scripts/build.sh" run_tests -j1 || true
 
+echo "== AddressSanitizer/UBSan: file loaders and persistence on corrupt input"
+asan_dir="$ws/asan"
+cmake -S "$repo/engine" -B "$asan_dir" -DBOWG_SANITIZE=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  -DBOWG_ENGINE_BENCHMARKS=OFF -DCMAKE_CXX_STANDARD=14 > "$asan_dir.log" 2>&1 \
+  || { cat "$asan_dir.log"; exit 1; }
+asan_tests=(bowg_vocabulary_io_test bowg_database_io_test bowg_brief_pattern_test)
+make -C "$asan_dir" -j"${BOWG_JOBS:-$(nproc)}" "${asan_tests[@]}" >> "$asan_dir.log" 2>&1 \
+  || { tail -n 50 "$asan_dir.log"; exit 1; }
+asan_failed=0
+for t in "${asan_tests[@]}"; do
+  if ASAN_OPTIONS=detect_leaks=1 "$asan_dir/$t" --gtest_brief=1 > "$asan_dir/$t.log" 2>&1; then
+    echo "asan: $t ok"
+  else
+    echo "asan: $t FAILED"; tail -n 40 "$asan_dir/$t.log"; asan_failed=$((asan_failed + 1))
+  fi
+done
+
 echo "== results"
 set +e
 summary=$(catkin_test_results --verbose "$ws/build/test_results" 2>&1)
@@ -36,6 +53,7 @@ if [ -z "$tests" ] || [ "$tests" -eq 0 ]; then
   echo "FAIL: no test ran" >&2
   exit 1
 fi
-bad=$(( ${errors:-0} + ${failures:-0} ))
-echo "$(( tests - bad - ${skipped:-0} )) passed, $bad failed, ${skipped:-0} skipped"
+bad=$(( ${errors:-0} + ${failures:-0} + asan_failed ))
+echo "$(( tests + ${#asan_tests[@]} - bad - ${skipped:-0} )) passed, $bad failed, ${skipped:-0} skipped"
+[ "$asan_failed" -eq 0 ] || exit 1
 exit $status

@@ -1,0 +1,131 @@
+// Per-keyframe cost of the BoWG pipeline after feature extraction
+// (LoopDetector::process: transform, word groups, query, islands,
+// verification) on 640x480-like synthetic keyframes of ~400 features with a
+// k=10 L=6 synthetic vocabulary, for databases of 1,000, 5,000 and 20,000
+// keyframes. The keyframes come from a 500 m corridor of landmarks driven
+// round and round (synthetic_corridor.h), so later laps revisit earlier ones
+// and share words the way real revisits do (2 flipped bits per descriptor,
+// 0.5 px noise). Targets: < 5 ms mean, < 15 ms max at 20,000 keyframes.
+//
+// Counters (per keyframe, in ms unless named otherwise): transform,
+// word_groups, query, islands, verification, total_mean, total_max,
+// features, candidates, loops (fraction of keyframes), bytes_per_keyframe.
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <random>
+
+#include "../test/synthetic_corridor.h"
+#include "../test/synthetic_vocabulary.h"
+#include "bowg/database.h"
+#include "bowg/loop_detector.h"
+#include "bowg/vocabulary.h"
+
+namespace bowg {
+namespace {
+
+const double kCorridorLength = 500.0;
+const double kStep = 0.25;  // metres between keyframes
+
+struct Pipeline {
+  std::shared_ptr<const Vocabulary> vocabulary;
+  testing::Corridor corridor;
+  std::unique_ptr<LoopDetector> detector;
+  std::mt19937_64 rng{17};
+  std::size_t next = 0;
+
+  Pipeline()
+      : vocabulary(std::make_shared<Vocabulary>(testing::makeSyntheticVocabulary(10, 6, 1))),
+        corridor(testing::makeCorridor(kCorridorLength, 50, 5)) {
+    LoopDetectorOptions o;
+    o.distribution.enabled = true;  // the full pipe configuration
+    o.similarity.lambda_1 = 0.4;
+    o.similarity.lambda_2 = 0.4;
+    // 100 keyframes = 25 m: views (8 m of wall) of keyframes just outside a
+    // 20-keyframe window still overlap the query; those trivial "loops" would
+    // make every query run the verification.
+    o.islands.recent_exclusion = 100;
+    detector.reset(new LoopDetector(vocabulary, o));
+  }
+
+  KeyframeInput nextKeyframe() {
+    // Laps of the corridor, leaving the last 10 m (one view) unvisited so
+    // that every view is full.
+    const double x = std::fmod(next * kStep, kCorridorLength - 10.0) + 5.0;
+    KeyframeInput kf = testing::observeCorridor(corridor, x, 1.0 + next * 0.1, rng, 2, 0.5);
+    ++next;
+    return kf;
+  }
+
+  void growTo(std::size_t n) {
+    while (detector->database().size() < n) detector->process(nextKeyframe());
+  }
+};
+
+Pipeline& pipeline() {
+  static Pipeline p;
+  return p;
+}
+
+void BM_Pipeline(benchmark::State& state) {
+  Pipeline& p = pipeline();
+  p.growTo(static_cast<std::size_t>(state.range(0)));
+  // Keyframes are generated before timing; each iteration processes one.
+  const int kBatch = 256;
+  std::vector<KeyframeInput> batch;
+  std::size_t b = kBatch;
+  StageTimings sum;
+  double total_max = 0, features = 0, candidates = 0, loops = 0;
+  std::int64_t n = 0;
+  for (auto _ : state) {
+    if (b == static_cast<std::size_t>(kBatch)) {
+      state.PauseTiming();
+      batch.clear();
+      for (int i = 0; i < kBatch; ++i) batch.push_back(p.nextKeyframe());
+      b = 0;
+      state.ResumeTiming();
+    }
+    const LoopResult r = p.detector->process(batch[b]);
+    features += batch[b].features.size();
+    ++b;
+    sum.transform_ms += r.timings.transform_ms;
+    sum.word_groups_ms += r.timings.word_groups_ms;
+    sum.query_ms += r.timings.query_ms;
+    sum.islands_ms += r.timings.islands_ms;
+    sum.verification_ms += r.timings.verification_ms;
+    sum.total_ms += r.timings.total_ms;
+    total_max = std::max(total_max, r.timings.total_ms);
+    candidates += r.candidates_scored;
+    loops += r.status == LoopStatus::kLoopDetected ? 1 : 0;
+    ++n;
+  }
+  const double k = n > 0 ? 1.0 / n : 0.0;
+  state.counters["transform"] = sum.transform_ms * k;
+  state.counters["word_groups"] = sum.word_groups_ms * k;
+  state.counters["query"] = sum.query_ms * k;
+  state.counters["islands"] = sum.islands_ms * k;
+  state.counters["verification"] = sum.verification_ms * k;
+  state.counters["total_mean"] = sum.total_ms * k;
+  state.counters["total_max"] = total_max;
+  state.counters["features"] = features * k;
+  state.counters["candidates"] = candidates * k;
+  state.counters["loops"] = loops * k;
+  const Database& db = p.detector->database();
+  state.counters["db_size"] = static_cast<double>(db.size());
+  state.counters["bytes_per_keyframe"] =
+      static_cast<double>(db.memoryBytes()) / std::max<std::size_t>(1, db.size());
+}
+
+BENCHMARK(BM_Pipeline)
+    ->Arg(1000)
+    ->Arg(5000)
+    ->Arg(20000)
+    ->Iterations(500)
+    ->Unit(benchmark::kMillisecond);
+
+}  // namespace
+}  // namespace bowg
+
+BENCHMARK_MAIN();

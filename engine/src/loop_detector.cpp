@@ -1,0 +1,345 @@
+// LoopDetector::process: the per-keyframe pipeline of the paper (Fig. 2,
+// Sec. III-B/C/D). The file format and the reading/writing live in database_io.cpp
+// (saveDetectorFile / loadDetectorFile); save() and load() wrap them.
+#include "bowg/loop_detector.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "bowg/database.h"
+#include "bowg/errors.h"
+#include "bowg/geometric_verification.h"
+#include "bowg/islands.h"
+#include "bowg/similarity.h"
+#include "bowg/vocabulary.h"
+#include "bowg/word_groups.h"
+
+namespace bowg {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double msBetween(Clock::time_point a, Clock::time_point b) {
+  return std::chrono::duration<double, std::milli>(b - a).count();
+}
+
+// Centre of the distribution fan (Sec. III-C): the principal point when the
+// intrinsics are known, else the image centre, else (image size unknown) the
+// centre of the keypoints' bounding box.
+void fanCentre(const KeyframeInput& kf, double* cx, double* cy) {
+  if (kf.intrinsics.valid) {
+    *cx = kf.intrinsics.cx;
+    *cy = kf.intrinsics.cy;
+  } else if (kf.features.image_width > 0 && kf.features.image_height > 0) {
+    *cx = 0.5 * kf.features.image_width;
+    *cy = 0.5 * kf.features.image_height;
+  } else if (!kf.features.keypoints.empty()) {
+    float x0 = kf.features.keypoints[0].x, x1 = x0, y0 = kf.features.keypoints[0].y, y1 = y0;
+    for (const auto& k : kf.features.keypoints) {
+      x0 = std::min(x0, k.x);
+      x1 = std::max(x1, k.x);
+      y0 = std::min(y0, k.y);
+      y1 = std::max(y1, k.y);
+    }
+    *cx = 0.5 * (x0 + x1);
+    *cy = 0.5 * (y0 + y1);
+  } else {
+    *cx = *cy = 0.0;
+  }
+}
+
+double lookupEta(const std::vector<std::pair<EntryId, double>>& etas, EntryId id) {
+  const auto it = std::lower_bound(etas.begin(), etas.end(), std::make_pair(id, -1e300));
+  return (it != etas.end() && it->first == id) ? it->second : 0.0;
+}
+
+struct QueryContext {
+  const Vocabulary& vocabulary;
+  const LoopDetectorOptions& options;
+  const Database& database;
+  DetectorState& state;
+  std::vector<CandidateScores>& candidates;
+};
+
+// Steps after the query's vectors are ready: normalisers, candidate scores,
+// temporal score, islands, temporal and geometric verification. Fills `r`.
+void runQuery(const QueryContext& ctx, const DatabaseQuery& q, const DatabaseEntry& query_entry,
+              const CameraIntrinsics& intrinsics, bool with_groups, bool with_distribution,
+              LoopResult* r) {
+  const Database* database_ = &ctx.database;
+  const LoopDetectorOptions& options_ = ctx.options;
+  DetectorState* state_ = &ctx.state;
+  std::vector<CandidateScores>& last_candidates_ = ctx.candidates;
+  const Vocabulary* vocabulary_ = &ctx.vocabulary;
+  const auto t_query = Clock::now();
+  const std::size_t n = database_->size();
+  const std::size_t excluded = static_cast<std::size_t>(options_.islands.recent_exclusion);
+  auto finish = [&](LoopStatus status) {
+    r->status = status;
+    state_->previous_etas.clear();
+    state_->consistency.breakChain();
+  };
+  if (n == 0 || n <= excluded) {
+    finish(LoopStatus::kDatabaseTooSmall);
+    r->timings.query_ms = msBetween(t_query, Clock::now());
+    return;
+  }
+  const EntryId limit = static_cast<EntryId>(n - excluded);
+
+  // Normalisers (eqs. 2, 4): the same scores against I_{t-1}, the last entry.
+  const EntryScores norm = database_->score(q, static_cast<EntryId>(n - 1));
+  r->word_normaliser = norm.s_w;
+  r->group_normaliser = with_groups ? norm.s_g : 0.0;
+  r->distribution_normaliser = with_distribution ? norm.s_d : 0.0;
+  const SimilarityOptions& so = options_.similarity;
+  if (norm.s_w < so.min_word_normaliser || (with_groups && norm.s_g < so.min_group_normaliser) ||
+      (with_distribution && norm.s_d < so.min_distribution_normaliser)) {
+    finish(LoopStatus::kLowNormaliser);
+    r->timings.query_ms = msBetween(t_query, Clock::now());
+    return;
+  }
+
+  const std::vector<EntryScores> scores = database_->query(q, limit, with_groups);
+  r->candidates_scored = scores.size();
+  std::vector<std::pair<EntryId, double>> etas;
+  etas.reserve(scores.size());
+  last_candidates_.reserve(scores.size());
+  for (const EntryScores& s : scores) {
+    CandidateScores c;
+    c.entry = s.entry;
+    c.eta_w = normaliseScore(s.s_w, norm.s_w);
+    c.eta_g = with_groups ? normaliseScore(s.s_g, norm.s_g) : 0.0;
+    c.eta_d = with_distribution ? normaliseScore(s.s_d, norm.s_d) : 0.0;
+    c.eta_sim = combineSimilarity(c.eta_w, c.eta_g, c.eta_d, options_.word_groups,
+                                  options_.distribution, so);
+    // Eqs. 6-7: eta(t-1, tj-1) is the previous query's final score of the
+    // entry before this one, 0 when it was not scored then.
+    const double eta_prev = s.entry == 0 ? 0.0 : lookupEta(state_->previous_etas, s.entry - 1);
+    c.eta = temporalScore(c.eta_sim, eta_prev, options_.temporal_score);
+    last_candidates_.push_back(c);
+    etas.emplace_back(c.entry, c.eta);
+  }
+  state_->previous_etas = etas;  // sorted by entry id, as the scores are
+  const auto t_islands = Clock::now();
+  r->timings.query_ms = msBetween(t_query, t_islands);
+
+  if (scores.empty()) {
+    finish(LoopStatus::kNoCandidates);
+    return;
+  }
+  r->has_candidate = true;
+  r->best = *std::max_element(
+      last_candidates_.begin(), last_candidates_.end(),
+      [](const CandidateScores& a, const CandidateScores& b) { return a.eta < b.eta; });
+
+  // Islands (Sec. III-D, eq. 10) and temporal verification.
+  const std::vector<Island> islands = computeIslands(etas, options_.islands);
+  if (islands.empty()) {
+    r->status = LoopStatus::kNoScoreAboveThreshold;
+    state_->consistency.breakChain();
+    r->timings.islands_ms = msBetween(t_islands, Clock::now());
+    return;
+  }
+  const Island& island = islands.front();
+  r->island_first = island.first;
+  r->island_last = island.last;
+  r->island_score = island.score;
+  const auto it =
+      std::lower_bound(last_candidates_.begin(), last_candidates_.end(), island.best_entry,
+                       [](const CandidateScores& c, EntryId id) { return c.entry < id; });
+  if (it != last_candidates_.end() && it->entry == island.best_entry) r->best = *it;
+  const bool consistent = state_->consistency.update(island, options_.temporal_verification);
+  const auto t_verify = Clock::now();
+  r->timings.islands_ms = msBetween(t_islands, t_verify);
+  if (!consistent) {
+    r->status = LoopStatus::kNoTemporalConsistency;
+    return;
+  }
+
+  // Geometric verification of the best entry of the best island.
+  const DatabaseEntry& match = database_->entry(island.best_entry);
+  r->match_id = match.id;
+  r->match_stamp = match.stamp;
+  if (!options_.geometric.enabled) {
+    r->status = LoopStatus::kLoopDetected;
+    return;
+  }
+  const DirectIndex query_direct =
+      options_.geometric.exhaustive
+          ? DirectIndex()
+          : directIndexFromWords(*vocabulary_, query_entry.words, database_->directLevel());
+  const VerificationView qv{&query_entry.keypoints, &query_entry.descriptors, &query_direct};
+  const VerificationView mv{&match.keypoints, &match.descriptors, &match.direct};
+  GeometricVerificationResult g = verifyGeometry(qv, mv, intrinsics, options_.geometric);
+  r->timings.verification_ms = msBetween(t_verify, Clock::now());
+  r->status = g.status;
+  r->correspondences = g.correspondences;
+  r->inliers = g.inliers;
+  if (g.status != LoopStatus::kLoopDetected) {
+    r->match_id = 0;
+    r->match_stamp = 0;
+    return;
+  }
+  r->inlier_correspondences = std::move(g.inlier_correspondences);
+  r->has_relative_pose = g.has_relative_pose;
+  std::copy(g.rotation, g.rotation + 9, r->rotation);
+  std::copy(g.translation_direction, g.translation_direction + 3, r->translation_direction);
+}
+
+}  // namespace
+
+struct LoopDetector::State : DetectorState {};
+
+const char* toString(LoopStatus s) {
+  switch (s) {
+    case LoopStatus::kLoopDetected:
+      return "loop_detected";
+    case LoopStatus::kNoFeatures:
+      return "no_features";
+    case LoopStatus::kDatabaseTooSmall:
+      return "database_too_small";
+    case LoopStatus::kLowNormaliser:
+      return "low_normaliser";
+    case LoopStatus::kNoCandidates:
+      return "no_candidates";
+    case LoopStatus::kNoScoreAboveThreshold:
+      return "no_score_above_threshold";
+    case LoopStatus::kNoTemporalConsistency:
+      return "no_temporal_consistency";
+    case LoopStatus::kTooFewCorrespondences:
+      return "too_few_correspondences";
+    case LoopStatus::kTooFewInliers:
+      return "too_few_inliers";
+  }
+  return "unknown";
+}
+
+LoopDetector::LoopDetector(std::shared_ptr<const Vocabulary> vocabulary,
+                           const LoopDetectorOptions& options)
+    : vocabulary_(std::move(vocabulary)), options_(options), state_(new State) {
+  if (!vocabulary_ || vocabulary_->empty()) {
+    throw InvalidParameter("LoopDetector: the vocabulary is null or empty");
+  }
+  options_.validate();
+  database_.reset(new Database(vocabulary_, options_.scoring, options_.geometric.direct_index_level,
+                               options_.distribution.fan_bins));
+}
+
+LoopDetector::~LoopDetector() = default;
+
+void LoopDetector::setOptions(const LoopDetectorOptions& options) {
+  options.validate();
+  options_ = options;
+  // Only what depends on a changed value is rebuilt (see Database).
+  database_->setScoring(options_.scoring);
+  database_->setDirectLevel(options_.geometric.direct_index_level);
+  database_->setFanBins(options_.distribution.fan_bins);
+}
+
+void LoopDetector::save(const std::string& path) const {
+  saveDetectorFile(path, *database_, *state_);
+}
+
+void LoopDetector::load(const std::string& path) {
+  // Built aside; swapped in only when the whole file was read and checked.
+  DetectorState loaded_state;
+  std::unique_ptr<Database> loaded =
+      loadDetectorFile(path, vocabulary_, options_.scoring, options_.geometric.direct_index_level,
+                       options_.distribution.fan_bins, &loaded_state);
+  std::unique_ptr<State> new_state(new State);
+  static_cast<DetectorState&>(*new_state) = std::move(loaded_state);
+  database_.swap(loaded);
+  state_.swap(new_state);
+  last_candidates_.clear();
+}
+
+void LoopDetector::reset() {
+  database_->clear();
+  state_.reset(new State);
+  last_candidates_.clear();
+}
+
+LoopResult LoopDetector::process(const KeyframeInput& keyframe) {
+  const auto t0 = Clock::now();
+  const ImageFeatures& f = keyframe.features;
+  if (f.keypoints.size() != f.descriptors.size()) {
+    throw std::invalid_argument("LoopDetector::process: keyframe.features has " +
+                                std::to_string(f.keypoints.size()) + " keypoints but " +
+                                std::to_string(f.descriptors.size()) + " descriptors");
+  }
+  if (!std::isfinite(keyframe.stamp)) {
+    throw std::invalid_argument("LoopDetector::process: keyframe.stamp is not finite");
+  }
+  if (!database_->empty() && !(keyframe.stamp > database_->entries().back().stamp)) {
+    throw std::invalid_argument("LoopDetector::process: keyframe.stamp " +
+                                std::to_string(keyframe.stamp) + " does not increase (last stamp " +
+                                std::to_string(database_->entries().back().stamp) + ")");
+  }
+
+  LoopResult r;
+  r.query_id = static_cast<EntryId>(database_->size());
+  r.stamp = keyframe.stamp;
+  last_candidates_.clear();
+
+  DatabaseEntry entry;
+  entry.stamp = keyframe.stamp;
+  entry.keypoints = f.keypoints;
+  entry.descriptors = f.descriptors;
+  entry.intrinsics = keyframe.intrinsics;
+  fanCentre(keyframe, &entry.centre_x, &entry.centre_y);
+
+  // A query that yields no island breaks the temporal chains (eq. 7's
+  // previous scores and the temporal verification).
+  auto forgetPreviousQuery = [this]() {
+    state_->previous_etas.clear();
+    state_->consistency.breakChain();
+  };
+
+  if (f.empty()) {
+    // Added anyway so that entry ids stay aligned with keyframe indices.
+    database_->add(std::move(entry));
+    forgetPreviousQuery();
+    r.status = LoopStatus::kNoFeatures;
+    r.timings.total_ms = msBetween(t0, Clock::now());
+    return r;
+  }
+
+  // 1. Words (Sec. III-A "Word Vocabulary Tree").
+  BowVector bow;
+  vocabulary_->transform(f.descriptors, &bow, nullptr, 0, &entry.words);
+  const auto t1 = Clock::now();
+  r.timings.transform_ms = msBetween(t0, t1);
+
+  // 2. Raw word groups, computed even when the ablation switch turns groups
+  // off so that switching them on later finds every entry grouped; 3. they
+  // join the table BEFORE eq. 1 is applied to the query (finite IDF for the
+  // query's own groups); 4. refined weights.
+  entry.raw_groups = buildWordGroups(f.keypoints, entry.words, options_.word_groups);
+  database_->addToGroupTable(entry.raw_groups);
+  const bool with_groups = options_.word_groups.enabled;
+  const bool with_distribution = options_.distribution.enabled;
+  const DatabaseQuery q = database_->makeQuery(bow, entry.raw_groups, f.keypoints, entry.centre_x,
+                                               entry.centre_y, with_distribution);
+  entry.bow = std::move(bow);
+  const auto t2 = Clock::now();
+  r.timings.word_groups_ms = msBetween(t1, t2);
+
+  // 5. Query, then the entry joins the indexes (it never matches itself).
+  const QueryContext ctx{*vocabulary_, options_, *database_, *state_, last_candidates_};
+  try {
+    runQuery(ctx, q, entry, keyframe.intrinsics, with_groups, with_distribution, &r);
+  } catch (...) {
+    // The raw groups are already in the table: add the entry anyway so that
+    // the table, the indexes and the keyframe ids stay consistent.
+    database_->add(std::move(entry));
+    throw;
+  }
+  database_->add(std::move(entry));
+  r.timings.total_ms = msBetween(t0, Clock::now());
+  return r;
+}
+
+}  // namespace bowg

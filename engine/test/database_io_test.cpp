@@ -1,0 +1,196 @@
+// LoopDetector::save / load: identical behaviour after a round trip, clean
+// FormatError/IoError on truncation, byte flips, another vocabulary or a
+// missing file, and the strong guarantee (a failed load keeps the old state).
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <fstream>
+#include <memory>
+#include <random>
+#include <string>
+
+#include "bowg/database.h"
+#include "bowg/errors.h"
+#include "bowg/loop_detector.h"
+#include "bowg/vocabulary.h"
+#include "synthetic_corridor.h"
+#include "synthetic_vocabulary.h"
+
+namespace bowg {
+namespace {
+
+std::shared_ptr<const Vocabulary> vocabulary(std::uint64_t seed = 7) {
+  return std::make_shared<Vocabulary>(testing::makeSyntheticVocabulary(10, 4, seed));
+}
+
+LoopDetectorOptions options() {
+  LoopDetectorOptions o;
+  o.geometric.direct_index_level = 2;
+  o.islands.recent_exclusion = 10;
+  o.distribution.enabled = true;
+  o.similarity.lambda_1 = 0.4;
+  o.similarity.lambda_2 = 0.4;
+  return o;
+}
+
+std::string outPath(const std::string& name) {
+  return std::string(BOWG_TEST_OUTPUT_DIR) + "/database_io_test_" + name;
+}
+
+std::string readBytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+void writeBytes(const std::string& path, const std::string& bytes) {
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+}
+
+// Keyframes: forward over 40 m, then back over the first metres (revisits).
+std::vector<KeyframeInput> keyframes() {
+  const testing::Corridor c = testing::makeCorridor(50, 40, 31);
+  std::mt19937_64 rng(8);
+  std::vector<KeyframeInput> out;
+  for (int i = 0; i < 40; ++i) out.push_back(testing::observeCorridor(c, i, 1.0 + i, rng, 2, 0.5));
+  for (int i = 0; i < 25; ++i) {
+    out.push_back(testing::observeCorridor(c, 39.5 - i, 41.0 + i, rng, 2, 0.5));
+  }
+  return out;
+}
+
+void expectSameResult(const LoopResult& a, const LoopResult& b) {
+  EXPECT_EQ(a.query_id, b.query_id);
+  EXPECT_EQ(a.status, b.status);
+  EXPECT_EQ(a.match_id, b.match_id);
+  EXPECT_EQ(a.inliers, b.inliers);
+  EXPECT_EQ(a.best.entry, b.best.entry);
+  EXPECT_DOUBLE_EQ(a.best.eta, b.best.eta);
+  EXPECT_DOUBLE_EQ(a.word_normaliser, b.word_normaliser);
+  EXPECT_DOUBLE_EQ(a.group_normaliser, b.group_normaliser);
+}
+
+void expectSameCandidates(const LoopDetector& a, const LoopDetector& b) {
+  ASSERT_EQ(a.lastCandidates().size(), b.lastCandidates().size());
+  for (std::size_t i = 0; i < a.lastCandidates().size(); ++i) {
+    const CandidateScores &x = a.lastCandidates()[i], &y = b.lastCandidates()[i];
+    EXPECT_EQ(x.entry, y.entry);
+    EXPECT_DOUBLE_EQ(x.eta_w, y.eta_w);
+    EXPECT_DOUBLE_EQ(x.eta_g, y.eta_g);
+    EXPECT_DOUBLE_EQ(x.eta_d, y.eta_d);
+    EXPECT_DOUBLE_EQ(x.eta, y.eta);
+  }
+}
+
+TEST(DatabaseIo, RoundTripGivesIdenticalQueryResults) {
+  const auto voc = vocabulary();
+  const auto kfs = keyframes();
+  LoopDetector a(voc, options());
+  for (int i = 0; i < 52; ++i) a.process(kfs[i]);  // mid-revisit: chains are live
+  const std::string path = outPath("roundtrip.bowgdb");
+  a.save(path);
+  LoopDetector b(voc, options());
+  b.load(path);
+  EXPECT_EQ(b.database().size(), 52u);
+  EXPECT_EQ(b.database().groupTable().total(), a.database().groupTable().total());
+  int loops = 0;
+  for (std::size_t i = 52; i < kfs.size(); ++i) {
+    const LoopResult ra = a.process(kfs[i]);
+    const LoopResult rb = b.process(kfs[i]);
+    expectSameResult(ra, rb);
+    expectSameCandidates(a, b);
+    if (ra.status == LoopStatus::kLoopDetected) ++loops;
+  }
+  EXPECT_GT(loops, 0) << "the scenario should exercise loops after the reload";
+  std::remove(path.c_str());
+}
+
+TEST(DatabaseIo, CorruptFilesGiveCleanErrorsAndKeepTheOldState) {
+  const auto voc = vocabulary();
+  const auto kfs = keyframes();
+  LoopDetector saved(voc, options());
+  for (int i = 0; i < 20; ++i) saved.process(kfs[i]);
+  const std::string good = outPath("good.bowgdb");
+  saved.save(good);
+  const std::string bytes = readBytes(good);
+  ASSERT_GT(bytes.size(), 1000u);
+
+  // `victim` holds another state (30 keyframes); `twin` is its reference.
+  LoopDetector victim(voc, options()), twin(voc, options());
+  for (int i = 0; i < 30; ++i) {
+    victim.process(kfs[i]);
+    twin.process(kfs[i]);
+  }
+  const std::string bad = outPath("bad.bowgdb");
+  int failures = 0;
+  // Truncations: every offset in the header, then ~80 spread over the file.
+  std::vector<std::size_t> cuts;
+  for (std::size_t i = 0; i < 64; ++i) cuts.push_back(i);
+  for (std::size_t i = 64; i < bytes.size(); i += bytes.size() / 80) cuts.push_back(i);
+  cuts.push_back(bytes.size() - 1);
+  for (std::size_t cut : cuts) {
+    writeBytes(bad, bytes.substr(0, cut));
+    EXPECT_THROW(victim.load(bad), FormatError) << "truncated at " << cut;
+    ++failures;
+  }
+  // Byte flips over the whole file (header, payload, checksum).
+  for (std::size_t at = 0; at < bytes.size(); at += bytes.size() / 97 + 1) {
+    std::string flipped = bytes;
+    flipped[at] = static_cast<char>(flipped[at] ^ 0x5a);
+    writeBytes(bad, flipped);
+    EXPECT_THROW(victim.load(bad), FormatError) << "flip at " << at;
+    ++failures;
+  }
+  // Appended garbage.
+  writeBytes(bad, bytes + "x");
+  EXPECT_THROW(victim.load(bad), FormatError);
+  EXPECT_THROW(victim.load(outPath("does_not_exist.bowgdb")), IoError);
+  EXPECT_GT(failures, 100);
+
+  // Strong guarantee: the victim still behaves exactly like its twin.
+  EXPECT_EQ(victim.database().size(), 30u);
+  for (std::size_t i = 30; i < 45; ++i) {
+    expectSameResult(victim.process(kfs[i]), twin.process(kfs[i]));
+    expectSameCandidates(victim, twin);
+  }
+  std::remove(good.c_str());
+  std::remove(bad.c_str());
+}
+
+TEST(DatabaseIo, AnotherVocabularyIsRejectedByName) {
+  const auto kfs = keyframes();
+  LoopDetector a(vocabulary(7), options());
+  for (int i = 0; i < 5; ++i) a.process(kfs[i]);
+  const std::string path = outPath("other_vocabulary.bowgdb");
+  a.save(path);
+  LoopDetector b(vocabulary(8), options());
+  try {
+    b.load(path);
+    FAIL() << "loaded a database built with another vocabulary";
+  } catch (const FormatError& e) {
+    EXPECT_NE(std::string(e.what()).find("vocabulary"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(b.database().size(), 0u);
+  std::remove(path.c_str());
+}
+
+TEST(DatabaseIo, SaveToAnUnwritablePathThrowsIoError) {
+  LoopDetector a(vocabulary(), options());
+  EXPECT_THROW(a.save("/nonexistent_dir_bowg/x.bowgdb"), IoError);
+}
+
+TEST(DatabaseIo, EmptyDatabaseRoundTrips) {
+  const auto voc = vocabulary();
+  LoopDetector a(voc, options());
+  const std::string path = outPath("empty.bowgdb");
+  a.save(path);
+  LoopDetector b(voc, options());
+  b.process(keyframes()[0]);
+  b.load(path);
+  EXPECT_EQ(b.database().size(), 0u);
+  std::remove(path.c_str());
+}
+
+}  // namespace
+}  // namespace bowg

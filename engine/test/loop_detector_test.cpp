@@ -1,0 +1,351 @@
+// LoopDetector::process end to end on synthetic corridors (synthetic_corridor.h):
+// a revisit is found with the right ids, a sequence without revisit finds
+// none, every LoopStatus comes out of a situation built for it, and the
+// scores follow eqs. 2, 4, 6-7 against independent computations.
+#include "bowg/loop_detector.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <random>
+#include <set>
+#include <stdexcept>
+#include <string>
+
+#include "bowg/database.h"
+#include "bowg/distribution.h"
+#include "bowg/errors.h"
+#include "bowg/similarity.h"
+#include "bowg/vocabulary.h"
+#include "synthetic_corridor.h"
+#include "synthetic_vocabulary.h"
+
+namespace bowg {
+namespace {
+
+std::shared_ptr<const Vocabulary> vocabulary() {
+  static std::shared_ptr<const Vocabulary> v =
+      std::make_shared<Vocabulary>(testing::makeSyntheticVocabulary(10, 5, 7));
+  return v;
+}
+
+LoopDetectorOptions defaultOptions() {
+  LoopDetectorOptions o;
+  o.geometric.direct_index_level = 3;
+  return o;
+}
+
+// Forward along the corridor (keyframe i at x = i), then back (x = n - 0.5,
+// n - 1.5, ...): the return pass revisits every place of the forward pass.
+struct CorridorRun {
+  std::vector<double> x;
+  std::vector<LoopResult> results;
+};
+
+CorridorRun runCorridor(LoopDetector* det, bool with_return, int n = 60, std::uint64_t seed = 3) {
+  const testing::Corridor c = testing::makeCorridor(n + 10, 50, seed);
+  std::mt19937_64 rng(seed + 100);
+  CorridorRun run;
+  for (int i = 0; i < n; ++i) run.x.push_back(i);
+  if (with_return) {
+    for (int i = 0; i < n; ++i) run.x.push_back(n - 0.5 - i);
+  }
+  for (std::size_t t = 0; t < run.x.size(); ++t) {
+    run.results.push_back(det->process(
+        testing::observeCorridor(c, run.x[t], 1.0 + t, rng, /*bit_flips=*/2, /*noise=*/0.5)));
+  }
+  return run;
+}
+
+TEST(LoopDetector, FindsTheRevisitWithTheRightIds) {
+  LoopDetector det(vocabulary(), defaultOptions());
+  const CorridorRun run = runCorridor(&det, true);
+  int loops = 0;
+  for (std::size_t t = 0; t < run.results.size(); ++t) {
+    const LoopResult& r = run.results[t];
+    EXPECT_EQ(r.query_id, t);
+    if (r.status != LoopStatus::kLoopDetected) continue;
+    ++loops;
+    ASSERT_GE(t, 60u) << "loop in the forward pass";
+    // Keyframe i of the forward pass is at x = i. A view covers ~8 m of wall
+    // (z = 5, fx = 400, 640 px): within 3 m the two views share > 60 % of
+    // their landmarks, a true revisit.
+    EXPECT_LE(std::fabs(run.x[r.match_id] - run.x[t]), 3.0)
+        << "query " << t << " at x=" << run.x[t] << " matched " << r.match_id;
+    EXPECT_GE(r.inliers, defaultOptions().geometric.min_inliers);
+    EXPECT_TRUE(r.has_relative_pose);
+    // Pure translation along x: R ~ identity, t ~ +-x.
+    EXPECT_NEAR(r.rotation[0] + r.rotation[4] + r.rotation[8], 3.0, 0.01);
+    EXPECT_GT(std::fabs(r.translation_direction[0]), 0.9);
+  }
+  // Return keyframe 60 + j is at x = 59.5 - j; the forward keyframes near it
+  // leave the recent-exclusion window (20) from j ~ 10 on, and the temporal
+  // verification needs k = 3 more: most of the remaining ~45 must be loops.
+  EXPECT_GE(loops, 30) << "too few loops found";
+  std::printf("[          ] %d loops in the 60 return keyframes\n", loops);
+}
+
+TEST(LoopDetector, FindsNoLoopWithoutRevisit) {
+  LoopDetector det(vocabulary(), defaultOptions());
+  const CorridorRun run = runCorridor(&det, false, 100);
+  for (const LoopResult& r : run.results) {
+    EXPECT_NE(r.status, LoopStatus::kLoopDetected) << "false loop at " << r.query_id;
+  }
+  EXPECT_EQ(det.database().size(), 100u);
+}
+
+TEST(LoopDetector, FirstKeyframesAreDatabaseTooSmall) {
+  LoopDetectorOptions o = defaultOptions();
+  o.islands.recent_exclusion = 5;
+  LoopDetector det(vocabulary(), o);
+  const CorridorRun run = runCorridor(&det, false, 8);
+  // Keyframe t sees t entries; candidates need t > recent_exclusion.
+  for (int t = 0; t <= 5; ++t) {
+    EXPECT_EQ(run.results[t].status, LoopStatus::kDatabaseTooSmall) << t;
+  }
+  EXPECT_NE(run.results[6].status, LoopStatus::kDatabaseTooSmall);
+}
+
+TEST(LoopDetector, EmptyKeyframeIsAddedAsNoFeatures) {
+  LoopDetector det(vocabulary(), defaultOptions());
+  KeyframeInput empty;
+  empty.stamp = 1.0;
+  EXPECT_EQ(det.process(empty).status, LoopStatus::kNoFeatures);
+  empty.stamp = 2.0;
+  const LoopResult r = det.process(empty);
+  EXPECT_EQ(r.status, LoopStatus::kNoFeatures);
+  EXPECT_EQ(r.query_id, 1u);
+  EXPECT_EQ(det.database().size(), 2u);
+}
+
+TEST(LoopDetector, BadInputThrowsAndIsNotAdded) {
+  LoopDetector det(vocabulary(), defaultOptions());
+  const testing::Corridor c = testing::makeCorridor(20, 50, 5);
+  std::mt19937_64 rng(1);
+  det.process(testing::observeCorridor(c, 1.0, 10.0, rng));
+  KeyframeInput same_stamp = testing::observeCorridor(c, 2.0, 10.0, rng);
+  EXPECT_THROW(det.process(same_stamp), std::invalid_argument);
+  KeyframeInput older = testing::observeCorridor(c, 2.0, 9.0, rng);
+  EXPECT_THROW(det.process(older), std::invalid_argument);
+  KeyframeInput mismatch = testing::observeCorridor(c, 2.0, 11.0, rng);
+  mismatch.features.descriptors.pop_back();
+  EXPECT_THROW(det.process(mismatch), std::invalid_argument);
+  EXPECT_EQ(det.database().size(), 1u);
+  // The next valid keyframe gets id 1.
+  EXPECT_EQ(det.process(testing::observeCorridor(c, 2.0, 11.0, rng)).query_id, 1u);
+}
+
+TEST(LoopDetector, LowNormaliserWhenThePreviousKeyframeSharesNothing) {
+  LoopDetectorOptions o = defaultOptions();
+  o.islands.recent_exclusion = 0;
+  LoopDetector det(vocabulary(), o);
+  const testing::Corridor a = testing::makeCorridor(20, 50, 11);
+  const testing::Corridor b = testing::makeCorridor(20, 50, 12);  // other landmarks
+  std::mt19937_64 rng(1);
+  det.process(testing::observeCorridor(a, 5.0, 1.0, rng));
+  const LoopResult r = det.process(testing::observeCorridor(b, 5.0, 2.0, rng));
+  EXPECT_EQ(r.status, LoopStatus::kLowNormaliser);
+  EXPECT_LT(r.word_normaliser, o.similarity.min_word_normaliser);
+  EXPECT_EQ(det.database().size(), 2u);  // still added
+}
+
+// The normaliser rule applies to the ENABLED components only: keypoints of
+// size 0 form no word groups, so the group normaliser is 0.
+TEST(LoopDetector, GroupNormaliserCountsOnlyWhenGroupsAreOn) {
+  const testing::Corridor a = testing::makeCorridor(20, 50, 11);
+  for (bool groups : {true, false}) {
+    LoopDetectorOptions o = defaultOptions();
+    o.islands.recent_exclusion = 0;
+    o.word_groups.enabled = groups;
+    LoopDetector det(vocabulary(), o);
+    std::mt19937_64 rng(1);
+    det.process(testing::observeCorridor(a, 5.0, 1.0, rng, 0, 0.0, /*size_px=*/0.f));
+    const LoopResult r =
+        det.process(testing::observeCorridor(a, 5.2, 2.0, rng, 0, 0.0, /*size_px=*/0.f));
+    EXPECT_GT(r.word_normaliser, 0.5);
+    EXPECT_EQ(r.group_normaliser, 0.0);
+    if (groups) {
+      EXPECT_EQ(r.status, LoopStatus::kLowNormaliser);
+    } else {
+      EXPECT_NE(r.status, LoopStatus::kLowNormaliser);
+      EXPECT_TRUE(r.has_candidate);  // entry 0, the same place
+    }
+  }
+}
+
+TEST(LoopDetector, NoCandidatesWhenOnlyExcludedEntriesShareWords) {
+  LoopDetectorOptions o = defaultOptions();
+  o.islands.recent_exclusion = 1;
+  LoopDetector det(vocabulary(), o);
+  const testing::Corridor b = testing::makeCorridor(20, 50, 12);
+  std::mt19937_64 rng(1);
+  KeyframeInput empty;
+  empty.stamp = 1.0;
+  det.process(empty);
+  det.process(testing::observeCorridor(b, 5.0, 2.0, rng));
+  // Entry 1 (same place, excluded) is the normaliser; entry 0 has no words.
+  const LoopResult r = det.process(testing::observeCorridor(b, 5.2, 3.0, rng));
+  EXPECT_EQ(r.status, LoopStatus::kNoCandidates);
+  EXPECT_GT(r.word_normaliser, 0.1);
+  EXPECT_FALSE(r.has_candidate);
+}
+
+// Runs the revisit scenario with `o` and returns the statuses of the return pass.
+std::vector<LoopStatus> returnStatuses(const LoopDetectorOptions& o) {
+  LoopDetector det(vocabulary(), o);
+  const CorridorRun run = runCorridor(&det, true);
+  std::vector<LoopStatus> s;
+  for (std::size_t t = 60; t < run.results.size(); ++t) s.push_back(run.results[t].status);
+  return s;
+}
+
+bool contains(const std::vector<LoopStatus>& v, LoopStatus s) {
+  return std::find(v.begin(), v.end(), s) != v.end();
+}
+
+TEST(LoopDetector, NoScoreAboveThresholdWithAnUnreachableThreshold) {
+  LoopDetectorOptions o = defaultOptions();
+  o.islands.min_score = 1e6;
+  const auto s = returnStatuses(o);
+  EXPECT_TRUE(contains(s, LoopStatus::kNoScoreAboveThreshold));
+  EXPECT_FALSE(contains(s, LoopStatus::kLoopDetected));
+}
+
+TEST(LoopDetector, TemporalVerificationRejectsTheFirstQueriesOfARevisit) {
+  LoopDetectorOptions o = defaultOptions();
+  o.temporal_verification.k = 3;
+  LoopDetector det(vocabulary(), o);
+  const CorridorRun run = runCorridor(&det, true);
+  // The first return keyframe with an island cannot have 3 consistent
+  // predecessors: it must be rejected by the temporal verification.
+  std::size_t first = 0;
+  for (std::size_t t = 60; t < run.results.size(); ++t) {
+    if (run.results[t].status != LoopStatus::kNoScoreAboveThreshold &&
+        run.results[t].status != LoopStatus::kNoCandidates && run.results[t].has_candidate &&
+        run.results[t].island_score > 0) {
+      first = t;
+      break;
+    }
+  }
+  ASSERT_GT(first, 0u);
+  EXPECT_EQ(run.results[first].status, LoopStatus::kNoTemporalConsistency);
+}
+
+TEST(LoopDetector, TooFewCorrespondencesWhenNoDescriptorIsCloseEnough) {
+  LoopDetectorOptions o = defaultOptions();
+  o.geometric.max_hamming = 0;  // every observation has 2 flipped bits
+  const auto s = returnStatuses(o);
+  EXPECT_TRUE(contains(s, LoopStatus::kTooFewCorrespondences));
+  EXPECT_FALSE(contains(s, LoopStatus::kLoopDetected));
+}
+
+TEST(LoopDetector, TooFewInliersWithAnUnreachableInlierCount) {
+  LoopDetectorOptions o = defaultOptions();
+  o.geometric.min_inliers = 100000;
+  const auto s = returnStatuses(o);
+  EXPECT_TRUE(contains(s, LoopStatus::kTooFewInliers));
+  EXPECT_FALSE(contains(s, LoopStatus::kLoopDetected));
+}
+
+TEST(LoopDetector, WithoutGeometricVerificationTheIslandIsTheLoop) {
+  LoopDetectorOptions o = defaultOptions();
+  o.geometric.enabled = false;
+  const auto s = returnStatuses(o);
+  EXPECT_TRUE(contains(s, LoopStatus::kLoopDetected));
+}
+
+// eq. 2/4: eta = s(I_t, I_tj) / s(I_t, I_t-1), recomputed here from the
+// stored vectors with scoreBowVectors() and the group table; eqs. 6-7 with
+// the previous query's etas taken from lastCandidates().
+TEST(LoopDetector, ScoresFollowTheNormaliserAndTemporalEquations) {
+  LoopDetectorOptions o = defaultOptions();
+  o.distribution.enabled = true;
+  o.similarity.lambda_1 = 0.4;
+  o.similarity.lambda_2 = 0.4;
+  LoopDetector det(vocabulary(), o);
+  const testing::Corridor c = testing::makeCorridor(70, 50, 3);
+  std::mt19937_64 rng(9);
+  std::vector<CandidateScores> previous;
+  int checked = 0;
+  for (int t = 0; t < 50; ++t) {
+    const double x = t < 30 ? t : 59.5 - t;  // back over the first keyframes
+    const KeyframeInput kf = testing::observeCorridor(c, x, 1.0 + t, rng, 2, 0.5);
+    // The query's vectors as the database sees them after process().
+    const LoopResult r = det.process(kf);
+    const Database& db = det.database();
+    const DatabaseEntry& q = db.entry(r.query_id);
+    if (!det.lastCandidates().empty()) {
+      ASSERT_GT(r.word_normaliser, 0.0);
+      const DatabaseEntry& prev = db.entry(r.query_id - 1);
+      EXPECT_NEAR(r.word_normaliser, scoreBowVectors(o.scoring, q.bow, prev.bow), 1e-12);
+      for (const CandidateScores& cs : det.lastCandidates()) {
+        const DatabaseEntry& e = db.entry(cs.entry);
+        EXPECT_LT(cs.entry, r.query_id - o.islands.recent_exclusion + 1);
+        EXPECT_NEAR(cs.eta_w * r.word_normaliser, scoreBowVectors(o.scoring, q.bow, e.bow), 1e-12);
+        EXPECT_NEAR(cs.eta_d * r.distribution_normaliser,
+                    distributionScore(db.distribution(r.query_id), db.distribution(cs.entry)),
+                    1e-12);
+        EXPECT_NEAR(cs.eta_sim, 0.4 * cs.eta_w + 0.4 * cs.eta_g + 0.2 * cs.eta_d, 1e-12);  // eq. 9
+        double eta_prev = 0.0;
+        for (const CandidateScores& p : previous) {
+          if (p.entry + 1 == cs.entry) eta_prev = p.eta;
+        }
+        EXPECT_NEAR(cs.eta, temporalScore(cs.eta_sim, eta_prev, o.temporal_score), 1e-12);
+        ++checked;
+      }
+    }
+    previous = det.lastCandidates();
+  }
+  EXPECT_GT(checked, 20);
+}
+
+TEST(LoopDetector, OptionsChangeBetweenKeyframesRebuildsWhatDependsOnThem) {
+  LoopDetectorOptions o = defaultOptions();
+  o.distribution.enabled = true;
+  o.distribution.fan_bins = 8;
+  LoopDetector det(vocabulary(), o);
+  runCorridor(&det, false, 10);
+  for (EntryId id = 0; id < det.database().size(); ++id) {
+    EXPECT_EQ(det.database().distribution(id).size(), 8u);
+  }
+  o.distribution.fan_bins = 5;
+  o.geometric.direct_index_level = 2;
+  o.scoring = ScoringType::kL2;
+  det.setOptions(o);
+  for (const auto& e : det.database().entries()) {
+    EXPECT_EQ(det.database().distribution(e.id),
+              distributionVector(e.keypoints, e.centre_x, e.centre_y, 5));
+    EXPECT_EQ(e.direct, directIndexFromWords(*vocabulary(), e.words, 2));
+    double n2 = 0;
+    for (const auto& w : e.bow) n2 += w.second * w.second;
+    EXPECT_NEAR(n2, 1.0, 1e-9);  // L2-normalised now
+  }
+  o.similarity.lambda_1 = 2.0;
+  EXPECT_THROW(det.setOptions(o), InvalidParameter);
+  EXPECT_EQ(det.options().similarity.lambda_1, defaultOptions().similarity.lambda_1);
+}
+
+TEST(LoopDetector, ResetForgetsEverything) {
+  LoopDetector det(vocabulary(), defaultOptions());
+  runCorridor(&det, false, 5);
+  det.reset();
+  EXPECT_EQ(det.database().size(), 0u);
+  EXPECT_EQ(det.database().groupTable().total(), 0.0);
+  KeyframeInput empty;
+  empty.stamp = 0.5;  // stamps may restart after a reset
+  EXPECT_EQ(det.process(empty).query_id, 0u);
+}
+
+TEST(LoopDetector, StatusNamesAreDistinct) {
+  std::set<std::string> names;
+  for (int s = 0; s <= static_cast<int>(LoopStatus::kTooFewInliers); ++s) {
+    names.insert(toString(static_cast<LoopStatus>(s)));
+  }
+  EXPECT_EQ(names.size(), 9u);
+}
+
+}  // namespace
+}  // namespace bowg
