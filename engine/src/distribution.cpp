@@ -66,10 +66,14 @@ double distributionScore(const std::vector<double>& query, const std::vector<dou
   // A roll of the camera by 2*pi*i/m shifts the bins cyclically by i: the
   // score is the best alignment over the m columns M_i of the distribution
   // matrix, m_ij = v_((i+j) mod m).
+  // The index (i + j) mod m is split into its two runs so the inner loops
+  // carry no division (this runs once per candidate per keyframe).
   double best = 0.0;
   for (std::size_t i = 0; i < m; ++i) {
     double dot = 0.0;
-    for (std::size_t j = 0; j < m; ++j) dot += query[(i + j) % m] * db[j];
+    const std::size_t wrap = m - i;  // j < wrap: i + j < m
+    for (std::size_t j = 0; j < wrap; ++j) dot += query[i + j] * db[j];
+    for (std::size_t j = wrap; j < m; ++j) dot += query[i + j - m] * db[j];
     if (dot > best) best = dot;
   }
   // Rounding can exceed 1 by an ulp for identical unit vectors.
