@@ -21,7 +21,7 @@ PACKAGES=(
   libsensor-msgs-dev ros-sensor-msgs python3-sensor-msgs
   libnav-msgs-dev ros-nav-msgs python3-nav-msgs
   librosbag-dev python3-rosbag
-  libgtest-dev googletest librostest-dev python3-rostest
+  libgtest-dev googletest librostest-dev python3-rostest libros-rosgraph-msgs-dev
   libbenchmark-dev python3-numpy python3-yaml
 )
 

@@ -1,0 +1,78 @@
+// Keyframe selection by time and travelled distance (see keyframe_gate.h).
+#include "bowg_ros/keyframe_gate.h"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace bowg_ros {
+
+void KeyframeGateOptions::validate() const {
+  if (!(min_interval >= 0.0) || !std::isfinite(min_interval)) {
+    throw std::invalid_argument("min_keyframe_interval must be a finite value >= 0 s");
+  }
+  if (!(min_distance >= 0.0) || !std::isfinite(min_distance)) {
+    throw std::invalid_argument("min_keyframe_distance must be a finite value >= 0 m");
+  }
+}
+
+const char* toString(GateDecision d) {
+  switch (d) {
+    case GateDecision::kAccept:
+      return "accept";
+    case GateDecision::kTooSoon:
+      return "too soon after the last keyframe";
+    case GateDecision::kTooClose:
+      return "too close to the last keyframe";
+    case GateDecision::kOutOfOrder:
+      return "stamp older than the previous frame";
+    case GateDecision::kRepeatedStamp:
+      return "same stamp as the previous frame";
+  }
+  return "?";
+}
+
+KeyframeGate::KeyframeGate(const KeyframeGateOptions& options) { setOptions(options); }
+
+void KeyframeGate::setOptions(const KeyframeGateOptions& options) {
+  options.validate();
+  options_ = options;
+}
+
+GateDecision KeyframeGate::check(double stamp) {
+  if (has_frame_) {
+    if (stamp < last_frame_stamp_) return GateDecision::kOutOfOrder;
+    if (stamp == last_frame_stamp_) return GateDecision::kRepeatedStamp;
+  }
+  has_frame_ = true;
+  last_frame_stamp_ = stamp;
+  if (has_keyframe_) {
+    if (stamp - last_keyframe_stamp_ < options_.min_interval) return GateDecision::kTooSoon;
+    if (options_.min_distance > 0.0 && has_position_ && travelled_ < options_.min_distance) {
+      return GateDecision::kTooClose;
+    }
+  }
+  has_keyframe_ = true;
+  last_keyframe_stamp_ = stamp;
+  travelled_ = 0.0;
+  return GateDecision::kAccept;
+}
+
+void KeyframeGate::addPosition(double x, double y, double z) {
+  if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z)) return;
+  if (has_position_) {
+    travelled_ += std::sqrt((x - last_x_) * (x - last_x_) + (y - last_y_) * (y - last_y_) +
+                            (z - last_z_) * (z - last_z_));
+  }
+  has_position_ = true;
+  last_x_ = x;
+  last_y_ = y;
+  last_z_ = z;
+}
+
+void KeyframeGate::reset() {
+  has_frame_ = has_keyframe_ = has_position_ = false;
+  last_frame_stamp_ = last_keyframe_stamp_ = 0.0;
+  travelled_ = 0.0;
+}
+
+}  // namespace bowg_ros

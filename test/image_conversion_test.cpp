@@ -1,0 +1,71 @@
+// toMono8: every supported encoding, zero copy for mono8, clear errors.
+#include "bowg_ros/image_conversion.h"
+
+#include <gtest/gtest.h>
+
+namespace bowg_ros {
+namespace {
+
+TEST(ImageConversion, Mono8IsSharedNotCopied) {
+  cv::Mat img(4, 6, CV_8UC1, cv::Scalar(7));
+  const cv::Mat grey = toMono8(img, "mono8");
+  EXPECT_EQ(grey.data, img.data);
+}
+
+TEST(ImageConversion, Mono16KeepsTheHighByte) {
+  cv::Mat img(2, 2, CV_16UC1);
+  img.at<std::uint16_t>(0, 0) = 0;
+  img.at<std::uint16_t>(0, 1) = 256;    // 256 / 256 = 1
+  img.at<std::uint16_t>(1, 0) = 32768;  // 32768 / 256 = 128
+  img.at<std::uint16_t>(1, 1) = 65535;  // 65535 / 256 = 255.996 -> 255 (saturated)
+  const cv::Mat g = toMono8(img, "mono16");
+  ASSERT_EQ(g.type(), CV_8UC1);
+  EXPECT_EQ(g.at<std::uint8_t>(0, 0), 0);
+  EXPECT_EQ(g.at<std::uint8_t>(0, 1), 1);
+  EXPECT_EQ(g.at<std::uint8_t>(1, 0), 128);
+  EXPECT_EQ(g.at<std::uint8_t>(1, 1), 255);
+}
+
+// Luma Y = 0.299 R + 0.587 G + 0.114 B (OpenCV's weights). A pure red pixel
+// gives 0.299 * 255 = 76.2 -> 76; pure blue 0.114 * 255 = 29.1 -> 29.
+TEST(ImageConversion, ColourOrderIsRespected) {
+  cv::Mat bgr(1, 2, CV_8UC3);
+  bgr.at<cv::Vec3b>(0, 0) = cv::Vec3b(0, 0, 255);  // red in BGR
+  bgr.at<cv::Vec3b>(0, 1) = cv::Vec3b(255, 0, 0);  // blue in BGR
+  cv::Mat g = toMono8(bgr, "bgr8");
+  EXPECT_EQ(g.at<std::uint8_t>(0, 0), 76);
+  EXPECT_EQ(g.at<std::uint8_t>(0, 1), 29);
+  // The same bytes read as RGB swap the two.
+  g = toMono8(bgr, "rgb8");
+  EXPECT_EQ(g.at<std::uint8_t>(0, 0), 29);
+  EXPECT_EQ(g.at<std::uint8_t>(0, 1), 76);
+
+  cv::Mat bgra(1, 1, CV_8UC4, cv::Scalar(0, 0, 255, 10));  // red, alpha 10
+  EXPECT_EQ(toMono8(bgra, "bgra8").at<std::uint8_t>(0, 0), 76);
+  EXPECT_EQ(toMono8(bgra, "rgba8").at<std::uint8_t>(0, 0), 29);
+}
+
+TEST(ImageConversion, UnsupportedEncodingsNameTheEncoding) {
+  for (const char* e : {"bayer_rggb8", "32FC1", "yuv422", "16UC3", ""}) {
+    EXPECT_FALSE(isSupportedEncoding(e)) << e;
+    try {
+      toMono8(cv::Mat(2, 2, CV_8UC1), e);
+      ADD_FAILURE() << e << " accepted";
+    } catch (const UnsupportedEncoding& x) {
+      EXPECT_NE(std::string(x.what()).find(std::string("'") + e + "'"), std::string::npos)
+          << x.what();
+    }
+  }
+  for (const char* e : {"mono8", "mono16", "bgr8", "rgb8", "bgra8", "rgba8"}) {
+    EXPECT_TRUE(isSupportedEncoding(e)) << e;
+  }
+}
+
+TEST(ImageConversion, DataThatDoesNotMatchItsEncodingIsRejected) {
+  EXPECT_THROW(toMono8(cv::Mat(2, 2, CV_8UC3), "mono8"), UnsupportedEncoding);
+  EXPECT_THROW(toMono8(cv::Mat(2, 2, CV_8UC1), "bgr8"), UnsupportedEncoding);
+  EXPECT_THROW(toMono8(cv::Mat(), "mono8"), UnsupportedEncoding);
+}
+
+}  // namespace
+}  // namespace bowg_ros

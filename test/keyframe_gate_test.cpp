@@ -1,0 +1,104 @@
+// KeyframeGate: time interval, travelled distance, stamp order.
+#include "bowg_ros/keyframe_gate.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <stdexcept>
+
+namespace bowg_ros {
+namespace {
+
+TEST(KeyframeGate, EveryIncreasingFrameIsAKeyframeByDefault) {
+  KeyframeGate gate;
+  EXPECT_EQ(gate.check(1.0), GateDecision::kAccept);
+  EXPECT_EQ(gate.check(1.001), GateDecision::kAccept);
+  EXPECT_EQ(gate.check(2.0), GateDecision::kAccept);
+}
+
+TEST(KeyframeGate, MinimumIntervalCountsFromTheLastKeyframe) {
+  KeyframeGateOptions o;
+  o.min_interval = 0.5;
+  KeyframeGate gate(o);
+  EXPECT_EQ(gate.check(10.0), GateDecision::kAccept);   // first frame
+  EXPECT_EQ(gate.check(10.2), GateDecision::kTooSoon);  // 0.2 < 0.5
+  EXPECT_EQ(gate.check(10.4), GateDecision::kTooSoon);  // 0.4 < 0.5 (from 10.0, not 10.2)
+  EXPECT_EQ(gate.check(10.5), GateDecision::kAccept);   // 0.5 >= 0.5
+  EXPECT_EQ(gate.check(10.9), GateDecision::kTooSoon);  // 0.4 from 10.5
+  EXPECT_EQ(gate.check(11.0), GateDecision::kAccept);
+}
+
+TEST(KeyframeGate, OutOfOrderAndRepeatedStampsAreRejected) {
+  KeyframeGate gate;
+  EXPECT_EQ(gate.check(5.0), GateDecision::kAccept);
+  EXPECT_EQ(gate.check(5.0), GateDecision::kRepeatedStamp);
+  EXPECT_EQ(gate.check(4.0), GateDecision::kOutOfOrder);
+  EXPECT_EQ(gate.check(6.0), GateDecision::kAccept);
+  // Judged against the previous frame even when that one was not a keyframe.
+  KeyframeGateOptions o;
+  o.min_interval = 1.0;
+  KeyframeGate slow(o);
+  EXPECT_EQ(slow.check(1.0), GateDecision::kAccept);
+  EXPECT_EQ(slow.check(1.5), GateDecision::kTooSoon);
+  EXPECT_EQ(slow.check(1.2), GateDecision::kOutOfOrder);
+}
+
+TEST(KeyframeGate, TravelledDistanceIsThePathLengthSinceTheLastKeyframe) {
+  KeyframeGateOptions o;
+  o.min_distance = 1.0;
+  KeyframeGate gate(o);
+  // No odometry yet: only the time gate applies.
+  EXPECT_EQ(gate.check(1.0), GateDecision::kAccept);
+  EXPECT_EQ(gate.check(2.0), GateDecision::kAccept);
+  gate.addPosition(0, 0, 0);
+  gate.addPosition(0.3, 0.4, 0);  // 0.5 m (3-4-5 triangle)
+  EXPECT_TRUE(gate.hasOdometry());
+  EXPECT_NEAR(gate.travelledSinceKeyframe(), 0.5, 1e-12);
+  EXPECT_EQ(gate.check(3.0), GateDecision::kTooClose);
+  gate.addPosition(0.3, 0.4, 0.6);  // + 0.6 m = 1.1 m of path
+  EXPECT_NEAR(gate.travelledSinceKeyframe(), 1.1, 1e-12);
+  EXPECT_EQ(gate.check(4.0), GateDecision::kAccept);
+  EXPECT_EQ(gate.travelledSinceKeyframe(), 0.0);
+  // Back and forth counts as path, not displacement: 0.6 + 0.6 = 1.2 m.
+  gate.addPosition(0.3, 0.4, 0.0);
+  gate.addPosition(0.3, 0.4, 0.6);
+  EXPECT_NEAR(gate.travelledSinceKeyframe(), 1.2, 1e-12);
+  EXPECT_EQ(gate.check(5.0), GateDecision::kAccept);
+  // Non-finite positions are ignored.
+  gate.addPosition(NAN, 0, 0);
+  EXPECT_EQ(gate.travelledSinceKeyframe(), 0.0);
+}
+
+TEST(KeyframeGate, TimeAndDistanceMustBothPass) {
+  KeyframeGateOptions o;
+  o.min_interval = 1.0;
+  o.min_distance = 1.0;
+  KeyframeGate gate(o);
+  gate.addPosition(0, 0, 0);
+  EXPECT_EQ(gate.check(0.0), GateDecision::kAccept);
+  gate.addPosition(2, 0, 0);
+  EXPECT_EQ(gate.check(0.5), GateDecision::kTooSoon);  // far enough, too soon
+  EXPECT_EQ(gate.check(1.0), GateDecision::kAccept);
+  EXPECT_EQ(gate.check(2.5), GateDecision::kTooClose);  // late enough, not far enough
+}
+
+TEST(KeyframeGate, ResetForgetsFramesAndPositions) {
+  KeyframeGate gate;
+  gate.addPosition(0, 0, 0);
+  EXPECT_EQ(gate.check(10.0), GateDecision::kAccept);
+  gate.reset();
+  EXPECT_FALSE(gate.hasOdometry());
+  EXPECT_EQ(gate.check(1.0), GateDecision::kAccept);  // older stamp accepted after a reset
+}
+
+TEST(KeyframeGate, RejectsInvalidOptions) {
+  KeyframeGateOptions o;
+  o.min_interval = -1.0;
+  EXPECT_THROW(KeyframeGate{o}, std::invalid_argument);
+  o.min_interval = 0.0;
+  o.min_distance = NAN;
+  EXPECT_THROW(KeyframeGate{o}, std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace bowg_ros
