@@ -1,0 +1,87 @@
+// Runs the BoWG LoopDetector over a sequence of pre-extracted keyframes, as
+// fast as the CPU allows, and keeps one record per keyframe: what the
+// evaluate tool prints, plots and writes. Features are extracted once by the
+// caller and shared by every run (ablation rows, threshold sweep), so runs
+// differ only in the detector options.
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "bowg/loop_detector.h"
+#include "bowg/types.h"
+#include "bowg/vocabulary.h"
+#include "bowg_evaluation/ground_truth.h"
+#include "bowg_evaluation/metrics.h"
+#include "bowg_evaluation/timing_stats.h"
+
+namespace bowg {
+namespace eval {
+
+/// One image, ready for the detector. Every image is a keyframe: database
+/// entry n is frame n (the ground truth's indexing).
+struct FrameInput {
+  double stamp = 0;  ///< seconds, strictly increasing
+  ImageFeatures features;
+  CameraIntrinsics intrinsics;
+  double feature_ms = 0;  ///< time the feature extraction took
+};
+
+/// The per-keyframe outcome (LoopResult without the correspondences).
+struct KeyframeRecord {
+  int frame = 0;
+  double stamp = 0;
+  LoopStatus status = LoopStatus::kNoFeatures;
+  bool has_candidate = false;
+  int candidate = -1;         ///< best candidate's frame (after islands, when any)
+  double candidate_score = 0; ///< its final score eta
+  int match = -1;             ///< the loop's frame when status == kLoopDetected
+  int correspondences = 0, inliers = 0;
+  std::size_t features = 0;
+  std::size_t database_size = 0;  ///< entries before this keyframe was added
+  StageTimings timings;
+  double feature_ms = 0;
+};
+
+struct DetectorRun {
+  std::string name;
+  LoopDetectorOptions options;
+  std::vector<KeyframeRecord> keyframes;
+  double wall_seconds = 0;
+};
+
+/// Called after every keyframe with (done, total).
+using ProgressCallback = std::function<void(std::size_t, std::size_t)>;
+
+/// Throws what LoopDetector throws (InvalidParameter for bad options,
+/// std::invalid_argument for non-increasing stamps).
+DetectorRun runDetector(std::shared_ptr<const Vocabulary> vocabulary,
+                        const LoopDetectorOptions& options, const std::vector<FrameInput>& frames,
+                        const std::string& name, const ProgressCallback& progress = nullptr);
+
+/// The loops a run found, scored by their final score eta.
+std::vector<Detection> detectionsOf(const DetectorRun& run);
+
+/// Per-keyframe CSV: frame,stamp,status,candidate,candidate_score,match,
+/// correspondences,inliers,features,database_size,feature_ms,transform_ms,
+/// word_groups_ms,query_ms,islands_ms,verification_ms,total_ms[,correct]
+/// (correct = 1/0 for loops, empty otherwise; only with a ground truth).
+std::string keyframesCsv(const DetectorRun& run, const GroundTruth* gt);
+
+/// Timing statistics per stage, in pipeline order: features, transform,
+/// word_groups, query, islands, verification, detector total (without
+/// features), keyframe total (with features).
+std::vector<std::pair<std::string, TimingStats>> stageTimingStats(const DetectorRun& run);
+
+/// Mean and max detector time (total_ms) for database sizes in `bins`
+/// equal ranges of keyframes: rows (first_size, last_size, stats).
+struct TimeVsSize {
+  std::size_t first = 0, last = 0;
+  TimingStats total_ms;
+};
+std::vector<TimeVsSize> timeVersusDatabaseSize(const DetectorRun& run, int bins);
+
+}  // namespace eval
+}  // namespace bowg

@@ -1,0 +1,119 @@
+#include "bowg_evaluation/detector_run.h"
+
+#include <algorithm>
+#include <chrono>
+#include <iomanip>
+#include <sstream>
+
+namespace bowg {
+namespace eval {
+
+DetectorRun runDetector(std::shared_ptr<const Vocabulary> vocabulary,
+                        const LoopDetectorOptions& options, const std::vector<FrameInput>& frames,
+                        const std::string& name, const ProgressCallback& progress) {
+  DetectorRun run;
+  run.name = name;
+  run.options = options;
+  LoopDetector detector(std::move(vocabulary), options);
+  run.keyframes.reserve(frames.size());
+  const auto t0 = std::chrono::steady_clock::now();
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    KeyframeInput input;
+    input.stamp = frames[i].stamp;
+    input.features = frames[i].features;
+    input.intrinsics = frames[i].intrinsics;
+    KeyframeRecord k;
+    k.frame = static_cast<int>(i);
+    k.stamp = frames[i].stamp;
+    k.features = frames[i].features.size();
+    k.feature_ms = frames[i].feature_ms;
+    k.database_size = i;
+    const LoopResult r = detector.process(input);
+    // Entries are numbered in insertion order, and every frame is inserted
+    // (also those without features), so entry id == frame index.
+    k.status = r.status;
+    k.has_candidate = r.has_candidate;
+    if (r.has_candidate) {
+      k.candidate = static_cast<int>(r.best.entry);
+      k.candidate_score = r.best.eta;
+    }
+    if (r.status == LoopStatus::kLoopDetected) k.match = static_cast<int>(r.match_id);
+    k.correspondences = r.correspondences;
+    k.inliers = r.inliers;
+    k.timings = r.timings;
+    run.keyframes.push_back(k);
+    if (progress) progress(i + 1, frames.size());
+  }
+  run.wall_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return run;
+}
+
+std::vector<Detection> detectionsOf(const DetectorRun& run) {
+  std::vector<Detection> out;
+  for (const KeyframeRecord& k : run.keyframes) {
+    if (k.status == LoopStatus::kLoopDetected) out.push_back({k.frame, k.match, k.candidate_score});
+  }
+  return out;
+}
+
+std::string keyframesCsv(const DetectorRun& run, const GroundTruth* gt) {
+  std::ostringstream out;
+  out << "frame,stamp,status,candidate,candidate_score,match,correspondences,inliers,features,"
+         "database_size,feature_ms,transform_ms,word_groups_ms,query_ms,islands_ms,"
+         "verification_ms,total_ms"
+      << (gt ? ",correct" : "") << "\n";
+  for (const KeyframeRecord& k : run.keyframes) {
+    out << k.frame << "," << std::fixed << std::setprecision(6) << k.stamp << ","
+        << toString(k.status) << ",";
+    if (k.has_candidate) out << k.candidate << "," << k.candidate_score;
+    else out << ",";
+    out << "," << (k.match >= 0 ? std::to_string(k.match) : "") << "," << k.correspondences << ","
+        << k.inliers << "," << k.features << "," << k.database_size << std::setprecision(3) << ","
+        << k.feature_ms << "," << k.timings.transform_ms << "," << k.timings.word_groups_ms << ","
+        << k.timings.query_ms << "," << k.timings.islands_ms << "," << k.timings.verification_ms
+        << "," << k.timings.total_ms;
+    if (gt) {
+      out << ",";
+      if (k.match >= 0) out << (gt->contains(k.frame, k.match) ? 1 : 0);
+    }
+    out << "\n";
+  }
+  return out.str();
+}
+
+std::vector<std::pair<std::string, TimingStats>> stageTimingStats(const DetectorRun& run) {
+  const char* names[] = {"features",  "transform",    "word_groups",    "query",
+                         "islands",   "verification", "detector_total", "keyframe_total"};
+  std::vector<std::vector<double>> values(8);
+  for (const KeyframeRecord& k : run.keyframes) {
+    const StageTimings& t = k.timings;
+    const double v[] = {k.feature_ms, t.transform_ms,    t.word_groups_ms, t.query_ms,
+                        t.islands_ms, t.verification_ms, t.total_ms,       k.feature_ms + t.total_ms};
+    for (int i = 0; i < 8; ++i) values[i].push_back(v[i]);
+  }
+  std::vector<std::pair<std::string, TimingStats>> out;
+  for (int i = 0; i < 8; ++i) out.emplace_back(names[i], computeTimingStats(values[i]));
+  return out;
+}
+
+std::vector<TimeVsSize> timeVersusDatabaseSize(const DetectorRun& run, int bins) {
+  std::vector<TimeVsSize> out;
+  const std::size_t n = run.keyframes.size();
+  if (n == 0 || bins < 1) return out;
+  const std::size_t per_bin = std::max<std::size_t>(1, (n + bins - 1) / bins);
+  for (std::size_t first = 0; first < n; first += per_bin) {
+    const std::size_t last = std::min(n, first + per_bin) - 1;
+    std::vector<double> v;
+    for (std::size_t i = first; i <= last; ++i) v.push_back(run.keyframes[i].timings.total_ms);
+    TimeVsSize row;
+    row.first = run.keyframes[first].database_size;
+    row.last = run.keyframes[last].database_size;
+    row.total_ms = computeTimingStats(v);
+    out.push_back(row);
+  }
+  return out;
+}
+
+}  // namespace eval
+}  // namespace bowg

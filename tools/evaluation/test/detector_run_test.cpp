@@ -1,0 +1,109 @@
+#include "bowg_evaluation/detector_run.h"
+
+#include <memory>
+#include <random>
+#include <sstream>
+
+#include <gtest/gtest.h>
+
+#include "synthetic_vocabulary.h"
+
+namespace bowg {
+namespace eval {
+namespace {
+
+/// 60 keyframes of random features; keyframes 40-49 repeat 10-19 exactly
+/// (a revisit), so that whatever the detector finds there can be checked
+/// against a ground truth 40+i: {10+i}.
+std::vector<FrameInput> syntheticSequence() {
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<float> x(40, 600), y(40, 440);
+  std::vector<FrameInput> frames(60);
+  for (int i = 0; i < 60; ++i) {
+    FrameInput& f = frames[i];
+    f.stamp = 0.1 * i;
+    f.feature_ms = 1.0 + i;  // known values for the timing statistics
+    if (i >= 40 && i < 50) {
+      f.features = frames[i - 30].features;
+      continue;
+    }
+    f.features.image_width = 640;
+    f.features.image_height = 480;
+    f.features.descriptors = testing::randomDescriptors(300, 100 + i);
+    for (int k = 0; k < 300; ++k) {
+      Keypoint p;
+      p.x = x(rng);
+      p.y = y(rng);
+      p.size = 31;
+      p.angle = 0;
+      f.features.keypoints.push_back(p);
+    }
+  }
+  return frames;
+}
+
+TEST(DetectorRunTest, OneRecordPerKeyframeAndConsistentOutputs) {
+  auto vocabulary = std::make_shared<const Vocabulary>(testing::makeSyntheticVocabulary(6, 3));
+  LoopDetectorOptions options;
+  options.islands.recent_exclusion = 5;
+  options.temporal_verification.k = 1;
+  options.geometric.direct_index_level = 2;
+  const std::vector<FrameInput> frames = syntheticSequence();
+  std::size_t progress_calls = 0;
+  const DetectorRun run = runDetector(vocabulary, options, frames, "test",
+                                      [&](std::size_t done, std::size_t total) {
+                                        EXPECT_EQ(done, ++progress_calls);
+                                        EXPECT_EQ(total, 60u);
+                                      });
+  ASSERT_EQ(run.keyframes.size(), 60u);
+  EXPECT_EQ(progress_calls, 60u);
+  std::size_t loops = 0;
+  for (const KeyframeRecord& k : run.keyframes) {
+    EXPECT_EQ(k.database_size, static_cast<std::size_t>(k.frame));
+    if (k.has_candidate) EXPECT_LT(k.candidate, k.frame);
+    if (k.status == LoopStatus::kLoopDetected) {
+      ++loops;
+      EXPECT_EQ(k.match, k.candidate);
+    } else {
+      EXPECT_EQ(k.match, -1);
+    }
+  }
+  const std::vector<Detection> detections = detectionsOf(run);
+  EXPECT_EQ(detections.size(), loops);
+
+  GroundTruth gt;
+  for (int i = 0; i < 10; ++i) gt.loops[40 + i] = {10 + i};
+  const std::string csv = keyframesCsv(run, &gt);
+  std::istringstream in(csv);
+  std::string line;
+  std::getline(in, line);
+  EXPECT_EQ(line.substr(line.size() - 8), ",correct");
+  int lines = 0, correct_flags = 0;
+  while (std::getline(in, line)) {
+    ++lines;
+    const char last = line.back();
+    if (last == '1') ++correct_flags;
+    if (line.back() != ',') EXPECT_TRUE(last == '0' || last == '1');
+  }
+  EXPECT_EQ(lines, 60);
+  // The CSV's correct flags are the true positives (one loop per query).
+  EXPECT_EQ(correct_flags, evaluateAt(detections, gt, -1.0).true_positives);
+
+  // Timing: feature_ms = 1..60 -> mean 30.5, max 60; keyframe total adds the
+  // detector's time.
+  const auto stats = stageTimingStats(run);
+  ASSERT_EQ(stats.size(), 8u);
+  EXPECT_EQ(stats[0].first, "features");
+  EXPECT_DOUBLE_EQ(stats[0].second.mean, 30.5);
+  EXPECT_DOUBLE_EQ(stats[0].second.max, 60);
+  EXPECT_GE(stats[7].second.mean, stats[0].second.mean);
+  const std::vector<TimeVsSize> bins = timeVersusDatabaseSize(run, 4);
+  ASSERT_EQ(bins.size(), 4u);
+  EXPECT_EQ(bins.front().first, 0u);
+  EXPECT_EQ(bins.back().last, 59u);
+  EXPECT_EQ(bins[1].first, 15u);
+}
+
+}  // namespace
+}  // namespace eval
+}  // namespace bowg
