@@ -23,8 +23,8 @@ check_cxx_compiler_flag(-mpopcnt BOWG_HAS_MPOPCNT)
 file(GLOB BOWG_ENGINE_SOURCES ${BOWG_ENGINE_DIR}/src/*.cpp)
 add_library(bowg_engine ${BOWG_ENGINE_SOURCES})
 target_include_directories(bowg_engine PUBLIC
-  $<BUILD_INTERFACE:${BOWG_ENGINE_DIR}/include>
-  ${OpenCV_INCLUDE_DIRS})
+  $<BUILD_INTERFACE:${BOWG_ENGINE_DIR}/include>)
+# OpenCV's imported targets carry their include directories.
 target_link_libraries(bowg_engine PUBLIC ${OpenCV_LIBS} ZLIB::ZLIB)
 target_compile_options(bowg_engine PRIVATE -Wall -Wextra)
 if(BOWG_HAS_MPOPCNT)
