@@ -17,8 +17,8 @@
 #include <memory>
 #include <random>
 
-#include "../test/synthetic_corridor.h"
-#include "../test/synthetic_vocabulary.h"
+#include "synthetic_corridor.h"
+#include "synthetic_vocabulary.h"
 #include "bowg/database.h"
 #include "bowg/loop_detector.h"
 #include "bowg/vocabulary.h"

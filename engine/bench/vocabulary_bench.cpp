@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <string>
 
-#include "../test/synthetic_vocabulary.h"
+#include "synthetic_vocabulary.h"
 #include "bowg/vocabulary_io.h"
 #include "bowg/vocabulary_trainer.h"
 

@@ -1,0 +1,19 @@
+#!/usr/bin/env bash
+# Builds the engine's Google Benchmark programs (Release, standalone engine
+# build) and runs them; results go to stdout and to OUT_DIR (default
+# output/benchmarks). docs/benchmarks.md records a run of this script.
+set -euo pipefail
+repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+build="${BOWG_BENCH_BUILD:-$repo/.ws/bench}"
+out="${OUT_DIR:-$repo/output/benchmarks}"
+mkdir -p "$out"
+bash "$repo/scripts/install_deps.sh"
+cmake -S "$repo/engine" -B "$build" -DCMAKE_BUILD_TYPE=Release -DBOWG_ENGINE_TESTS=OFF \
+  -DBOWG_ENGINE_BENCHMARKS=ON > "$out/cmake.log"
+make -C "$build" -j"${BOWG_JOBS:-$(nproc)}" bowg_features_bench bowg_vocabulary_bench \
+  bowg_pipeline_bench > "$out/make.log"
+for b in features vocabulary pipeline; do
+  echo "== bowg_${b}_bench"
+  "$build/bowg_${b}_bench" --benchmark_out="$out/${b}.json" --benchmark_out_format=json \
+    "$@" | tee "$out/${b}.txt"
+done
