@@ -25,49 +25,37 @@ void normaliseBowVector(ScoringType scoring, BowVector* v) {
   for (auto& e : *v) e.second /= norm;
 }
 
-double scoreBowVectors(ScoringType scoring, const BowVector& a, const BowVector& b) {
-  // Merge over the two sorted vectors; only common words contribute except
-  // for KL, whose base term covers every word of `a`.
-  double acc = 0.0;
-  double kl_base = 0.0;
+double bowScoreTerm(ScoringType scoring, double x, double y) {
+  switch (scoring) {
+    case ScoringType::kL1:
+      return std::fabs(x) + std::fabs(y) - std::fabs(x - y);
+    case ScoringType::kL2:
+    case ScoringType::kDotProduct:
+      return x * y;
+    case ScoringType::kChiSquare:
+      return x + y != 0.0 ? x * y / (x + y) : 0.0;
+    case ScoringType::kKl:
+      // Replaces the epsilon term of the base by the real one.
+      return (x > 0 && y > 0) ? x * (kLogEps - std::log(y)) : 0.0;
+    case ScoringType::kBhattacharyya:
+      return std::sqrt(x * y);
+  }
+  return 0.0;
+}
+
+double bowScoreBase(ScoringType scoring, const BowVector& query) {
+  // KL covers every word of the query: absent database words count as
+  // DBoW2's epsilon; the shared words' terms correct that.
+  double base = 0.0;
   if (scoring == ScoringType::kKl) {
-    for (const auto& e : a) {
-      if (e.second > 0) kl_base += e.second * (std::log(e.second) - kLogEps);
+    for (const auto& e : query) {
+      if (e.second > 0) base += e.second * (std::log(e.second) - kLogEps);
     }
   }
-  auto ia = a.begin();
-  auto ib = b.begin();
-  while (ia != a.end() && ib != b.end()) {
-    if (ia->first < ib->first) {
-      ++ia;
-    } else if (ib->first < ia->first) {
-      ++ib;
-    } else {
-      const double x = ia->second;
-      const double y = ib->second;
-      switch (scoring) {
-        case ScoringType::kL1:
-          acc += std::fabs(x) + std::fabs(y) - std::fabs(x - y);
-          break;
-        case ScoringType::kL2:
-        case ScoringType::kDotProduct:
-          acc += x * y;
-          break;
-        case ScoringType::kChiSquare:
-          if (x + y != 0.0) acc += x * y / (x + y);
-          break;
-        case ScoringType::kKl:
-          // Replace the epsilon term of the base by the real one.
-          if (x > 0 && y > 0) acc += x * (kLogEps - std::log(y));
-          break;
-        case ScoringType::kBhattacharyya:
-          acc += std::sqrt(x * y);
-          break;
-      }
-      ++ia;
-      ++ib;
-    }
-  }
+  return base;
+}
+
+double bowScoreFinish(ScoringType scoring, double acc, double base) {
   switch (scoring) {
     case ScoringType::kL1:
       return 0.5 * acc;  // = 1 - 0.5 * ||a - b||_1 for L1-unit vectors
@@ -77,12 +65,31 @@ double scoreBowVectors(ScoringType scoring, const BowVector& a, const BowVector&
     case ScoringType::kChiSquare:
       return 2.0 * acc;
     case ScoringType::kKl:
-      return std::exp(-(kl_base + acc));
+      return std::exp(-(base + acc));
     case ScoringType::kBhattacharyya:
     case ScoringType::kDotProduct:
       return acc;
   }
   return 0.0;
+}
+
+double scoreBowVectors(ScoringType scoring, const BowVector& a, const BowVector& b) {
+  // Merge over the two sorted vectors: only shared words contribute.
+  double acc = 0.0;
+  auto ia = a.begin();
+  auto ib = b.begin();
+  while (ia != a.end() && ib != b.end()) {
+    if (ia->first < ib->first) {
+      ++ia;
+    } else if (ib->first < ia->first) {
+      ++ib;
+    } else {
+      acc += bowScoreTerm(scoring, ia->second, ib->second);
+      ++ia;
+      ++ib;
+    }
+  }
+  return bowScoreFinish(scoring, acc, bowScoreBase(scoring, a));
 }
 
 WeightingType weightingTypeFromString(const std::string& s) {

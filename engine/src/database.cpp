@@ -9,50 +9,6 @@
 #include "bowg/vocabulary.h"
 
 namespace bowg {
-namespace {
-
-// DBoW2's epsilon for the KL divergence, the same constant scoreBowVectors()
-// uses (log of DBL_EPSILON), so that the inverse-index score equals it.
-const double kLogEps = std::log(2.220446049250313e-16);
-
-// Per shared word term of scoreBowVectors() (x: query weight, y: entry).
-inline double wordTerm(ScoringType s, double x, double y) {
-  switch (s) {
-    case ScoringType::kL1:
-      return std::fabs(x) + std::fabs(y) - std::fabs(x - y);
-    case ScoringType::kL2:
-    case ScoringType::kDotProduct:
-      return x * y;
-    case ScoringType::kChiSquare:
-      return x + y != 0.0 ? x * y / (x + y) : 0.0;
-    case ScoringType::kKl:
-      return (x > 0 && y > 0) ? x * (kLogEps - std::log(y)) : 0.0;
-    case ScoringType::kBhattacharyya:
-      return std::sqrt(x * y);
-  }
-  return 0.0;
-}
-
-// Final step of scoreBowVectors() from the accumulated terms.
-inline double wordFinal(ScoringType s, double acc, double kl_base) {
-  switch (s) {
-    case ScoringType::kL1:
-      return 0.5 * acc;
-    case ScoringType::kL2:
-      return acc >= 1.0 ? 1.0 : 1.0 - std::sqrt(1.0 - acc);
-    case ScoringType::kChiSquare:
-      return 2.0 * acc;
-    case ScoringType::kKl:
-      return std::exp(-(kl_base + acc));
-    case ScoringType::kBhattacharyya:
-    case ScoringType::kDotProduct:
-      return acc;
-  }
-  return 0.0;
-}
-
-}  // namespace
-
 DirectIndex directIndexFromWords(const Vocabulary& vocabulary, const std::vector<WordId>& words,
                                  int level) {
   const auto& nodes = vocabulary.nodes();
@@ -209,12 +165,7 @@ std::vector<EntryScores> Database::query(const DatabaseQuery& q, EntryId limit,
 
   // Word score, accumulated over the shared words only, term by term as
   // scoreBowVectors() does (DBoW2's inverse-index scoring).
-  double kl_base = 0.0;
-  if (scoring_ == ScoringType::kKl) {
-    for (const auto& w : q.bow) {
-      if (w.second > 0) kl_base += w.second * (std::log(w.second) - kLogEps);
-    }
-  }
+  const double base = bowScoreBase(scoring_, q.bow);
   // The metric is chosen once per query, not once per posting.
   auto accumulate = [&](auto term) {
     for (const auto& w : q.bow) {
@@ -227,14 +178,14 @@ std::vector<EntryScores> Database::query(const DatabaseQuery& q, EntryId limit,
   };
   switch (scoring_) {
     case ScoringType::kL1:
-      accumulate([](double x, double y) { return wordTerm(ScoringType::kL1, x, y); });
+      accumulate([](double x, double y) { return bowScoreTerm(ScoringType::kL1, x, y); });
       break;
     case ScoringType::kL2:
     case ScoringType::kDotProduct:
       accumulate([](double x, double y) { return x * y; });
       break;
     default:
-      accumulate([this](double x, double y) { return wordTerm(scoring_, x, y); });
+      accumulate([this](double x, double y) { return bowScoreTerm(scoring_, x, y); });
       break;
   }
 
@@ -261,7 +212,7 @@ std::vector<EntryScores> Database::query(const DatabaseQuery& q, EntryId limit,
     s.entry = id;
     // An entry reached through groups only shares no word: its word score is
     // what scoreBowVectors() gives for disjoint vectors (0, or exp(-base) for KL).
-    s.s_w = wordFinal(scoring_, word_acc_[id], kl_base);
+    s.s_w = bowScoreFinish(scoring_, word_acc_[id], base);
     s.s_g = with_groups ? groupScoreFromDot(group_acc_[id]) : 0.0;
     if (!q.distribution.empty()) s.s_d = distributionScore(q.distribution, cachedDistribution(id));
     out.push_back(s);

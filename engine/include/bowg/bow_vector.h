@@ -53,6 +53,15 @@ void normaliseBowVector(ScoringType scoring, BowVector* v);
 ///  - kDotProduct: sum_i a_i b_i
 double scoreBowVectors(ScoringType scoring, const BowVector& a, const BowVector& b);
 
+/// scoreBowVectors() decomposes over the words the two vectors share, which
+/// is what lets the database accumulate it through the inverse index
+/// (DBoW2's trick): score = bowScoreFinish(acc, base) with acc the sum of
+/// bowScoreTerm() over shared words and base = bowScoreBase(query) (non-zero
+/// for KL only).
+double bowScoreTerm(ScoringType scoring, double query_weight, double entry_weight);
+double bowScoreBase(ScoringType scoring, const BowVector& query);
+double bowScoreFinish(ScoringType scoring, double acc, double base);
+
 /// Parse / print names ("tf_idf", "tf", "idf", "binary"; "l1", "l2",
 /// "chi_square", "kl", "bhattacharyya", "dot_product"). Parsing throws
 /// std::invalid_argument naming the bad value.
