@@ -34,8 +34,9 @@ if(BOWG_HAS_MPOPCNT)
 endif()
 set_target_properties(bowg_engine PROPERTIES POSITION_INDEPENDENT_CODE ON)
 
-# ROS-free command-line tools (vocabulary training and conversion on image
-# folders). The rosbag-aware tools live in ../tools and link rosbag.
+# ROS-free command-line tools (vocabulary conversion). The rosbag-aware tools,
+# among them the vocabulary trainer (image folders and rosbags), live in
+# ../tools and link rosbag; their end-to-end tests are there too.
 file(GLOB BOWG_ENGINE_TOOL_SOURCES ${BOWG_ENGINE_DIR}/tools/*.cpp)
 foreach(tool_source ${BOWG_ENGINE_TOOL_SOURCES})
   get_filename_component(tool_name ${tool_source} NAME_WE)
@@ -68,10 +69,7 @@ function(bowg_engine_test name source)
     endif()
     target_compile_definitions(${name} PRIVATE
       BOWG_SHARED_DATA_DIR="${BOWG_SHARED_DATA_DIR}"
-      BOWG_TEST_OUTPUT_DIR="${CMAKE_CURRENT_BINARY_DIR}"
-      BOWG_TRAIN_VOCABULARY_BIN="$<TARGET_FILE:bowg_train_vocabulary>"
-      BOWG_CONVERT_VOCABULARY_BIN="$<TARGET_FILE:bowg_convert_vocabulary>")
-    add_dependencies(${name} bowg_train_vocabulary bowg_convert_vocabulary)
+      BOWG_TEST_OUTPUT_DIR="${CMAKE_CURRENT_BINARY_DIR}")
     target_include_directories(${name} PRIVATE ${BOWG_ENGINE_DIR}/test)
   endif()
 endfunction()

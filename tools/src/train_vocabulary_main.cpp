@@ -1,7 +1,9 @@
 // bowg_train_vocabulary: trains a vocabulary tree (paper Sec. III-A) from the
-// images of one or more folders. The folder walking and feature extraction
-// live here; the training itself is the library's trainVocabulary(), which
-// the rosbag tool reuses.
+// images of folders and/or rosbags (sensor_msgs/Image or CompressedImage on
+// one topic). Gathering the images and extracting their features live here;
+// the training itself is the engine's bowg::trainVocabulary(). It lives in
+// tools/ (not engine/tools/) because reading bags links rosbag, which the
+// ROS-free engine must not.
 #include <dirent.h>
 #include <sys/stat.h>
 
@@ -9,23 +11,32 @@
 #include <cctype>
 #include <cstdio>
 #include <iostream>
-#include <opencv2/imgcodecs.hpp>
+#include <set>
 #include <stdexcept>
 #include <string>
 #include <vector>
+
+#include <cv_bridge/cv_bridge.h>
+#include <opencv2/imgcodecs.hpp>
+#include <rosbag/bag.h>
+#include <rosbag/view.h>
+#include <sensor_msgs/CompressedImage.h>
+#include <sensor_msgs/Image.h>
 
 #include "bowg/errors.h"
 #include "bowg/feature_extractor.h"
 #include "bowg/vocabulary_io.h"
 #include "bowg/vocabulary_trainer.h"
+#include "bowg_ros/image_conversion.h"
 
 namespace {
 
 const char* kUsage =
-    "usage: bowg_train_vocabulary --output FILE [options] FOLDER [FOLDER...]\n"
+    "usage: bowg_train_vocabulary --output FILE [options] [FOLDER...] [--bag FILE...]\n"
     "\n"
     "Trains a k-ary vocabulary tree (hierarchical k-medians, k-means++ seeding) on the\n"
-    "features of every .png/.jpg/.jpeg image found recursively in the folders.\n"
+    "features of every .png/.jpg/.jpeg image found recursively in the folders (sorted by\n"
+    "path) and of the image messages of the bags (in bag time order, after the folders).\n"
     "\n"
     "Output:\n"
     "  --output FILE               vocabulary to write (required)\n"
@@ -41,6 +52,10 @@ const char* kUsage =
     "  --seed N                    random seed (default 0); same input + seed = same vocabulary\n"
     "  --threads N                 worker threads, 1..64 (default 2)\n"
     "Input:\n"
+    "  --bag FILE                  rosbag to read images from (repeatable)\n"
+    "  --image-topic TOPIC         sensor_msgs/Image or sensor_msgs/CompressedImage topic of\n"
+    "                              the bags (default /camera/image_raw)\n"
+    "  --every N                   use every N-th image message of each bag (default 1)\n"
     "  --max-images N              use at most N images, evenly spaced over the sorted list\n"
     "  --max-features-per-image N  keep the N strongest features of each image\n"
     "Features (defaults: bowg::FeatureOptions):\n"
@@ -125,6 +140,49 @@ void progressBar(double fraction, const std::string& stage) {
   std::fflush(stderr);
 }
 
+// One training image: a file, or the index-th message on the image topic of
+// bag number `bag` (indices count every message on the topic, before --every).
+struct ImageSource {
+  std::string path;
+  int bag = -1;
+  std::size_t index = 0;
+};
+
+rosbag::Bag openBag(const std::string& path) {
+  rosbag::Bag bag;
+  try {
+    bag.open(path, rosbag::bagmode::Read);
+  } catch (const rosbag::BagException& e) {
+    throw bowg::IoError("cannot open the bag '" + path + "': " + e.what());
+  }
+  return bag;
+}
+
+// The grey image of an Image or CompressedImage message, converted as the
+// nodelet converts its input (bowg_ros::toMono8), so that a vocabulary
+// trained on a bag sees the features the detector will see.
+cv::Mat greyOf(const rosbag::MessageInstance& m, const std::string& bag_path) {
+  if (const sensor_msgs::Image::ConstPtr img = m.instantiate<sensor_msgs::Image>()) {
+    if (!bowg_ros::isSupportedEncoding(img->encoding)) {
+      throw bowg::FormatError("bag '" + bag_path + "', topic " + m.getTopic() +
+                              ": unsupported image encoding '" + img->encoding + "'");
+    }
+    return bowg_ros::toMono8(cv_bridge::toCvShare(img)->image, img->encoding).clone();
+  }
+  if (const sensor_msgs::CompressedImage::ConstPtr c =
+          m.instantiate<sensor_msgs::CompressedImage>()) {
+    cv::Mat grey = cv::imdecode(c->data, cv::IMREAD_GRAYSCALE);
+    if (grey.empty()) {
+      throw bowg::FormatError("bag '" + bag_path + "', topic " + m.getTopic() +
+                              ": cannot decode a compressed image (" + c->format + ")");
+    }
+    return grey;
+  }
+  throw bowg::FormatError("bag '" + bag_path + "', topic " + m.getTopic() + " holds " +
+                          m.getDataType() +
+                          ", not sensor_msgs/Image or sensor_msgs/CompressedImage");
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -133,7 +191,9 @@ int main(int argc, char** argv) {
   std::string output;
   std::string format = "bowg";
   long max_images = 0, max_features = 0;
-  std::vector<std::string> folders;
+  std::vector<std::string> folders, bags;
+  std::string image_topic = "/camera/image_raw";
+  long every = 1;
   try {
     for (int i = 1; i < argc; ++i) {
       const std::string arg = argv[i];
@@ -162,6 +222,13 @@ int main(int argc, char** argv) {
         training.seed = static_cast<std::uint32_t>(parseInteger(arg, value(), 0, 0xffffffffl));
       } else if (arg == "--threads") {
         training.threads = static_cast<int>(parseInteger(arg, value(), 1, 64));
+      } else if (arg == "--bag") {
+        bags.push_back(value());
+      } else if (arg == "--image-topic") {
+        image_topic = value();
+        if (image_topic.empty()) throw UsageError("--image-topic: empty topic name");
+      } else if (arg == "--every") {
+        every = parseInteger(arg, value(), 1, 1l << 40);
       } else if (arg == "--max-images") {
         max_images = parseInteger(arg, value(), 1, 1l << 40);
       } else if (arg == "--max-features-per-image") {
@@ -195,7 +262,7 @@ int main(int argc, char** argv) {
       }
     }
     if (output.empty()) throw UsageError("--output is required");
-    if (folders.empty()) throw UsageError("no image folder given");
+    if (folders.empty() && bags.empty()) throw UsageError("no image folder or --bag given");
     training.validate();
     features.validate();
   } catch (const std::invalid_argument& e) {  // UsageError, InvalidParameter, bad enum names
@@ -205,15 +272,28 @@ int main(int argc, char** argv) {
 
   try {
     const bowg::VocabularyFormat out_format = bowg::vocabularyFormatFromString(format);
-    std::vector<std::string> images;
-    for (const std::string& f : folders) findImages(f, &images);
-    std::sort(images.begin(), images.end());
+    std::vector<std::string> files;
+    for (const std::string& f : folders) findImages(f, &files);
+    std::sort(files.begin(), files.end());
+    std::vector<ImageSource> images;
+    for (const std::string& f : files) images.push_back({f, -1, 0});
+    for (std::size_t b = 0; b < bags.size(); ++b) {
+      rosbag::Bag bag = openBag(bags[b]);
+      rosbag::View view(bag, rosbag::TopicQuery(image_topic));
+      if (view.size() == 0) {
+        throw bowg::FormatError("the bag '" + bags[b] + "' has no message on " + image_topic +
+                                " (see --image-topic)");
+      }
+      for (std::size_t i = 0; i < view.size(); i += static_cast<std::size_t>(every)) {
+        images.push_back({"", static_cast<int>(b), i});
+      }
+    }
     if (images.empty()) {
       std::cerr << "error: no .png/.jpg/.jpeg image found in the given folders\n";
       return 1;
     }
     if (max_images > 0 && images.size() > static_cast<std::size_t>(max_images)) {
-      std::vector<std::string> picked;
+      std::vector<ImageSource> picked;
       for (long i = 0; i < max_images; ++i) {
         picked.push_back(images[static_cast<std::size_t>(i) * images.size() /
                                 static_cast<std::size_t>(max_images)]);
@@ -223,14 +303,7 @@ int main(int argc, char** argv) {
     const bowg::FeatureExtractor extractor(features);
     std::vector<std::vector<bowg::Descriptor>> per_image;
     std::size_t total = 0, unreadable = 0;
-    for (std::size_t i = 0; i < images.size(); ++i) {
-      progressBar(0.2 * i / images.size(), "extracting features");
-      const cv::Mat image = cv::imread(images[i], cv::IMREAD_GRAYSCALE);
-      if (image.empty()) {
-        std::fprintf(stderr, "\nwarning: cannot read image '%s', skipped\n", images[i].c_str());
-        ++unreadable;
-        continue;
-      }
+    auto add = [&](const cv::Mat& image) {
       bowg::ImageFeatures f = extractor.extract(image);
       std::vector<std::size_t> order(f.size());
       for (std::size_t j = 0; j < order.size(); ++j) order[j] = j;
@@ -245,6 +318,38 @@ int main(int argc, char** argv) {
       per_image.emplace_back();
       for (std::size_t j : order) per_image.back().push_back(f.descriptors[j]);
       total += per_image.back().size();
+    };
+    // Sources are ordered folders first, then bag by bag in message order:
+    // each bag is read once, front to back.
+    std::size_t i = 0;
+    while (i < images.size()) {
+      progressBar(0.2 * i / images.size(), "extracting features");
+      if (images[i].bag < 0) {
+        const cv::Mat image = cv::imread(images[i].path, cv::IMREAD_GRAYSCALE);
+        if (image.empty()) {
+          std::fprintf(stderr, "\nwarning: cannot read image '%s', skipped\n",
+                       images[i].path.c_str());
+          ++unreadable;
+        } else {
+          add(image);
+        }
+        ++i;
+        continue;
+      }
+      const int b = images[i].bag;
+      rosbag::Bag bag = openBag(bags[b]);
+      rosbag::View view(bag, rosbag::TopicQuery(image_topic));
+      std::size_t index = 0;
+      for (const rosbag::MessageInstance& m : view) {
+        if (i >= images.size() || images[i].bag != b) break;
+        if (index++ != images[i].index) continue;
+        add(greyOf(m, bags[b]));
+        ++i;
+        progressBar(0.2 * i / images.size(), "extracting features");
+      }
+      if (i < images.size() && images[i].bag == b) {
+        throw bowg::FormatError("the bag '" + bags[b] + "' changed while it was read");
+      }
     }
     std::fprintf(stderr, "\n%zu images (%zu unreadable), %zu descriptors\n", per_image.size(),
                  unreadable, total);

@@ -1,0 +1,62 @@
+// What the nodelet did with a played bag, gathered from its outputs
+// (KeyframeStatus per keyframe, LoopClosure per loop) after mapping their
+// stamps to frame indices (stamp_index.h), and the summary bowg_bag_evaluator
+// prints: the same metrics as bowg_evaluate (metrics.h) plus what only a live
+// run has, the frames that never became keyframes.
+//
+// Unlike the offline tool, not every image need be a keyframe here: the
+// nodelet's bounded queue drops the oldest frame when the detector falls
+// behind, and the keyframe gate skips frames by time/distance. Frames dropped
+// = images in the bag - distinct frames with a KeyframeStatus.
+#pragma once
+
+#include <set>
+#include <string>
+#include <vector>
+
+#include "bowg_evaluation/ground_truth.h"
+#include "bowg_evaluation/metrics.h"
+
+namespace bowg {
+namespace eval {
+
+class OnlineRun {
+ public:
+  explicit OnlineRun(std::size_t images_in_bag) : images_(images_in_bag) {}
+
+  /// A KeyframeStatus for `frame`; -1 (stamp not in the bag) is counted as
+  /// unmapped. A repeated frame counts once.
+  void addKeyframe(int frame);
+  /// A LoopClosure; a query or match of -1 is counted as unmapped and the
+  /// loop is not scored (it cannot be judged against the ground truth).
+  void addLoop(int query, int match, double score);
+
+  std::size_t imagesInBag() const { return images_; }
+  std::size_t keyframesSeen() const { return keyframes_.size(); }
+  /// Images in the bag without a KeyframeStatus (0 when more were seen).
+  std::size_t framesDropped() const;
+  std::size_t unmappedStamps() const { return unmapped_; }
+  bool sawKeyframe(int frame) const { return keyframes_.count(frame) > 0; }
+  /// The bag's frames without a KeyframeStatus, ascending.
+  std::vector<int> missingFrames() const;
+  /// The mapped loops, in arrival order.
+  const std::vector<Detection>& detections() const { return detections_; }
+
+ private:
+  std::size_t images_ = 0;
+  std::set<int> keyframes_;
+  std::vector<Detection> detections_;
+  std::size_t unmapped_ = 0;
+};
+
+/// The evaluator's report: header lines (`title`), then with a ground truth
+/// the bowg_evaluate table row (precision, recall, F1, TP, FP at the
+/// nodelet's min_score; recall at 100 % precision over the published loops'
+/// scores, docs/evaluation.md "--sweep score"), the counts of keyframes,
+/// dropped frames (and the first 20 of them) and unmapped stamps, and the
+/// list of loops.
+std::string summarizeOnlineRun(const OnlineRun& run, const GroundTruth* gt,
+                               const std::string& title);
+
+}  // namespace eval
+}  // namespace bowg
