@@ -95,8 +95,15 @@ void runQuery(const QueryContext& ctx, const DatabaseQuery& q, const DatabaseEnt
   r->group_normaliser = with_groups ? norm.s_g : 0.0;
   r->distribution_normaliser = with_distribution ? norm.s_d : 0.0;
   const SimilarityOptions& so = options_.similarity;
-  if (norm.s_w < so.min_word_normaliser || (with_groups && norm.s_g < so.min_group_normaliser) ||
-      (with_distribution && norm.s_d < so.min_distribution_normaliser)) {
+  // A normaliser of 0 (I_{t-1} shares no word / group / occupied fan bin with
+  // I_t) cannot divide eqs. 2 and 4 even when the minimum is set to 0 (a valid
+  // value): such a keyframe is always low_normaliser, never inf/NaN scores.
+  const auto low = [](double normaliser, double minimum) {
+    return !(normaliser > 0.0) || normaliser < minimum;
+  };
+  if (low(norm.s_w, so.min_word_normaliser) ||
+      (with_groups && low(norm.s_g, so.min_group_normaliser)) ||
+      (with_distribution && low(norm.s_d, so.min_distribution_normaliser))) {
     finish(LoopStatus::kLowNormaliser);
     r->timings.query_ms = msBetween(t_query, Clock::now());
     return;

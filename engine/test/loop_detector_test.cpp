@@ -152,6 +152,30 @@ TEST(LoopDetector, LowNormaliserWhenThePreviousKeyframeSharesNothing) {
   EXPECT_EQ(det.database().size(), 2u);  // still added
 }
 
+// Minimum normalisers of 0 are valid, but a normaliser of exactly 0 cannot
+// divide eq. 4: keypoints of size 0 form no word groups, so s_g(I_t, I_t-1) = 0
+// and every candidate's eta_g would be 0/0. The keyframe must be
+// low_normaliser, not a combineSimilarity exception on a NaN eta_g.
+TEST(LoopDetector, ZeroNormaliserIsLowEvenWithZeroMinimum) {
+  LoopDetectorOptions o = defaultOptions();
+  o.islands.recent_exclusion = 0;
+  o.similarity.min_word_normaliser = 0.0;
+  o.similarity.min_group_normaliser = 0.0;
+  o.similarity.min_distribution_normaliser = 0.0;
+  LoopDetector det(vocabulary(), o);
+  const testing::Corridor a = testing::makeCorridor(20, 50, 11);
+  std::mt19937_64 rng(1);
+  det.process(testing::observeCorridor(a, 5.0, 1.0, rng, 0, 0.0, /*size_px=*/0.f));
+  LoopResult r;
+  ASSERT_NO_THROW(
+      r = det.process(testing::observeCorridor(a, 5.2, 2.0, rng, 0, 0.0, /*size_px=*/0.f)));
+  EXPECT_GT(r.word_normaliser, 0.5);  // the words alone would be fine
+  EXPECT_EQ(r.group_normaliser, 0.0);
+  EXPECT_EQ(r.status, LoopStatus::kLowNormaliser);
+  EXPECT_FALSE(r.has_candidate);
+  EXPECT_EQ(det.database().size(), 2u);
+}
+
 // The normaliser rule applies to the ENABLED components only: keypoints of
 // size 0 form no word groups, so the group normaliser is 0.
 TEST(LoopDetector, GroupNormaliserCountsOnlyWhenGroupsAreOn) {
