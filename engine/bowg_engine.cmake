@@ -50,8 +50,12 @@ endforeach()
 # REALPATH: the catkin workspace reaches the repository through a symlink.
 get_filename_component(BOWG_REPO_DIR ${BOWG_ENGINE_DIR}/.. REALPATH)
 set(BOWG_SHARED_DATA_DIR_DEFAULT ${BOWG_REPO_DIR}/../shared/data)
-set(BOWG_SHARED_DATA_DIR ${BOWG_SHARED_DATA_DIR_DEFAULT} CACHE PATH
-  "The shared third-party data folder (../shared/data)")
+# Not a cache variable: a stale cached path (e.g. from a workspace that moved)
+# would silently turn the data tests into skips. Override with -D.
+if(NOT BOWG_SHARED_DATA_DIR)
+  set(BOWG_SHARED_DATA_DIR ${BOWG_SHARED_DATA_DIR_DEFAULT})
+endif()
+message(STATUS "bowg_engine: shared data folder ${BOWG_SHARED_DATA_DIR}")
 
 function(bowg_engine_test name source)
   if(COMMAND catkin_add_gtest)

@@ -24,6 +24,7 @@
 #include <sensor_msgs/Image.h>
 #include <std_srvs/Trigger.h>
 
+#include <algorithm>
 #include <atomic>
 #include <boost/thread/recursive_mutex.hpp>
 #include <chrono>
@@ -328,20 +329,24 @@ void LoopDetectorNodelet::onInit() {
   worker_ = std::thread(&LoopDetectorNodelet::workerLoop, this);
   initialised_ = true;
 
-  // Inputs last, once everything they feed exists.
+  // Inputs last, once everything they feed exists. The callbacks only gate
+  // and enqueue; the subscriber queues are at least ~queue_size deep so that a
+  // large ~queue_size makes a fast bag replay lossless (drops then happen, and
+  // are counted, only in our own queue).
+  const int input_queue = std::max(5, queue_size_);
   if (use_features_input_) {
     features_sub_ =
-        nh.subscribe("keyframe_features", 5, &LoopDetectorNodelet::featuresCallback, this);
+        nh.subscribe("keyframe_features", input_queue, &LoopDetectorNodelet::featuresCallback, this);
   } else if (use_compressed_) {
     // Debian lacks the compressed image_transport plugin: subscribe to the
     // CompressedImage topic directly and decode with cv::imdecode.
-    compressed_sub_ = nh.subscribe(nh.resolveName("image") + "/compressed", 5,
+    compressed_sub_ = nh.subscribe(nh.resolveName("image") + "/compressed", input_queue,
                                    &LoopDetectorNodelet::compressedCallback, this);
   } else {
     it_.reset(new image_transport::ImageTransport(nh));
     try {
       image_sub_ =
-          it_->subscribe("image", 5, &LoopDetectorNodelet::imageCallback, this,
+          it_->subscribe("image", input_queue, &LoopDetectorNodelet::imageCallback, this,
                          image_transport::TransportHints("raw", ros::TransportHints(), pnh));
     } catch (const std::exception& e) {
       NODELET_FATAL("cannot subscribe to %s: %s (for compressed input set ~use_compressed)",
