@@ -5,6 +5,7 @@
 //   rosrun bowg_ros bowg_generate_pipe_sequence --bag pipe.bag [--images DIR]
 //       [--gt pipe_gt.txt] [--laps 1] [--frames N] [--seed 1] [--width 640]
 //       [--height 480] [--fx 320] [--roll-amplitude 60] [--marks-per-metre 1]
+//       [--grain-repeat 0.5]
 //       [--speed 0.2] [--rate 10] [--gt-distance 0.15] [--gt-heading 30]
 //       [--gt-exclude 3] [--compression none|lz4|bz2]
 #include <sys/stat.h>
@@ -53,6 +54,8 @@ const char* kUsage =
     "  --fx F                 focal length in px (fy = fx, principal point at the centre) [W/2]\n"
     "  --roll-amplitude DEG   roll about the pipe axis in [-DEG, DEG] [60]\n"
     "  --marks-per-metre X    unique wall marks per metre (texture repetitiveness) [1]\n"
+    "  --grain-repeat G       fraction of the wall grain repeated in every section, in [0, 1]\n"
+    "                         (1 = pixel-identical sections, 0 = no shared grain) [0.5]\n"
     "  --speed MPS --rate HZ  driving speed and frame rate [0.2 10]\n"
     "  --gt-distance M --gt-heading DEG --gt-exclude M\n"
     "                         ground-truth tolerances [0.15 30 3]\n"
@@ -110,6 +113,7 @@ Args parseArgs(int argc, char** argv) {
     else if (flag == "--fx") fx = toNumber(flag, v);
     else if (flag == "--roll-amplitude") a.sequence.roll_amplitude_deg = toNumber(flag, v);
     else if (flag == "--marks-per-metre") a.texture.marks_per_metre = toNumber(flag, v);
+    else if (flag == "--grain-repeat") a.texture.grain_repeat = toNumber(flag, v);
     else if (flag == "--speed") a.sequence.speed_mps = toNumber(flag, v);
     else if (flag == "--rate") a.sequence.frame_rate_hz = toNumber(flag, v);
     else if (flag == "--gt-distance") a.gt_options.max_distance_m = toNumber(flag, v);
@@ -275,6 +279,7 @@ int run(int argc, char** argv) {
          << "query: matches; 0-based index of the image messages (frames)\n"
          << "frames " << frames.size() << ", seed " << args.sequence.seed << ", laps "
          << args.sequence.laps << ", marks_per_metre " << args.texture.marks_per_metre
+         << ", grain_repeat " << args.texture.grain_repeat
          << ", roll_amplitude_deg " << args.sequence.roll_amplitude_deg << "\n"
          << "tolerances: distance < " << args.gt_options.max_distance_m << " m, heading < "
          << args.gt_options.max_heading_deg << " deg, excluding the last "

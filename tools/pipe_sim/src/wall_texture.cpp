@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -69,6 +70,9 @@ void WallTextureOptions::validate() const {
   if (!(marks_per_metre >= 0)) {
     throw std::invalid_argument("WallTextureOptions.marks_per_metre must be >= 0");
   }
+  if (!(grain_repeat >= 0 && grain_repeat <= 1)) {
+    throw std::invalid_argument("WallTextureOptions.grain_repeat must be in [0, 1]");
+  }
   if (!(margin_m >= 0)) throw std::invalid_argument("WallTextureOptions.margin_m must be >= 0");
 }
 
@@ -85,13 +89,19 @@ WallTexture::WallTexture(const PipeNetwork& network, const WallTextureOptions& o
     const double length = network.edgeLength(static_cast<int>(e));
     const int rows = static_cast<int>(std::ceil((length + 2 * options_.margin_m) / options_.texel_m));
     cv::Mat tex(rows, cols, CV_32F);
+    // Sections are anchored at s = 0 of every edge (joints every
+    // joint_spacing); each section's grain is the shared tile plus its own.
+    long current = std::numeric_limits<long>::min();
+    cv::Mat section;
     for (int r = 0; r < rows; ++r) {
-      // The tile is anchored at s = 0 of every edge: every section, every
-      // edge, looks the same.
       const double s = -options_.margin_m + r * options_.texel_m;
-      int tr = static_cast<int>(std::floor(s / options_.texel_m + 0.5)) % tile_rows;
-      if (tr < 0) tr += tile_rows;
-      tile_.row(tr).copyTo(tex.row(r));
+      const long t = static_cast<long>(std::floor(s / options_.texel_m + 0.5));
+      const long k = static_cast<long>(std::floor(static_cast<double>(t) / tile_rows));
+      if (k != current) {
+        section = sectionGrain(static_cast<int>(e), k);
+        current = k;
+      }
+      section.row(static_cast<int>(t - k * tile_rows)).copyTo(tex.row(r));
     }
     // Unique marks, placed by a generator seeded with (seed, edge) so that
     // an edge's marks do not depend on the other edges.
@@ -121,27 +131,68 @@ WallTexture::WallTexture(const PipeNetwork& network, const WallTextureOptions& o
   }
 }
 
+namespace {
+
+// Cast-iron-like grain: value noise from 128 down to 2 texels.
+const double kWavelengths[] = {128, 64, 32, 16, 8, 4, 2};
+const double kAmplitudes[] = {0.16, 0.12, 0.10, 0.09, 0.08, 0.06, 0.04};
+
+/// Adds weight * (the grain's multi-octave noise seeded by `seed`) to `tex`.
+/// Two independent fields with weights sqrt(g) and sqrt(1 - g) sum to a field
+/// with the same variance as one of weight 1: the statistics do not depend
+/// on the mix.
+void addGrainNoise(cv::Mat& tex, std::uint64_t seed, double weight) {
+  if (weight <= 0) return;
+  for (int r = 0; r < tex.rows; ++r) {
+    float* out = tex.ptr<float>(r);
+    for (int c = 0; c < tex.cols; ++c) {
+      double v = 0;
+      for (int o = 0; o < 7; ++o) {
+        v += kAmplitudes[o] * valueNoise(seed + o, r, c, kWavelengths[o], tex.cols);
+      }
+      out[c] += static_cast<float>(weight * v);
+    }
+  }
+}
+
+}  // namespace
+
 void WallTexture::bakeTile() {
   const int cols = options_.circumference_texels;
   const int rows = static_cast<int>(std::lround(options_.joint_spacing_m / options_.texel_m));
   const std::uint64_t seed = hashCombine(options_.seed, 0x74696c65ULL);
-  tile_.create(rows, cols, CV_32F);
-  // Cast-iron-like grain: value noise from 128 down to 2 texels.
-  const double wavelengths[] = {128, 64, 32, 16, 8, 4, 2};
-  const double amplitudes[] = {0.16, 0.12, 0.10, 0.09, 0.08, 0.06, 0.04};
-  for (int r = 0; r < rows; ++r) {
-    float* out = tile_.ptr<float>(r);
-    for (int c = 0; c < cols; ++c) {
-      double v = 0.48;
-      for (int o = 0; o < 7; ++o) {
-        v += amplitudes[o] * valueNoise(seed + o, r, c, wavelengths[o], cols);
-      }
-      out[c] = static_cast<float>(v);
-    }
-  }
+  const double g = options_.grain_repeat;
+  shared_noise_ = cv::Mat(rows, cols, CV_32F, cv::Scalar(0.48));
+  addGrainNoise(shared_noise_, seed, std::sqrt(g));
+  tile_ = shared_noise_.clone();
+  addGrainFeatures(tile_, seed, g);
+  addJointAndSeam(tile_);
+  cv::min(cv::max(tile_, 0.02), 0.98, tile_);
+}
+
+cv::Mat WallTexture::sectionGrain(int edge, long section) const {
+  const std::uint64_t shared_seed = hashCombine(options_.seed, 0x74696c65ULL);
+  // The section's own grain: a function of (seed, edge, section) only.
+  const std::uint64_t own_seed = hashCombine(hashCombine(options_.seed, 0x6772616eULL, edge),
+                                             static_cast<std::uint64_t>(section));
+  const double g = options_.grain_repeat;
+  cv::Mat tex = shared_noise_.clone();
+  addGrainNoise(tex, own_seed, std::sqrt(1 - g));
+  // Shared features first (their draw sequence is the shared tile's), then
+  // this section's own, so that grain_repeat = 1 is exactly the shared tile.
+  addGrainFeatures(tex, shared_seed, g);
+  addGrainFeatures(tex, own_seed, 1 - g);
+  addJointAndSeam(tex);
+  cv::min(cv::max(tex, 0.02), 0.98, tex);
+  return tex;
+}
+
+void WallTexture::addGrainFeatures(cv::Mat& tex, std::uint64_t seed, double fraction) const {
+  if (fraction <= 0) return;
+  const int rows = tex.rows, cols = tex.cols;
   Random rng(seed);
   // Pits (dark) and flecks (bright): the corners GFTT finds everywhere.
-  const int pits = static_cast<int>(rows * cols / 600);
+  const int pits = static_cast<int>(std::lround(fraction * (rows * cols / 600)));
   for (int i = 0; i < pits; ++i) {
     const bool dark = rng.uniform() < 0.75;
     const double radius = rng.uniform(0.6, dark ? 2.5 : 1.5);
@@ -154,11 +205,11 @@ void WallTexture::bakeTile() {
       }
     }
     const float value = static_cast<float>(dark ? rng.uniform(0.08, 0.3) : rng.uniform(0.72, 0.9));
-    blendPatch(tile_, mask, rng.index(rows), rng.index(cols),
+    blendPatch(tex, mask, rng.index(rows), rng.index(cols),
                [value](float, int, int) { return value; });
   }
   // Scratches, mostly along the pipe (whatever the pipe carried scoured them).
-  const int scratches = rows * cols / 4000;
+  const int scratches = static_cast<int>(std::lround(fraction * (rows * cols / 4000)));
   for (int i = 0; i < scratches; ++i) {
     const double length = rng.uniform(6, 30), angle = rng.uniform(-0.35, 0.35);
     const int half = static_cast<int>(length / 2) + 2;
@@ -167,13 +218,18 @@ void WallTexture::bakeTile() {
     cv::line(mask, centre - dir * (length / 2), centre + dir * (length / 2), cv::Scalar(0.8), 1,
              cv::LINE_AA);
     const float value = static_cast<float>(rng.uniform() < 0.5 ? rng.uniform(0.15, 0.3) : rng.uniform(0.65, 0.8));
-    blendPatch(tile_, mask, rng.index(rows), rng.index(cols),
+    blendPatch(tex, mask, rng.index(rows), rng.index(cols),
                [value](float, int, int) { return value; });
   }
-  // Circumferential joint at the tile start: a dark groove, then a weld bead
-  // with the ripples of the welding pass.
+}
+
+void WallTexture::addJointAndSeam(cv::Mat& tex) const {
+  const int rows = tex.rows, cols = tex.cols;
+  const std::uint64_t seed = hashCombine(options_.seed, 0x74696c65ULL);
+  // Circumferential joint at the section start: a dark groove, then a weld
+  // bead with the ripples of the welding pass. Shared by every section.
   for (int r = 0; r < std::min(rows, 34); ++r) {
-    float* out = tile_.ptr<float>(r);
+    float* out = tex.ptr<float>(r);
     for (int c = 0; c < cols; ++c) {
       if (r < 8 || r >= 30) {
         out[c] = 0.12f + 0.05f * static_cast<float>(valueNoise(seed + 11, r, c, 3, cols));
@@ -186,7 +242,7 @@ void WallTexture::bakeTile() {
   // Longitudinal seam (every pipe is rolled and welded along one line).
   const int seam = cols / 4, seam_half = 4;
   for (int r = 0; r < rows; ++r) {
-    float* out = tile_.ptr<float>(r);
+    float* out = tex.ptr<float>(r);
     for (int dc = -seam_half - 1; dc <= seam_half + 1; ++dc) {
       const int c = seam + dc;
       if (std::abs(dc) > seam_half) {
@@ -197,7 +253,6 @@ void WallTexture::bakeTile() {
       }
     }
   }
-  cv::min(cv::max(tile_, 0.02), 0.98, tile_);
 }
 
 void WallTexture::drawMark(cv::Mat& tex, const WallMark& mark, std::uint64_t seed) const {

@@ -2,7 +2,12 @@
 // s = metres along the edge from edge.from, theta = angle about the edge axis
 // (0 = world up, increasing towards edge_direction x up). Built to ALIAS, as
 // real pipes do (method notes, "What defeats the classic pipeline in pipes"):
-//  - one material grain tile, identical in every pipe section;
+//  - a material grain that is statistically the same everywhere but, as in
+//    a real pipe, not a copy: a fraction `grain_repeat` of it (noise energy,
+//    pits, flecks, scratches) is one shared tile repeated in every section,
+//    the rest is drawn afresh for every section of every edge (seeded by
+//    seed, edge and section index). The shared part still fools a naive
+//    matcher; 1 gives the old pixel-identical tile, 0 no shared grain;
 //  - a circumferential joint (groove + weld bead) every `joint_spacing`;
 //  - a longitudinal weld seam along every pipe at the same angle;
 //  - and, fixed to places, sparse unique marks (stains, cracks, deposits),
@@ -28,6 +33,9 @@ struct WallTextureOptions {
   int circumference_texels = 512;
   double joint_spacing_m = 0.5;  ///< distance between circumferential joints
   double marks_per_metre = 1.0;  ///< unique marks per metre of pipe, >= 0
+  /// Fraction of the grain shared by every section, in [0, 1]: 1 = every
+  /// section's grain is a pixel-identical copy, 0 = every section has its own.
+  double grain_repeat = 0.5;
   /// Margin baked beyond both ends of an edge (mitred elbows reach one
   /// radius past the node).
   double margin_m = 0.12;
@@ -58,16 +66,23 @@ class WallTexture {
 
   const std::vector<WallMark>& marks() const { return marks_; }
   const WallTextureOptions& options() const { return options_; }
-  /// The grain tile (rows = one joint spacing), identical in every section.
+  /// What every section has in common (rows = one joint spacing): the shared
+  /// part of the grain (weighted by grain_repeat), the joint and the seam.
   const cv::Mat& tile() const { return tile_; }
+  /// The albedo of section `section` (rows from s = section * joint_spacing)
+  /// of `edge` before marks: the shared tile plus that section's own grain.
+  cv::Mat sectionGrain(int edge, long section) const;
 
  private:
   void bakeTile();
+  void addGrainFeatures(cv::Mat& tex, std::uint64_t seed, double fraction) const;
+  void addJointAndSeam(cv::Mat& tex) const;
   void drawMark(cv::Mat& texture, const WallMark& mark, std::uint64_t seed) const;
 
   WallTextureOptions options_;
   double radius_ = 0.076;
-  cv::Mat tile_;  // CV_32F albedo
+  cv::Mat tile_;          // CV_32F albedo
+  cv::Mat shared_noise_;  // CV_32F, 0.48 + sqrt(grain_repeat) * shared noise
   std::vector<WallMark> marks_;
   std::vector<std::vector<cv::Mat>> levels_;
 };
