@@ -31,10 +31,16 @@ echo "   built in $(( $(date +%s) - start )) s"
 # 0.2 m/s), 8 unique wall marks per metre: 1181 frames, 684 revisit queries.
 mkdir -p "$out"
 bag="$out/pipe.bag"
-if [ ! -s "$bag" ] || [ ! -s "$out/pipe_gt.txt" ]; then
+generator_args=(--seed 1 --rate 5 --marks-per-metre 8)
+# The cached sequence is reused only if the same generator binary made it with
+# the same options (a changed renderer must not be compared with old frames).
+stamp="$(sha256sum "$tools/bowg_generate_pipe_sequence" | cut -d' ' -f1) ${generator_args[*]}"
+if [ ! -s "$bag" ] || [ ! -s "$out/pipe_gt.txt" ] || [ "$(cat "$out/generator.stamp" 2>/dev/null)" != "$stamp" ]; then
   echo "== 3/4 generate the pipe sequence -> $bag"
-  "$tools/bowg_generate_pipe_sequence" --bag "$bag" --gt "$out/pipe_gt.txt" --seed 1 \
-    --rate 5 --marks-per-metre 8 >"$out/generate.log" 2>&1 || { cat "$out/generate.log" >&2; exit 1; }
+  rm -f "$out/generator.stamp"
+  "$tools/bowg_generate_pipe_sequence" --bag "$bag" --gt "$out/pipe_gt.txt" "${generator_args[@]}" \
+    >"$out/generate.log" 2>&1 || { cat "$out/generate.log" >&2; exit 1; }
+  echo "$stamp" > "$out/generator.stamp"
   tail -n 3 "$out/generate.log"
 else
   echo "== 3/4 pipe sequence present: $bag"
