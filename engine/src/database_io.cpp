@@ -75,20 +75,16 @@ class Reader {
     need(1, what);
     return static_cast<std::uint8_t>(*p_++);
   }
-  std::uint32_t u32(const char* what) {
-    need(4, what);
-    std::uint32_t v = 0;
-    for (int i = 0; i < 4; ++i)
-      v |= static_cast<std::uint32_t>(static_cast<unsigned char>(p_[i])) << (8 * i);
-    p_ += 4;
-    return v;
-  }
-  std::uint64_t u64(const char* what) {
-    need(8, what);
-    std::uint64_t v = 0;
-    for (int i = 0; i < 8; ++i)
-      v |= static_cast<std::uint64_t>(static_cast<unsigned char>(p_[i])) << (8 * i);
-    p_ += 8;
+  std::uint32_t u32(const char* what) { return littleEndian<std::uint32_t>(what); }
+  std::uint64_t u64(const char* what) { return littleEndian<std::uint64_t>(what); }
+  // The file is little-endian whatever the host: assemble byte by byte.
+  template <typename T>
+  T littleEndian(const char* what) {
+    need(sizeof(T), what);
+    T v = 0;
+    for (std::size_t i = 0; i < sizeof(T); ++i)
+      v |= static_cast<T>(static_cast<unsigned char>(p_[i])) << (8 * i);
+    p_ += sizeof(T);
     return v;
   }
   std::int32_t i32(const char* what) { return static_cast<std::int32_t>(u32(what)); }
