@@ -6,7 +6,8 @@
 #   BOWG_WS=/tmp/ws ./scripts/demo.sh   # another catkin workspace
 # Environment: BOWG_WS (workspace), BOWG_JOBS (build jobs, default nproc),
 # BOWG_DEMO_DIR (outputs, default <repo>/output/demo), BOWG_SKIP_DEPS=1 (do
-# not run install_deps.sh).
+# not run install_deps.sh), BOWG_DEMO_THRESHOLDS (min_score values of the
+# exact PR sweep: one detector run per value and row, spread over the cores).
 set -euo pipefail
 repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 ws="${BOWG_WS:-$repo/.ws}"
@@ -50,7 +51,8 @@ config="${BOWG_DEMO_CONFIG:-$repo/config/pipe_demo.yaml}"
 vocabulary="${BOWG_DEMO_VOCABULARY:-$repo/data/default_vocabulary.bowgvoc}"
 echo "== 4/4 bowg_evaluate --ablation (config $config)"
 "$tools/bowg_evaluate" --bag "$bag" --gt "$out/pipe_gt.txt" --vocabulary "$vocabulary" \
-  --config "$config" --output "$out/results" --ablation --sweep score --thresholds 0.05 --quiet
+  --config "$config" --output "$out/results" --ablation --quiet \
+  --sweep rerun --thresholds "${BOWG_DEMO_THRESHOLDS:-0.5,0.8,1,1.1,1.2,1.3,1.4}"
 
 echo
 echo "demo done in $(( $(date +%s) - start )) s"

@@ -17,7 +17,10 @@ namespace bowg {
 namespace {
 
 const char kMagic[8] = {'B', 'O', 'W', 'G', 'D', 'B', 0, 0};
-const std::uint32_t kVersion = 1;
+// Version 2 appends the normaliser history; version 1 files (without it)
+// still load, with an empty history.
+const std::uint32_t kVersion = 2;
+const std::uint32_t kOldestVersion = 1;
 // magic + version + fingerprint + payload size | ... | checksum
 const std::size_t kHeaderBytes = 8 + 4 + 8 + 8;
 const std::size_t kTrailerBytes = 8;
@@ -25,6 +28,7 @@ const std::size_t kTrailerBytes = 8;
 const std::size_t kEntryFixedBytes = 8 * 3 + 1 + 8 * 4 + 4 + 4 + 4;
 const std::size_t kFeatureBytes = 6 * 4 + 32 + 4;
 const std::size_t kPairBytes = 4 + 8;
+const std::size_t kNormaliserBytes = 3 * 8;
 
 class Writer {
  public:
@@ -184,6 +188,13 @@ void saveDetectorFile(const std::string& path, const Database& database,
   w.f64(last.best_score);
   w.i32(last.size);
   w.i32(state.consistency.chainLength());
+  const std::vector<Normalisers> normalisers = state.normalisers.values();
+  w.u32(static_cast<std::uint32_t>(normalisers.size()));
+  for (const Normalisers& v : normalisers) {
+    w.f64(v.word);
+    w.f64(v.group);
+    w.f64(v.distribution);
+  }
 
   std::string& bytes = w.str();
   const std::uint64_t payload = bytes.size() - payload_start;
@@ -206,9 +217,9 @@ std::unique_ptr<Database> loadDetectorFile(const std::string& path,
   if (std::memcmp(bytes.data(), kMagic, 8) != 0) header.fail("not a BoWG database (bad magic)");
   Reader r(path, bytes.data() + 8, bytes.size() - 8);
   const std::uint32_t version = r.u32("version");
-  if (version != kVersion) {
+  if (version < kOldestVersion || version > kVersion) {
     r.fail("unsupported version " + std::to_string(version) + " (expected " +
-           std::to_string(kVersion) + ")");
+           std::to_string(kOldestVersion) + " to " + std::to_string(kVersion) + ")");
   }
   const std::uint64_t fingerprint = r.u64("vocabulary fingerprint");
   const std::uint64_t payload = r.u64("payload size");
@@ -284,6 +295,20 @@ std::unique_ptr<Database> loadDetectorFile(const std::string& path,
     const int chain = p.i32("chain length");
     if (chain < 0) p.fail("negative temporal-consistency chain length");
     state->consistency.restore(last, chain);
+    if (version >= 2) {
+      const std::size_t nn = p.count(kNormaliserBytes, "normalisers");
+      std::vector<Normalisers> normalisers(nn);
+      for (Normalisers& v : normalisers) {
+        v.word = p.f64("normaliser");
+        v.group = p.f64("normaliser");
+        v.distribution = p.f64("normaliser");
+        if (!(v.word >= 0.0) || !(v.group >= 0.0) || !(v.distribution >= 0.0) ||
+            !std::isfinite(v.word + v.group + v.distribution)) {
+          p.fail("a stored normaliser is negative or not finite");
+        }
+      }
+      state->normalisers.restore(normalisers);
+    }
   } catch (const std::invalid_argument& e) {
     // Content the database itself rejects (word ids out of range,
     // non-increasing stamps, invalid weights): still a format problem.

@@ -82,19 +82,29 @@ void runQuery(const QueryContext& ctx, const DatabaseQuery& q, const DatabaseEnt
     state_->previous_etas.clear();
     state_->consistency.breakChain();
   };
-  if (n == 0 || n <= excluded) {
+  if (n == 0) {
+    finish(LoopStatus::kDatabaseTooSmall);
+    r->timings.query_ms = msBetween(t_query, Clock::now());
+    return;
+  }
+  const SimilarityOptions& so = options_.similarity;
+
+  // Normalisers (eqs. 2, 4): the same scores against I_{t-1}, the last entry.
+  // They join the history from the first keyframe on, so that the floor has
+  // its median ready when the database is large enough to be queried.
+  const EntryScores norm = database_->score(q, static_cast<EntryId>(n - 1));
+  const Normalisers expected = state_->normalisers.median();
+  state_->normalisers.push({norm.s_w, norm.s_g, norm.s_d},
+                           static_cast<std::size_t>(so.normaliser_window));
+  r->word_normaliser = norm.s_w;
+  r->group_normaliser = with_groups ? norm.s_g : 0.0;
+  r->distribution_normaliser = with_distribution ? norm.s_d : 0.0;
+  if (n <= excluded) {
     finish(LoopStatus::kDatabaseTooSmall);
     r->timings.query_ms = msBetween(t_query, Clock::now());
     return;
   }
   const EntryId limit = static_cast<EntryId>(n - excluded);
-
-  // Normalisers (eqs. 2, 4): the same scores against I_{t-1}, the last entry.
-  const EntryScores norm = database_->score(q, static_cast<EntryId>(n - 1));
-  r->word_normaliser = norm.s_w;
-  r->group_normaliser = with_groups ? norm.s_g : 0.0;
-  r->distribution_normaliser = with_distribution ? norm.s_d : 0.0;
-  const SimilarityOptions& so = options_.similarity;
   // A normaliser of 0 (I_{t-1} shares no word / group / occupied fan bin with
   // I_t) cannot divide eqs. 2 and 4 even when the minimum is set to 0 (a valid
   // value): such a keyframe is always low_normaliser, never inf/NaN scores.
@@ -109,6 +119,14 @@ void runQuery(const QueryContext& ctx, const DatabaseQuery& q, const DatabaseEnt
     return;
   }
 
+  // The low-normaliser test above reads the raw s(I_t, I_t-1) (an image too
+  // poor to score); the division uses the floored value.
+  const Normalisers divisor =
+      flooredNormalisers({norm.s_w, norm.s_g, norm.s_d}, expected, so.normaliser_floor);
+  r->word_divisor = divisor.word;
+  r->group_divisor = with_groups ? divisor.group : 0.0;
+  r->distribution_divisor = with_distribution ? divisor.distribution : 0.0;
+
   const std::vector<EntryScores> scores = database_->query(q, limit, with_groups);
   r->candidates_scored = scores.size();
   std::vector<std::pair<EntryId, double>> etas;
@@ -117,9 +135,9 @@ void runQuery(const QueryContext& ctx, const DatabaseQuery& q, const DatabaseEnt
   for (const EntryScores& s : scores) {
     CandidateScores c;
     c.entry = s.entry;
-    c.eta_w = normaliseScore(s.s_w, norm.s_w);
-    c.eta_g = with_groups ? normaliseScore(s.s_g, norm.s_g) : 0.0;
-    c.eta_d = with_distribution ? normaliseScore(s.s_d, norm.s_d) : 0.0;
+    c.eta_w = normaliseScore(s.s_w, divisor.word);
+    c.eta_g = with_groups ? normaliseScore(s.s_g, divisor.group) : 0.0;
+    c.eta_d = with_distribution ? normaliseScore(s.s_d, divisor.distribution) : 0.0;
     c.eta_sim = combineSimilarity(c.eta_w, c.eta_g, c.eta_d, options_.word_groups,
                                   options_.distribution, so);
     // Eqs. 6-7: eta(t-1, tj-1) is the previous query's final score of the

@@ -73,6 +73,8 @@ void SimilarityOptions::validate() const {
   requireFiniteAtLeast("similarity.min_word_normaliser", min_word_normaliser, 0.0);
   requireFiniteAtLeast("similarity.min_group_normaliser", min_group_normaliser, 0.0);
   requireFiniteAtLeast("similarity.min_distribution_normaliser", min_distribution_normaliser, 0.0);
+  requireFiniteAtLeast("similarity.normaliser_floor", normaliser_floor, 0.0);
+  requireIntAtLeast("similarity.normaliser_window", normaliser_window, 1);
 }
 
 void TemporalScoreOptions::validate() const {

@@ -125,6 +125,14 @@ std::vector<Row> makeRows() {
                            "similarity.min_distribution_normaliser", 0.0, 1.0, false,
                            BOWG_FIELD(double, detector.similarity.min_distribution_normaliser),
                            "No loop when s_d(I_t, I_t-1) is below this"));
+  rows.push_back(doubleRow("normaliser_floor", det, "similarity.normaliser_floor", 0.0, 10.0,
+                           false, BOWG_FIELD(double, detector.similarity.normaliser_floor),
+                           "Each normaliser is at least this times the median normaliser of the "
+                           "last normaliser_window keyframes (0 = the paper's s(I_t, I_t-1) "
+                           "alone; docs/method.md)"));
+  rows.push_back(intRow("normaliser_window", det, "similarity.normaliser_window", 1, 100000,
+                        false, BOWG_FIELD(int, detector.similarity.normaliser_window),
+                        "Keyframes in the median of the normaliser floor"));
   // --- Temporal score (eqs. 6-7).
   rows.push_back(boolRow("temporal_score", det, "temporal_score.enabled", true,
                          BOWG_FIELD(bool, detector.temporal_score.enabled),

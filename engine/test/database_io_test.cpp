@@ -9,6 +9,7 @@
 #include <random>
 #include <string>
 
+#include "bowg/checksum.h"
 #include "bowg/database.h"
 #include "bowg/errors.h"
 #include "bowg/loop_detector.h"
@@ -190,6 +191,82 @@ TEST(DatabaseIo, EmptyDatabaseRoundTrips) {
   b.load(path);
   EXPECT_EQ(b.database().size(), 0u);
   std::remove(path.c_str());
+}
+
+// The normaliser history is part of the saved state: with the floor on, a
+// reloaded detector divides by the same values as the one that kept running
+// (a lost history would restart the median from nothing and change them).
+TEST(DatabaseIo, NormaliserHistoryRoundTrips) {
+  const auto voc = vocabulary();
+  const auto kfs = keyframes();
+  LoopDetectorOptions o = options();
+  o.similarity.normaliser_floor = 1.5;  // binds for about half the queries
+  o.similarity.normaliser_window = 9;
+  LoopDetector a(voc, o);
+  for (int i = 0; i < 45; ++i) a.process(kfs[i]);
+  const std::string path = outPath("history.bowgdb");
+  a.save(path);
+  LoopDetector b(voc, o);
+  b.load(path);
+  int floored = 0;
+  for (std::size_t i = 45; i < kfs.size(); ++i) {
+    const LoopResult ra = a.process(kfs[i]);
+    const LoopResult rb = b.process(kfs[i]);
+    expectSameResult(ra, rb);
+    EXPECT_DOUBLE_EQ(ra.word_divisor, rb.word_divisor);
+    EXPECT_DOUBLE_EQ(ra.group_divisor, rb.group_divisor);
+    expectSameCandidates(a, b);
+    if (ra.word_divisor > ra.word_normaliser) ++floored;
+  }
+  EXPECT_GT(floored, 0) << "the scenario should exercise the floor after the reload";
+  std::remove(path.c_str());
+}
+
+// A version-1 file (written before the normaliser history existed) still
+// loads: the same file without the history, its version, payload size and
+// checksum rewritten as version 1 wrote them. Without the floor it behaves
+// exactly like the version-2 file.
+TEST(DatabaseIo, VersionOneFilesLoadWithAnEmptyHistory) {
+  const auto voc = vocabulary();
+  const auto kfs = keyframes();
+  LoopDetector a(voc, options());
+  for (int i = 0; i < 45; ++i) a.process(kfs[i]);
+  const std::string v2 = outPath("v2.bowgdb");
+  a.save(v2);
+  std::string bytes = readBytes(v2);
+  // The history closes the payload: u32 count + count x 3 f64, then the
+  // u64 checksum. 44 keyframes had a previous one; the window is 50.
+  const std::size_t history = 4 + 44 * 24;
+  ASSERT_GT(bytes.size(), history + 8 + 28);
+  bytes.resize(bytes.size() - 8 - history);
+  auto putLe = [&bytes](std::size_t at, std::uint64_t v, int n) {
+    for (int i = 0; i < n; ++i) bytes[at + i] = static_cast<char>((v >> (8 * i)) & 0xff);
+  };
+  putLe(8, 1, 4);                       // version
+  putLe(20, bytes.size() - 28, 8);      // payload size (header is 28 bytes)
+  const std::uint64_t sum = checksum64(bytes.data(), bytes.size());
+  bytes.resize(bytes.size() + 8);
+  putLe(bytes.size() - 8, sum, 8);
+  const std::string v1 = outPath("v1.bowgdb");
+  writeBytes(v1, bytes);
+  LoopDetector b(voc, options());
+  b.load(v1);
+  EXPECT_EQ(b.database().size(), 45u);
+  for (std::size_t i = 45; i < kfs.size(); ++i) {
+    expectSameResult(a.process(kfs[i]), b.process(kfs[i]));
+    expectSameCandidates(a, b);
+  }
+  // Versions beyond the current one are refused by number.
+  putLe(8, 3, 4);
+  writeBytes(v1, bytes);
+  try {
+    b.load(v1);
+    ADD_FAILURE() << "version 3 accepted";
+  } catch (const FormatError& e) {
+    EXPECT_NE(std::string(e.what()).find("unsupported version 3"), std::string::npos) << e.what();
+  }
+  std::remove(v1.c_str());
+  std::remove(v2.c_str());
 }
 
 }  // namespace

@@ -326,6 +326,68 @@ TEST(LoopDetector, ScoresFollowTheNormaliserAndTemporalEquations) {
   EXPECT_GT(checked, 20);
 }
 
+// Median of the last `window` values, computed independently of the engine.
+double lastMedian(std::vector<double> v, std::size_t window) {
+  if (v.size() > window) v.erase(v.begin(), v.end() - static_cast<std::ptrdiff_t>(window));
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  const std::size_t m = v.size() / 2;
+  return v.size() % 2 ? v[m] : 0.5 * (v[m - 1] + v[m]);
+}
+
+// Normaliser floor: the scores are divided by max(s(I_t, I_t-1), floor x the
+// median of the previous `window` normalisers), recomputed here from the
+// normalisers the detector reported. One keyframe observed far away (a jolt)
+// gives the next query an unusually small normaliser: the floor binds there.
+TEST(LoopDetector, NormaliserFloorDividesByTheRecentMedianAfterAnUnusualKeyframe) {
+  LoopDetectorOptions o = defaultOptions();
+  o.similarity.normaliser_floor = 1.0;
+  o.similarity.normaliser_window = 5;
+  o.similarity.min_word_normaliser = 0.0;  // score the queries after the jolt too
+  o.similarity.min_group_normaliser = 0.0;
+  LoopDetector det(vocabulary(), o);
+  const testing::Corridor c = testing::makeCorridor(70, 50, 3);
+  std::mt19937_64 rng(9);
+  std::vector<double> words, groups;  // reported s_w, s_g of keyframes 1, 2, ...
+  int floored = 0, kept = 0;
+  for (int t = 0; t < 50; ++t) {
+    double x = t < 30 ? t : 59.5 - t;
+    if (t == 40) x = 66.0;  // never seen again: shares little with its neighbours
+    const LoopResult r = det.process(testing::observeCorridor(c, x, 1.0 + t, rng, 2, 0.5));
+    if (!det.lastCandidates().empty()) {
+      const double expected_w = std::max(r.word_normaliser, lastMedian(words, 5));
+      const double expected_g = std::max(r.group_normaliser, lastMedian(groups, 5));
+      EXPECT_NEAR(r.word_divisor, expected_w, 1e-12) << "query " << t;
+      EXPECT_NEAR(r.group_divisor, expected_g, 1e-12) << "query " << t;
+      const DatabaseEntry& q = det.database().entry(r.query_id);
+      for (const CandidateScores& cs : det.lastCandidates()) {
+        const DatabaseEntry& e = det.database().entry(cs.entry);
+        EXPECT_NEAR(cs.eta_w * r.word_divisor, scoreBowVectors(o.scoring, q.bow, e.bow), 1e-12);
+      }
+      (r.word_divisor > r.word_normaliser ? floored : kept) += 1;
+    }
+    if (t >= 1) {  // keyframe 0 has no previous keyframe, hence no normaliser
+      words.push_back(r.word_normaliser);
+      groups.push_back(r.group_normaliser);
+    }
+  }
+  EXPECT_GT(floored, 0) << "the jolt should make the floor bind";
+  EXPECT_GT(kept, 0) << "ordinary queries keep the paper's normaliser";
+}
+
+TEST(LoopDetector, WithoutFloorTheDivisorIsTheNormaliser) {
+  LoopDetector det(vocabulary(), defaultOptions());  // normaliser_floor 0
+  const CorridorRun run = runCorridor(&det, true, 30);
+  int checked = 0;
+  for (const LoopResult& r : run.results) {
+    if (r.word_divisor == 0.0) continue;  // not queried
+    EXPECT_EQ(r.word_divisor, r.word_normaliser);
+    EXPECT_EQ(r.group_divisor, r.group_normaliser);
+    ++checked;
+  }
+  EXPECT_GT(checked, 5);
+}
+
 TEST(LoopDetector, OptionsChangeBetweenKeyframesRebuildsWhatDependsOnThem) {
   LoopDetectorOptions o = defaultOptions();
   o.distribution.enabled = true;

@@ -112,6 +112,16 @@ TEST(Options, SimilarityNormalisers) {
   expectRejected([](LoopDetectorOptions& o) { o.similarity.min_distribution_normaliser = -1; },
                  "similarity.min_distribution_normaliser");
   expectAccepted([](LoopDetectorOptions& o) { o.similarity.min_word_normaliser = 0; });
+  expectRejected([](LoopDetectorOptions& o) { o.similarity.normaliser_floor = -0.1; },
+                 "similarity.normaliser_floor");
+  expectRejected([](LoopDetectorOptions& o) { o.similarity.normaliser_floor = kNan; },
+                 "similarity.normaliser_floor");
+  expectRejected([](LoopDetectorOptions& o) { o.similarity.normaliser_window = 0; },
+                 "similarity.normaliser_window");
+  expectAccepted([](LoopDetectorOptions& o) {
+    o.similarity.normaliser_floor = 1.0;
+    o.similarity.normaliser_window = 1;
+  });
 }
 
 TEST(Options, TemporalScore) {

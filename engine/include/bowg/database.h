@@ -30,6 +30,7 @@
 
 #include "bowg/bow_vector.h"
 #include "bowg/islands.h"
+#include "bowg/normaliser_history.h"
 #include "bowg/types.h"
 #include "bowg/word_groups.h"
 
@@ -169,12 +170,15 @@ struct DetectorState {
   std::vector<std::pair<EntryId, double>> previous_etas;
   /// The temporal-verification chain (Sec. III-D).
   TemporalConsistency consistency;
+  /// Recent s(I_t, I_t-1), for the normaliser floor (normaliser_history.h).
+  NormaliserHistory normalisers;
 };
 
 /// Persistence (database_io.cpp). One versioned little-endian binary file:
 ///   magic "BOWGDB\0\0" | u32 version | u64 vocabulary fingerprint |
 ///   u64 payload size | payload (u32 scoring type of the stored BoW
-///   vectors, entries, then the detector state) |
+///   vectors, entries, then the detector state; version 2 ends the state
+///   with the normaliser history, version 1 files load without it) |
 ///   u64 Checksum64 of every preceding byte.
 /// Entries carry everything the indexes, the group table and the caches are
 /// rebuilt from; the options-dependent parts (scoring, level, m) follow the

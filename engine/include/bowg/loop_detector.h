@@ -96,6 +96,9 @@ struct LoopResult {
 
   /// Normaliser scores against the previous keyframe (s(I_t, I_t-1)).
   double word_normaliser = 0, group_normaliser = 0, distribution_normaliser = 0;
+  /// What the scores were divided by: the normalisers above, raised to the
+  /// normaliser floor where they were unusually small (0 when not queried).
+  double word_divisor = 0, group_divisor = 0, distribution_divisor = 0;
   std::size_t candidates_scored = 0;
   StageTimings timings;
 };

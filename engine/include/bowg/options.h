@@ -44,6 +44,14 @@ struct SimilarityOptions {
   double min_word_normaliser = 0.005;
   double min_group_normaliser = 0.005;
   double min_distribution_normaliser = 0.005;
+  /// Normaliser floor (docs/method.md, normaliser_history.h): each normaliser
+  /// is at least normaliser_floor times the median normaliser of the last
+  /// normaliser_window keyframes, so that one unusually dissimilar previous
+  /// keyframe cannot lift every score of a query. >= 0; 0 = the paper's
+  /// s(I_t, I_t-1) alone (the default; the pipe presets use 1).
+  double normaliser_floor = 0.0;
+  /// Keyframes in that median, >= 1.
+  int normaliser_window = 50;
   void validate() const;
 };
 

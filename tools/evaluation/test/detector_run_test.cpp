@@ -6,41 +6,14 @@
 
 #include <gtest/gtest.h>
 
+#include "synthetic_sequence.h"
 #include "synthetic_vocabulary.h"
 
 namespace bowg {
 namespace eval {
 namespace {
 
-/// 60 keyframes of random features; keyframes 40-49 repeat 10-19 exactly
-/// (a revisit), so that whatever the detector finds there can be checked
-/// against a ground truth 40+i: {10+i}.
-std::vector<FrameInput> syntheticSequence() {
-  std::mt19937_64 rng(3);
-  std::uniform_real_distribution<float> x(40, 600), y(40, 440);
-  std::vector<FrameInput> frames(60);
-  for (int i = 0; i < 60; ++i) {
-    FrameInput& f = frames[i];
-    f.stamp = 0.1 * i;
-    f.feature_ms = 1.0 + i;  // known values for the timing statistics
-    if (i >= 40 && i < 50) {
-      f.features = frames[i - 30].features;
-      continue;
-    }
-    f.features.image_width = 640;
-    f.features.image_height = 480;
-    f.features.descriptors = testing::randomDescriptors(300, 100 + i);
-    for (int k = 0; k < 300; ++k) {
-      Keypoint p;
-      p.x = x(rng);
-      p.y = y(rng);
-      p.size = 31;
-      p.angle = 0;
-      f.features.keypoints.push_back(p);
-    }
-  }
-  return frames;
-}
+using testing_data::syntheticSequence;
 
 TEST(DetectorRunTest, OneRecordPerKeyframeAndConsistentOutputs) {
   auto vocabulary = std::make_shared<const Vocabulary>(testing::makeSyntheticVocabulary(6, 3));

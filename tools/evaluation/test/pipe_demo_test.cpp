@@ -1,9 +1,12 @@
 // End-to-end checks of the built-in demo (issue 4, "How we will know"):
-//  - a SHORT rendered pipe sequence (the demo's generator, seed 1, the first
-//    revisits of the route) run through the detector with the demo's
+//  - a SHORT rendered pipe sequence (the demo's generator with the demo's
+//    options but seed 3, a sequence none of the defaults was chosen on: the
+//    vocabulary was trained on seed 2, the demo preset tuned on seed 1; the
+//    first revisits of the route) run through the detector with the demo's
 //    parameter file and the bundled default vocabulary: the full BoWG row
-//    must do better than pure bag of words (F1, precision; recall at 100 %
-//    precision at least as high: see the test);
+//    must reach a higher recall at 100 % precision than pure bag of words
+//    (the exact PR curve: one detector run per min_score), and a higher
+//    recall at the preset's threshold;
 //  - the real sewer frames of ../shared/data/sewer_cctv (no revisits: every
 //    loop is a false positive) give zero loops at the default threshold.
 // Both use the repository's own files (config/pipe_demo.yaml, config/pipe.yaml,
@@ -26,6 +29,7 @@
 #include "bowg_evaluation/detector_run.h"
 #include "bowg_evaluation/ground_truth.h"
 #include "bowg_evaluation/metrics.h"
+#include "bowg_evaluation/parallel_runs.h"
 #include "bowg_pipe_sim/pipe_network.h"
 #include "bowg_pipe_sim/pipe_renderer.h"
 #include "bowg_pipe_sim/pipe_sequence.h"
@@ -52,12 +56,12 @@ struct RenderedSequence {
   eval::GroundTruth gt;
 };
 
-// The demo sequence's first `frames` frames, rendered in memory exactly as
-// `bowg_generate_pipe_sequence --rate 5 --marks-per-metre 8` renders them
-// (same options, same noise seeds).
-RenderedSequence renderPipe(int frames, const FeatureExtractor& extractor) {
+// The first `frames` frames of a sequence, rendered in memory exactly as
+// `bowg_generate_pipe_sequence --seed SEED --rate 5 --marks-per-metre 8`
+// renders them (the demo's options, same noise seeds).
+RenderedSequence renderPipe(int frames, std::uint64_t seed, const FeatureExtractor& extractor) {
   pipe_sim::SequenceOptions so;  // the demo's options (scripts/demo.sh)
-  so.seed = 1;
+  so.seed = seed;
   so.frame_rate_hz = 5.0;
   so.max_frames = frames;
   pipe_sim::WallTextureOptions to;
@@ -98,50 +102,54 @@ RenderedSequence renderPipe(int frames, const FeatureExtractor& extractor) {
   return out;
 }
 
-// Recall at 100 % precision and F1 at the configured min_score of one row.
+// Recall at 100 % precision over the exact PR curve (one detector run per
+// min_score of `thresholds`) and recall/precision at the preset's min_score.
 struct RowScore {
-  double full_precision_recall = 0, f1 = 0, precision = 0;
+  double full_precision_recall = 0, full_precision_threshold = 0, recall = 0, precision = 0;
 };
 
 RowScore scoreRow(const std::shared_ptr<const Vocabulary>& vocabulary,
                   const PipelineOptions& pipeline, const std::string& row,
-                  const RenderedSequence& seq) {
+                  const RenderedSequence& seq, const std::vector<double>& thresholds) {
   const LoopDetectorOptions o = LoopDetectorOptions::ablation(row, pipeline.detector);
   const eval::DetectorRun run = eval::runDetector(vocabulary, o, seq.frames, row);
-  const std::vector<eval::Detection> d = eval::detectionsOf(run);
+  const eval::PrPoint at = eval::evaluateAt(eval::detectionsOf(run), seq.gt,
+                                            -std::numeric_limits<double>::infinity());
   RowScore s;
-  const eval::PrPoint at = eval::evaluateAt(d, seq.gt, -std::numeric_limits<double>::infinity());
-  s.f1 = at.f1;
+  s.recall = at.recall;
   s.precision = at.precision;
-  s.full_precision_recall =
-      eval::recallAtFullPrecision(eval::precisionRecallCurve(d, seq.gt)).recall;
+  const eval::PrPoint full = eval::recallAtFullPrecision(
+      eval::rerunPrCurve(vocabulary, o, seq.frames, seq.gt, thresholds, 0));
+  s.full_precision_recall = full.recall;
+  s.full_precision_threshold = full.threshold;
   return s;
 }
 
 // The route's first revisits start after the outer circuit (14 m, frame
 // ~350 at 5 Hz): 700 frames hold the outer circuit and most of the left one.
-TEST(PipeDemo, BowgBeatsPureBagOfWordsOnAShortPipeSequence) {
+TEST(PipeDemo, BowgBeatsPureBagOfWordsAtFullPrecisionOnAShortPipeSequence) {
   const PipelineOptions pipeline = loadParameterFile(demoConfig());
   const auto vocabulary =
       std::make_shared<const Vocabulary>(loadVocabulary(defaultVocabulary()));
   const FeatureExtractor extractor(pipeline.features);
-  const RenderedSequence seq = renderPipe(700, extractor);
+  const RenderedSequence seq = renderPipe(700, 3, extractor);
   ASSERT_GT(seq.gt.positives(), 50) << "the short sequence must contain revisits";
 
-  const RowScore bow = scoreRow(vocabulary, pipeline, "bow", seq);
-  const RowScore bowg = scoreRow(vocabulary, pipeline, "distribution", seq);
-  std::printf("bow:  R@100%%P %.3f  F1 %.3f  precision %.3f\n", bow.full_precision_recall, bow.f1,
-              bow.precision);
-  std::printf("bowg: R@100%%P %.3f  F1 %.3f  precision %.3f\n", bowg.full_precision_recall,
-              bowg.f1, bowg.precision);
-  // The issue asks for a strictly higher recall at 100 % precision. On the
-  // rendered pipe no row reaches a loop above every false one yet (both are 0,
-  // docs/results.md "What we learned"), so the test asserts what the method
-  // does deliver there: never worse at 100 % precision, and a clearly better
-  // F1 and precision than pure bag of words at the configured threshold.
-  EXPECT_GE(bowg.full_precision_recall, bow.full_precision_recall);
-  EXPECT_GT(bowg.f1, 1.2 * bow.f1);
-  EXPECT_GT(bowg.precision, bow.precision);
+  // The demo's sweep around the preset's min_score (scripts/demo.sh).
+  const std::vector<double> thresholds = {1.4, 1.3, 1.2, 1.1, 1.0, 0.8};
+  const RowScore bow = scoreRow(vocabulary, pipeline, "bow", seq, thresholds);
+  const RowScore bowg = scoreRow(vocabulary, pipeline, "distribution", seq, thresholds);
+  for (const auto& r : {std::make_pair("bow ", bow), std::make_pair("bowg", bowg)}) {
+    std::printf("%s: R@100%%P %.3f (min_score %.2f); at min_score %.2f: recall %.3f precision %.3f\n",
+                r.first, r.second.full_precision_recall, r.second.full_precision_threshold,
+                pipeline.detector.islands.min_score, r.second.recall, r.second.precision);
+  }
+  // The issue's acceptance: strictly higher recall at 100 % precision.
+  // Measured (docs/results.md): 0.26 vs 0.004 on this sequence; 0.19 vs
+  // 0.007 on the full demo. The margin asserted is far below the measured.
+  EXPECT_GT(bowg.full_precision_recall, bow.full_precision_recall);
+  EXPECT_GT(bowg.full_precision_recall, 0.1);
+  EXPECT_GT(bowg.recall, 2.0 * bow.recall);
 }
 
 std::vector<std::string> listPngs(const std::string& dir) {
