@@ -242,8 +242,8 @@ TEST(DatabaseIo, VersionOneFilesLoadWithAnEmptyHistory) {
   auto putLe = [&bytes](std::size_t at, std::uint64_t v, int n) {
     for (int i = 0; i < n; ++i) bytes[at + i] = static_cast<char>((v >> (8 * i)) & 0xff);
   };
-  putLe(8, 1, 4);                       // version
-  putLe(20, bytes.size() - 28, 8);      // payload size (header is 28 bytes)
+  putLe(8, 1, 4);                   // version
+  putLe(20, bytes.size() - 28, 8);  // payload size (header is 28 bytes)
   const std::uint64_t sum = checksum64(bytes.data(), bytes.size());
   bytes.resize(bytes.size() + 8);
   putLe(bytes.size() - 8, sum, 8);

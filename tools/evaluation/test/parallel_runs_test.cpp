@@ -61,8 +61,7 @@ TEST(ParallelRuns, SideBySideEqualsOneAfterTheOther) {
   ASSERT_EQ(parallel.size(), requests.size());
   int loops = 0;
   for (std::size_t i = 0; i < requests.size(); ++i) {
-    expectSameRecords(parallel[i],
-                      runDetector(voc, requests[i].options, frames, requests[i].name));
+    expectSameRecords(parallel[i], runDetector(voc, requests[i].options, frames, requests[i].name));
     loops += static_cast<int>(detectionsOf(parallel[i]).size());
   }
   EXPECT_GT(loops, 0) << "the sequence's revisit should give loops";
