@@ -539,6 +539,16 @@ int run(int argc, char** argv) {
                     detectionsOf(r.run).size());
       s << line;
     }
+    if (a.ablation) {
+      // The comparison the ablation is for, in one line (rows: bow first,
+      // the full method last).
+      const PrPoint& bow = results.front().full_precision;
+      const PrPoint& full = results.back().full_precision;
+      s << "\nrecall at 100 % precision: full BoWG " << fmt("%.3f", full.recall)
+        << ", pure bag of words " << fmt("%.3f", bow.recall);
+      if (bow.recall > 0) s << " (" << fmt("%.1f", full.recall / bow.recall) << "x)";
+      s << "\n";
+    }
   } else {
     s << "\nno ground truth: counts only\n";
     for (const RowResult& r : results) {
