@@ -187,6 +187,9 @@ KeyframeStatus toKeyframeStatus(const bowg::LoopResult& r, const std_msgs::Heade
   s.word_normaliser = r.word_normaliser;
   s.group_normaliser = r.group_normaliser;
   s.distribution_normaliser = r.distribution_normaliser;
+  s.word_divisor = r.word_divisor;
+  s.group_divisor = r.group_divisor;
+  s.distribution_divisor = r.distribution_divisor;
   s.convert_ms = convert_ms;
   s.feature_ms = feature_ms;
   s.transform_ms = r.timings.transform_ms;

@@ -195,6 +195,10 @@ TEST(RosConversions, KeyframeStatusEchoesResultAndOptions) {
   bowg::LoopResult r = aLoop();
   r.timings.total_ms = 4.0;
   r.timings.query_ms = 1.5;
+  r.word_normaliser = 0.05;
+  r.word_divisor = 0.08;  // floored
+  r.group_divisor = 0.011;
+  r.distribution_divisor = 0.97;
   bowg::LoopDetectorOptions o;
   o.similarity.lambda_1 = 0.7;
   o.temporal_verification.k = 5;
@@ -209,6 +213,10 @@ TEST(RosConversions, KeyframeStatusEchoesResultAndOptions) {
   EXPECT_EQ(s.best_score_sim, 0.85);
   EXPECT_EQ(s.match_id, 7u);
   EXPECT_EQ(s.query_ms, 1.5);
+  EXPECT_EQ(s.word_normaliser, 0.05);
+  EXPECT_EQ(s.word_divisor, 0.08);
+  EXPECT_EQ(s.group_divisor, 0.011);
+  EXPECT_EQ(s.distribution_divisor, 0.97);
   EXPECT_EQ(s.total_ms, 4.0 + 0.5 + 2.0);
   EXPECT_EQ(s.lambda_1, 0.7);
   EXPECT_EQ(s.temporal_k, 5);
