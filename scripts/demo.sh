@@ -47,7 +47,7 @@ else
   echo "== 3/4 pipe sequence present: $bag"
 fi
 
-config="${BOWG_DEMO_CONFIG:-$repo/config/pipe_demo.yaml}"
+config="${BOWG_DEMO_CONFIG:-$repo/config/pipe.yaml}"
 vocabulary="${BOWG_DEMO_VOCABULARY:-$repo/data/default_vocabulary.bowgvoc}"
 echo "== 4/4 bowg_evaluate --ablation (config $config)"
 "$tools/bowg_evaluate" --bag "$bag" --gt "$out/pipe_gt.txt" --vocabulary "$vocabulary" \
