@@ -63,7 +63,8 @@ const char* kUsage =
     "  --sweep rerun|score        PR curve: re-run the detector per threshold (exact, slower)\n"
     "                             or sweep the final score of one run at the lowest threshold\n"
     "                             [rerun]\n"
-    "  --thresholds LO:STEP:HI|A,B,C   min_score values of the sweep [0.05:0.05:1]\n"
+    "  --thresholds LO:STEP:HI|A,B,C   min_score values of the sweep [0.2:0.2:2]; the\n"
+    "                             configured min_score is always one of them\n"
     "  --jobs N                   threads for the re-runs of the sweep (0 = one per core) [0];\n"
     "                             the timing runs at the configured threshold run alone\n"
     "  --quiet                    no progress bar\n"
@@ -124,7 +125,7 @@ std::vector<double> parseThresholds(const std::string& v) {
 
 Args parseArgs(int argc, char** argv) {
   Args a;
-  a.thresholds = parseThresholds("0.05:0.05:1");
+  a.thresholds = parseThresholds("0.2:0.2:2");
   for (int i = 1; i < argc; ++i) {
     const std::string flag = argv[i];
     if (flag == "-h" || flag == "--help") {
@@ -457,6 +458,13 @@ int run(int argc, char** argv) {
                  : std::vector<std::string>{"bowg"};
   const double threshold = pipeline.detector.islands.min_score;
   const auto sameThreshold = [threshold](double t) { return std::abs(t - threshold) < 1e-12; };
+  // The configured operating point is a point of the curve: its run exists
+  // anyway, and a grid that steps over it would hide the preset's own result.
+  std::vector<double> thresholds = a.thresholds;
+  if (std::none_of(thresholds.begin(), thresholds.end(), sameThreshold)) {
+    thresholds.push_back(threshold);
+    std::sort(thresholds.begin(), thresholds.end(), std::greater<double>());
+  }
   std::vector<RowResult> results;
   std::vector<LoopDetectorOptions> row_options;
   // 1. One run per row at the configured threshold, alone on the machine:
@@ -478,7 +486,7 @@ int run(int argc, char** argv) {
   if (has_gt && a.sweep == "rerun") {
     std::vector<RunRequest> requests;
     for (std::size_t i = 0; i < rows.size(); ++i) {
-      for (double t : a.thresholds) {
+      for (double t : thresholds) {
         if (sameThreshold(t)) continue;
         RunRequest q{rows[i], row_options[i]};
         q.options.islands.min_score = t;
@@ -495,7 +503,7 @@ int run(int argc, char** argv) {
     RowResult& r = results[i];
     if (has_gt) {
       if (a.sweep == "rerun") {
-        for (double t : a.thresholds) {
+        for (double t : thresholds) {
           PrPoint p = sameThreshold(t) ? r.at_threshold
                                        : evaluateAt(detectionsOf(sweep_runs[next_sweep_run++]),
                                                     used_gt, -std::numeric_limits<double>::infinity());
@@ -504,7 +512,7 @@ int run(int argc, char** argv) {
         }
       } else {
         LoopDetectorOptions o = options;
-        o.islands.min_score = a.thresholds.back();  // the lowest
+        o.islands.min_score = thresholds.back();  // the lowest
         ProgressBar b(row + " @" + fmt("%.2f", o.islands.min_score), a.quiet);
         const DetectorRun low = std::abs(o.islands.min_score - threshold) < 1e-12
                                     ? r.run
@@ -526,7 +534,7 @@ int run(int argc, char** argv) {
   if (has_gt) {
     s << "ground truth: " << a.gt << " (" << used_gt.positives() << " queries with a revisit)\n"
       << "PR sweep: " << (a.sweep == "rerun" ? "detector re-run per min_score" : "final score of one run at the lowest min_score")
-      << ", " << a.thresholds.size() << " thresholds " << a.thresholds.back() << ".." << a.thresholds.front() << "\n\n";
+      << ", " << thresholds.size() << " thresholds " << thresholds.back() << ".." << thresholds.front() << "\n\n";
     s << "at min_score " << threshold << "; R@100%P = recall at 100 % precision (its threshold)\n"
       << "row            precision  recall      F1   TP   FP  R@100%P (threshold)  loops\n";
     for (const RowResult& r : results) {

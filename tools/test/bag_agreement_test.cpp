@@ -21,6 +21,7 @@
 #include <utility>
 
 #include "bowg_evaluation/metrics.h"
+#include "shell_command.h"
 
 namespace bowg {
 namespace eval {
@@ -28,15 +29,8 @@ namespace {
 
 const std::string kDir = std::string(BOWG_TEST_OUTPUT_DIR) + "/bag_agreement_test";
 
-int run(const std::string& command, const std::string& log) {
-  const int status = std::system((command + " > " + log + " 2>&1").c_str());
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
-
-std::string readAll(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-}
+using tool_test::readAll;
+using tool_test::run;
 
 // A TCP port nobody listens on now (the kernel's pick), for roslaunch's own
 // master: a concurrent roscore or rostest elsewhere is never disturbed.

@@ -19,22 +19,15 @@
 #include "bowg/vocabulary.h"
 #include "bowg/vocabulary_io.h"
 #include "feature_test_images.h"
+#include "shell_command.h"
 
 namespace bowg {
 namespace {
 
 const std::string kDir = std::string(BOWG_TEST_OUTPUT_DIR) + "/vocabulary_tools_test";
 
-// Runs a shell command and returns its exit code (-1 if it did not exit).
-int run(const std::string& command) {
-  const int status = std::system((command + " > /dev/null 2>&1").c_str());
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
-
-std::string readAll(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-}
+using tool_test::readAll;
+using tool_test::run;
 
 class VocabularyTools : public ::testing::Test {
  protected:

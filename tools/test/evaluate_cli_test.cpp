@@ -1,0 +1,88 @@
+// End-to-end tests of the bowg_evaluate command line: the configured
+// min_score is always a point of the exact PR sweep, the sweep's result does
+// not depend on how many threads ran it, and bad options are refused with a
+// message and a non-zero exit code.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <string>
+
+#include "shell_command.h"
+
+namespace bowg {
+namespace {
+
+using tool_test::readAll;
+using tool_test::run;
+
+const std::string kDir = std::string(BOWG_TEST_OUTPUT_DIR) + "/evaluate_cli_test";
+const std::string kEvaluate = BOWG_EVALUATE_BIN;
+
+class EvaluateCli : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    ASSERT_EQ(run("rm -rf " + kDir + " && mkdir -p " + kDir), 0);
+    // 300 frames of 320 x 240, 10 cm apart: 30 m of the route, past the
+    // first closed circuit, so there are revisits (and loops to compare).
+    ASSERT_EQ(run(std::string(BOWG_GENERATOR_BIN) + " --images " + kDir +
+                      "/frames --frames 300 --width 320 --height 240 --speed 1.0",
+                  kDir + "/generate.log"),
+              0)
+        << readAll(kDir + "/generate.log");
+    writeFile(kDir + "/config.yaml",
+              "feature_detector: gftt\nmin_score: 0.7\nrecent_exclusion: 30\n"
+              "direct_index_level: 2\n");
+  }
+
+  static void writeFile(const std::string& path, const std::string& text) {
+    std::ofstream out(path, std::ios::trunc);
+    out << text;
+    ASSERT_TRUE(out.good()) << path;
+  }
+
+  static std::string evaluate(const std::string& extra, const std::string& out) {
+    return kEvaluate + " --quiet --images " + kDir + "/frames --gt " + kDir +
+           "/frames/ground_truth.txt --vocabulary " + BOWG_DEFAULT_VOCABULARY + " --config " +
+           kDir + "/config.yaml --output " + kDir + "/" + out + " " + extra;
+  }
+};
+
+TEST_F(EvaluateCli, TheConfiguredThresholdIsAlwaysAPointOfTheSweep) {
+  ASSERT_EQ(run(evaluate("--thresholds 0.5,0.9 --jobs 2", "two"), kDir + "/two.log"), 0)
+      << readAll(kDir + "/two.log");
+  const std::string summary = readAll(kDir + "/two/summary.txt");
+  EXPECT_NE(summary.find("min_score: 0.7"), std::string::npos) << summary;
+  EXPECT_NE(summary.find("3 thresholds 0.5..0.9"), std::string::npos) << summary;
+  const std::string curve = readAll(kDir + "/two/pr_curves.csv");
+  EXPECT_NE(curve.find("\nbowg,0.9,"), std::string::npos) << curve;
+  EXPECT_NE(curve.find("\nbowg,0.7,"), std::string::npos) << curve;  // the configured one
+  EXPECT_NE(curve.find("\nbowg,0.5,"), std::string::npos) << curve;
+}
+
+TEST_F(EvaluateCli, TheSweepDoesNotDependOnTheNumberOfThreads) {
+  ASSERT_EQ(run(evaluate("--thresholds 0.3,0.5,0.9 --jobs 1", "one_thread")), 0);
+  ASSERT_EQ(run(evaluate("--thresholds 0.3,0.5,0.9 --jobs 2", "two_threads")), 0);
+  const std::string a = readAll(kDir + "/one_thread/pr_curves.csv");
+  ASSERT_FALSE(a.empty());
+  EXPECT_EQ(a, readAll(kDir + "/two_threads/pr_curves.csv"));
+  // Loops found at the configured threshold, and points with loops on the
+  // curve: the comparison is not between empty runs.
+  const std::string loops = readAll(kDir + "/one_thread/detections_bowg.csv");
+  EXPECT_NE(loops.find('\n'), loops.rfind('\n')) << "no loop at min_score 0.7";
+  EXPECT_EQ(loops, readAll(kDir + "/two_threads/detections_bowg.csv"));
+}
+
+TEST_F(EvaluateCli, BadOptionsAreRefusedWithAMessage) {
+  const std::string log = kDir + "/bad.log";
+  EXPECT_NE(run(evaluate("--jobs -1", "bad"), log), 0);
+  EXPECT_NE(readAll(log).find("--jobs"), std::string::npos) << readAll(log);
+  EXPECT_NE(run(evaluate("--jobs 1.5", "bad"), log), 0);
+  EXPECT_NE(readAll(log).find("--jobs"), std::string::npos) << readAll(log);
+  EXPECT_NE(run(evaluate("--thresholds 1:0:2", "bad"), log), 0);
+  EXPECT_NE(readAll(log).find("--thresholds"), std::string::npos) << readAll(log);
+  EXPECT_NE(run(evaluate("--sweep sideways", "bad"), log), 0);
+  EXPECT_NE(readAll(log).find("--sweep"), std::string::npos) << readAll(log);
+}
+
+}  // namespace
+}  // namespace bowg
