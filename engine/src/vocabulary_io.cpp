@@ -24,43 +24,40 @@ void fail(const std::string& path, const std::string& what) {
   throw FormatError(path + ": " + what);
 }
 
-std::string readFile(const std::string& path, std::uint64_t max_size) {
-  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-  if (fd < 0) throw IoError("cannot open '" + path + "': " + std::strerror(errno));
+Fd::~Fd() {
+  if (fd_ >= 0) ::close(fd_);
+}
+
+Fd openRegularFile(const std::string& path, std::uint64_t* size) {
+  Fd fd(::open(path.c_str(), O_RDONLY | O_CLOEXEC));
+  if (fd.get() < 0) throw IoError("cannot open '" + path + "': " + std::strerror(errno));
   struct stat st;
-  if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
-    ::close(fd);
+  if (::fstat(fd.get(), &st) != 0 || !S_ISREG(st.st_mode)) {
     throw IoError("cannot read '" + path + "': not a regular file");
   }
-  const std::uint64_t size = static_cast<std::uint64_t>(st.st_size);
-  if (size > max_size) {
-    ::close(fd);
-    fail(path, "file too large (" + std::to_string(size) + " bytes)");
-  }
+  if (size) *size = static_cast<std::uint64_t>(st.st_size);
+  return fd;
+}
+
+std::string readFile(const std::string& path, std::uint64_t max_size) {
+  std::uint64_t size = 0;
+  const Fd fd = openRegularFile(path, &size);
+  if (size > max_size) fail(path, "file too large (" + std::to_string(size) + " bytes)");
   std::string data(static_cast<std::size_t>(size), '\0');
   std::size_t done = 0;
   while (done < data.size()) {
-    const ssize_t n = ::read(fd, &data[done], data.size() - done);
+    const ssize_t n = ::read(fd.get(), &data[done], data.size() - done);
     if (n < 0 && errno == EINTR) continue;
     if (n <= 0) {
       const std::string err = n < 0 ? std::strerror(errno) : "unexpected end of file";
-      ::close(fd);
       throw IoError("cannot read '" + path + "': " + err);
     }
     done += static_cast<std::size_t>(n);
   }
-  ::close(fd);
   return data;
 }
 
-void checkReadable(const std::string& path) {
-  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-  if (fd < 0) throw IoError("cannot open '" + path + "': " + std::strerror(errno));
-  struct stat st;
-  const bool regular = ::fstat(fd, &st) == 0 && S_ISREG(st.st_mode);
-  ::close(fd);
-  if (!regular) throw IoError("cannot read '" + path + "': not a regular file");
-}
+void checkReadable(const std::string& path) { openRegularFile(path); }
 
 Vocabulary buildFromForeign(const std::string& path, std::int64_t k, std::int64_t L,
                             std::int64_t scoring, std::int64_t weighting,
@@ -204,21 +201,13 @@ bool endsWith(const std::string& s, const std::string& suffix) {
 }
 
 std::string readHead(const std::string& path, std::size_t max) {
-  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-  if (fd < 0) throw IoError("cannot open '" + path + "': " + std::strerror(errno));
-  struct stat st;
-  if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
-    ::close(fd);
-    throw IoError("cannot read '" + path + "': not a regular file");
-  }
+  const vocabulary_io::Fd fd = vocabulary_io::openRegularFile(path);
   std::string head(max, '\0');
   ssize_t n;
   do {
-    n = ::read(fd, &head[0], max);
+    n = ::read(fd.get(), &head[0], max);
   } while (n < 0 && errno == EINTR);
-  const std::string err = n < 0 ? std::strerror(errno) : "";
-  ::close(fd);
-  if (n < 0) throw IoError("cannot read '" + path + "': " + err);
+  if (n < 0) throw IoError("cannot read '" + path + "': " + std::strerror(errno));
   head.resize(static_cast<std::size_t>(n));
   return head;
 }

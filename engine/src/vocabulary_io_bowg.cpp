@@ -51,18 +51,6 @@ static_assert(offsetof(Node, parent) == 0 && offsetof(Node, first_child) == 4 &&
                   offsetof(Node, descriptor) == 32,
               "Node layout must match the record layout");
 
-class Fd {
- public:
-  explicit Fd(int fd) : fd_(fd) {}
-  ~Fd() {
-    if (fd_ >= 0) ::close(fd_);
-  }
-  int get() const { return fd_; }
-
- private:
-  int fd_;
-};
-
 void readFully(int fd, void* out, std::size_t size, std::uint64_t offset, const std::string& path) {
   char* p = static_cast<char*>(out);
   while (size > 0) {
@@ -79,13 +67,8 @@ void readFully(int fd, void* out, std::size_t size, std::uint64_t offset, const 
 }  // namespace
 
 Vocabulary loadBowg(const std::string& path) {
-  Fd fd(::open(path.c_str(), O_RDONLY | O_CLOEXEC));
-  if (fd.get() < 0) throw IoError("cannot open '" + path + "': " + std::strerror(errno));
-  struct stat st;
-  if (::fstat(fd.get(), &st) != 0 || !S_ISREG(st.st_mode)) {
-    throw IoError("cannot read '" + path + "': not a regular file");
-  }
-  const std::uint64_t file_size = static_cast<std::uint64_t>(st.st_size);
+  std::uint64_t file_size = 0;
+  const Fd fd = openRegularFile(path, &file_size);
   if (file_size < kHeaderSize + 8) {
     fail(path, "truncated: " + std::to_string(file_size) + " bytes, shorter than the header");
   }

@@ -16,6 +16,25 @@ namespace vocabulary_io {
 /// "<path>: <what>" as a FormatError.
 [[noreturn]] void fail(const std::string& path, const std::string& what);
 
+/// A file descriptor, closed when this goes out of scope.
+class Fd {
+ public:
+  explicit Fd(int fd) : fd_(fd) {}
+  Fd(Fd&& other) noexcept : fd_(other.fd_) { other.fd_ = -1; }
+  Fd(const Fd&) = delete;
+  Fd& operator=(const Fd&) = delete;
+  Fd& operator=(Fd&&) = delete;
+  ~Fd();
+  int get() const { return fd_; }
+
+ private:
+  int fd_;
+};
+
+/// Opens `path` read-only. Throws IoError naming the path when it cannot be
+/// opened or is not a regular file; `size` (optional) receives its length.
+Fd openRegularFile(const std::string& path, std::uint64_t* size = nullptr);
+
 /// Reads a whole file (throws IoError with the path; FormatError if larger
 /// than `max_size`).
 std::string readFile(const std::string& path, std::uint64_t max_size = (1ull << 34));
