@@ -93,9 +93,9 @@ void runQuery(const QueryContext& ctx, const DatabaseQuery& q, const DatabaseEnt
   // They join the history from the first keyframe on, so that the floor has
   // its median ready when the database is large enough to be queried.
   const EntryScores norm = database_->score(q, static_cast<EntryId>(n - 1));
+  const Normalisers previous{norm.s_w, norm.s_g, norm.s_d};
   const Normalisers expected = state_->normalisers.median();
-  state_->normalisers.push({norm.s_w, norm.s_g, norm.s_d},
-                           static_cast<std::size_t>(so.normaliser_window));
+  state_->normalisers.push(previous, static_cast<std::size_t>(so.normaliser_window));
   r->word_normaliser = norm.s_w;
   r->group_normaliser = with_groups ? norm.s_g : 0.0;
   r->distribution_normaliser = with_distribution ? norm.s_d : 0.0;
@@ -121,8 +121,7 @@ void runQuery(const QueryContext& ctx, const DatabaseQuery& q, const DatabaseEnt
 
   // The low-normaliser test above reads the raw s(I_t, I_t-1) (an image too
   // poor to score); the division uses the floored value.
-  const Normalisers divisor =
-      flooredNormalisers({norm.s_w, norm.s_g, norm.s_d}, expected, so.normaliser_floor);
+  const Normalisers divisor = flooredNormalisers(previous, expected, so.normaliser_floor);
   r->word_divisor = divisor.word;
   r->group_divisor = with_groups ? divisor.group : 0.0;
   r->distribution_divisor = with_distribution ? divisor.distribution : 0.0;

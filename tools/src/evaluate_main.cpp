@@ -475,10 +475,7 @@ int run(int argc, char** argv) {
     RowResult r;
     ProgressBar bar(row + " @" + fmt("%.2f", threshold), a.quiet);
     r.run = runDetector(vocabulary, row_options.back(), frames, row, std::ref(bar));
-    if (has_gt) {
-      r.at_threshold = evaluateAt(detectionsOf(r.run), used_gt, -std::numeric_limits<double>::infinity());
-      r.at_threshold.threshold = threshold;
-    }
+    if (has_gt) r.at_threshold = operatingPoint(r.run, used_gt);
     results.push_back(std::move(r));
   }
   // 2. The exact PR curves: every (row, other threshold) run, side by side.
@@ -504,11 +501,8 @@ int run(int argc, char** argv) {
     if (has_gt) {
       if (a.sweep == "rerun") {
         for (double t : thresholds) {
-          PrPoint p = sameThreshold(t) ? r.at_threshold
-                                       : evaluateAt(detectionsOf(sweep_runs[next_sweep_run++]),
-                                                    used_gt, -std::numeric_limits<double>::infinity());
-          p.threshold = t;
-          r.curve.push_back(p);
+          r.curve.push_back(sameThreshold(t) ? r.at_threshold
+                                             : operatingPoint(sweep_runs[next_sweep_run++], used_gt));
         }
       } else {
         LoopDetectorOptions o = options;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <iomanip>
+#include <limits>
 #include <sstream>
 
 namespace bowg {
@@ -55,6 +56,13 @@ std::vector<Detection> detectionsOf(const DetectorRun& run) {
     if (k.status == LoopStatus::kLoopDetected) out.push_back({k.frame, k.match, k.candidate_score});
   }
   return out;
+}
+
+PrPoint operatingPoint(const DetectorRun& run, const GroundTruth& gt) {
+  // Every loop counts: the threshold already acted inside the detector.
+  PrPoint p = evaluateAt(detectionsOf(run), gt, -std::numeric_limits<double>::infinity());
+  p.threshold = run.options.islands.min_score;
+  return p;
 }
 
 std::string keyframesCsv(const DetectorRun& run, const GroundTruth* gt) {

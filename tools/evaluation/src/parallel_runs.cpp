@@ -1,9 +1,9 @@
 // Independent detector runs spread over threads (parallel_runs.h).
 #include "bowg_evaluation/parallel_runs.h"
 
+#include <algorithm>
 #include <atomic>
 #include <exception>
-#include <limits>
 #include <mutex>
 #include <stdexcept>
 #include <thread>
@@ -59,11 +59,7 @@ std::vector<PrPoint> rerunPrCurve(std::shared_ptr<const Vocabulary> vocabulary,
   const std::vector<DetectorRun> runs =
       runDetectorsInParallel(std::move(vocabulary), requests, frames, jobs);
   std::vector<PrPoint> curve;
-  for (std::size_t i = 0; i < runs.size(); ++i) {
-    PrPoint p = evaluateAt(detectionsOf(runs[i]), gt, -std::numeric_limits<double>::infinity());
-    p.threshold = thresholds[i];
-    curve.push_back(p);
-  }
+  for (const DetectorRun& run : runs) curve.push_back(operatingPoint(run, gt));
   return curve;
 }
 

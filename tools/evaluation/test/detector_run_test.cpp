@@ -61,6 +61,11 @@ TEST(DetectorRunTest, OneRecordPerKeyframeAndConsistentOutputs) {
   EXPECT_EQ(lines, 60);
   // The CSV's correct flags are the true positives (one loop per query).
   EXPECT_EQ(correct_flags, evaluateAt(detections, gt, -1.0).true_positives);
+  // The operating point counts every loop of the run, at the run's min_score.
+  const PrPoint at = operatingPoint(run, gt);
+  EXPECT_EQ(at.threshold, options.islands.min_score);
+  EXPECT_EQ(at.true_positives, correct_flags);
+  EXPECT_EQ(at.true_positives + at.false_positives, static_cast<int>(detections.size()));
 
   // Timing: feature_ms = 1..60 -> mean 30.5, max 60; keyframe total adds the
   // detector's time.

@@ -16,7 +16,6 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <limits>
 #include <memory>
 #include <opencv2/imgcodecs.hpp>
 #include <string>
@@ -110,8 +109,7 @@ RowScore scoreRow(const std::shared_ptr<const Vocabulary>& vocabulary,
                   const RenderedSequence& seq, const std::vector<double>& thresholds) {
   const LoopDetectorOptions o = LoopDetectorOptions::ablation(row, pipeline.detector);
   const eval::DetectorRun run = eval::runDetector(vocabulary, o, seq.frames, row);
-  const eval::PrPoint at =
-      eval::evaluateAt(eval::detectionsOf(run), seq.gt, -std::numeric_limits<double>::infinity());
+  const eval::PrPoint at = eval::operatingPoint(run, seq.gt);
   RowScore s;
   s.recall = at.recall;
   s.precision = at.precision;

@@ -64,6 +64,11 @@ DetectorRun runDetector(std::shared_ptr<const Vocabulary> vocabulary,
 /// The loops a run found, scored by their final score eta.
 std::vector<Detection> detectionsOf(const DetectorRun& run);
 
+/// The run's operating point: every loop it found scored against `gt`, the
+/// point's threshold being the run's min_score (one point of the exact PR
+/// curve, whose other points are runs at other min_scores).
+PrPoint operatingPoint(const DetectorRun& run, const GroundTruth& gt);
+
 /// Per-keyframe CSV: frame,stamp,status,candidate,candidate_score,match,
 /// correspondences,inliers,features,database_size,feature_ms,transform_ms,
 /// word_groups_ms,query_ms,islands_ms,verification_ms,total_ms[,correct]
