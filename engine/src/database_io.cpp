@@ -17,9 +17,10 @@ namespace bowg {
 namespace {
 
 const char kMagic[8] = {'B', 'O', 'W', 'G', 'D', 'B', 0, 0};
-// Version 2 appends the normaliser history; version 1 files (without it)
-// still load, with an empty history.
-const std::uint32_t kVersion = 2;
+// Version 2 appends the normaliser history; version 3 then the two
+// missed-query counters (previous scores, temporal chain). Older files still
+// load, with an empty history and zero counters.
+const std::uint32_t kVersion = 3;
 const std::uint32_t kOldestVersion = 1;
 // magic + version + fingerprint + payload size | ... | checksum
 const std::size_t kHeaderBytes = 8 + 4 + 8 + 8;
@@ -195,6 +196,8 @@ void saveDetectorFile(const std::string& path, const Database& database,
     w.f64(v.group);
     w.f64(v.distribution);
   }
+  w.i32(state.missed_queries);
+  w.i32(state.consistency.missedQueries());
 
   std::string& bytes = w.str();
   const std::uint64_t payload = bytes.size() - payload_start;
@@ -294,7 +297,6 @@ std::unique_ptr<Database> loadDetectorFile(const std::string& path,
     last.size = p.i32("island");
     const int chain = p.i32("chain length");
     if (chain < 0) p.fail("negative temporal-consistency chain length");
-    state->consistency.restore(last, chain);
     if (version >= 2) {
       const std::size_t nn = p.count(kNormaliserBytes, "normalisers");
       std::vector<Normalisers> normalisers(nn);
@@ -309,6 +311,17 @@ std::unique_ptr<Database> loadDetectorFile(const std::string& path,
       }
       state->normalisers.restore(normalisers);
     }
+    int chain_missed = 0;
+    if (version >= 3) {
+      state->missed_queries = p.i32("missed queries");
+      chain_missed = p.i32("missed queries");
+      if (state->missed_queries < 0 || chain_missed < 0) p.fail("negative missed-query count");
+      if (state->missed_queries > 0 && state->previous_etas.empty()) {
+        p.fail("missed queries counted without previous scores");
+      }
+      if (chain_missed > 0 && chain == 0) p.fail("missed queries counted without a temporal chain");
+    }
+    state->consistency.restore(last, chain, chain_missed);
   } catch (const std::invalid_argument& e) {
     // Content the database itself rejects (word ids out of range,
     // non-increasing stamps, invalid weights): still a format problem.

@@ -87,13 +87,29 @@ bool TemporalConsistency::update(const Island& island, const TemporalVerificatio
   // with the last one (or after breakChain()), and a match passes when the
   // chain is longer than k, i.e. the current island and the islands of the k
   // previous consecutive queries form one chain. k = 0 always passes.
-  if (chain_length_ > 0 && islandsConsistent(last_, island, options.max_island_distance)) {
+  //
+  // Queries without an island in between (miss(), at most max_missed_queries
+  // of them) neither break nor extend the chain; the place moved on during
+  // them, so the allowed distance grows with their number.
+  const int distance = options.max_island_distance * (1 + missed_);
+  if (chain_length_ > 0 && islandsConsistent(last_, island, distance)) {
     if (chain_length_ < std::numeric_limits<int>::max()) ++chain_length_;
   } else {
     chain_length_ = 1;
   }
   last_ = island;
+  missed_ = 0;
   return chain_length_ > options.k;
+}
+
+void TemporalConsistency::miss(const TemporalVerificationOptions& options) {
+  options.validate();
+  if (chain_length_ == 0) return;
+  if (missed_ < options.max_missed_queries) {
+    ++missed_;
+  } else {
+    breakChain();
+  }
 }
 
 void TemporalConsistency::breakChain() {
@@ -102,9 +118,10 @@ void TemporalConsistency::breakChain() {
   // breaks the chain on every query that yields no island.
   last_ = Island();
   chain_length_ = 0;
+  missed_ = 0;
 }
 
-void TemporalConsistency::restore(const Island& last, int chain_length) {
+void TemporalConsistency::restore(const Island& last, int chain_length, int missed_queries) {
   if (chain_length < 0) {
     throw std::invalid_argument("TemporalConsistency::restore: chain_length must be >= 0 (got " +
                                 std::to_string(chain_length) + ")");
@@ -114,8 +131,14 @@ void TemporalConsistency::restore(const Island& last, int chain_length) {
                                 std::to_string(last.first) + " > last " +
                                 std::to_string(last.last));
   }
+  if (missed_queries < 0 || (chain_length == 0 && missed_queries != 0)) {
+    throw std::invalid_argument("TemporalConsistency::restore: missed_queries " +
+                                std::to_string(missed_queries) +
+                                " is negative or set without a chain");
+  }
   last_ = chain_length > 0 ? last : Island();
   chain_length_ = chain_length;
+  missed_ = missed_queries;
 }
 
 }  // namespace bowg

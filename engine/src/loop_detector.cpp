@@ -14,6 +14,7 @@
 #include "bowg/geometric_verification.h"
 #include "bowg/islands.h"
 #include "bowg/similarity.h"
+#include "bowg/temporal_alignment.h"
 #include "bowg/vocabulary.h"
 #include "bowg/word_groups.h"
 
@@ -51,9 +52,19 @@ void fanCentre(const KeyframeInput& kf, double* cx, double* cy) {
   }
 }
 
-double lookupEta(const std::vector<std::pair<EntryId, double>>& etas, EntryId id) {
-  const auto it = std::lower_bound(etas.begin(), etas.end(), std::make_pair(id, -1e300));
-  return (it != etas.end() && it->first == id) ? it->second : 0.0;
+// A query that cannot be scored (no features, database too small, normaliser
+// too small, no candidate): eq. 7's previous scores survive up to
+// temporal_score.max_missed_queries such queries and the temporal chain up to
+// temporal_verification.max_missed_queries (0 = the paper: forgotten at once).
+void recordUnscoredQuery(const LoopDetectorOptions& options, DetectorState* state) {
+  if (state->missed_queries < options.temporal_score.max_missed_queries &&
+      !state->previous_etas.empty()) {
+    ++state->missed_queries;
+  } else {
+    state->previous_etas.clear();
+    state->missed_queries = 0;
+  }
+  state->consistency.miss(options.temporal_verification);
 }
 
 struct QueryContext {
@@ -79,8 +90,7 @@ void runQuery(const QueryContext& ctx, const DatabaseQuery& q, const DatabaseEnt
   const std::size_t excluded = static_cast<std::size_t>(options_.islands.recent_exclusion);
   auto finish = [&](LoopStatus status) {
     r->status = status;
-    state_->previous_etas.clear();
-    state_->consistency.breakChain();
+    recordUnscoredQuery(options_, state_);
   };
   if (n == 0) {
     finish(LoopStatus::kDatabaseTooSmall);
@@ -140,13 +150,16 @@ void runQuery(const QueryContext& ctx, const DatabaseQuery& q, const DatabaseEnt
     c.eta_sim = combineSimilarity(c.eta_w, c.eta_g, c.eta_d, options_.word_groups,
                                   options_.distribution, so);
     // Eqs. 6-7: eta(t-1, tj-1) is the previous query's final score of the
-    // entry before this one, 0 when it was not scored then.
-    const double eta_prev = s.entry == 0 ? 0.0 : lookupEta(state_->previous_etas, s.entry - 1);
+    // entry before this one (alignment_window 0), or the best-aligned one
+    // near it (temporal_alignment.h); 0 when none was scored then.
+    const double eta_prev = alignedPreviousScore(state_->previous_etas, s.entry,
+                                                 state_->missed_queries, options_.temporal_score);
     c.eta = temporalScore(c.eta_sim, eta_prev, options_.temporal_score);
     last_candidates_.push_back(c);
     etas.emplace_back(c.entry, c.eta);
   }
   state_->previous_etas = etas;  // sorted by entry id, as the scores are
+  state_->missed_queries = 0;
   const auto t_islands = Clock::now();
   r->timings.query_ms = msBetween(t_query, t_islands);
 
@@ -163,11 +176,45 @@ void runQuery(const QueryContext& ctx, const DatabaseQuery& q, const DatabaseEnt
   const std::vector<Island> islands = computeIslands(etas, options_.islands);
   if (islands.empty()) {
     r->status = LoopStatus::kNoScoreAboveThreshold;
-    state_->consistency.breakChain();
+    state_->consistency.miss(options_.temporal_verification);
     r->timings.islands_ms = msBetween(t_islands, Clock::now());
     return;
   }
-  const Island& island = islands.front();
+  const GeometricVerificationOptions& go = options_.geometric;
+  const DirectIndex query_direct =
+      go.enabled && !go.exhaustive
+          ? directIndexFromWords(*vocabulary_, query_entry.words, database_->directLevel())
+          : DirectIndex();
+  const VerificationView qv{&query_entry.keypoints, &query_entry.descriptors, &query_direct};
+  const auto verify = [&](EntryId id) {
+    const DatabaseEntry& m = database_->entry(id);
+    const VerificationView mv{&m.keypoints, &m.descriptors, &m.direct};
+    return verifyGeometry(qv, mv, intrinsics, go);
+  };
+
+  // Geometric re-ranking (options.h, GeometricVerificationOptions::candidates):
+  // the query's island is the one of the top `candidates` whose best entry has
+  // the most inliers (ties: the better-scored island). With 1 it is the best-
+  // scored island, verified after the temporal verification (the paper).
+  std::size_t chosen = 0;
+  GeometricVerificationResult g;
+  bool verified = false;
+  const std::size_t reranked =
+      go.enabled ? std::min(islands.size(), static_cast<std::size_t>(go.candidates)) : 1;
+  double rerank_ms = 0;
+  if (reranked > 1) {
+    const auto t_rerank = Clock::now();
+    for (std::size_t i = 0; i < reranked; ++i) {
+      GeometricVerificationResult gi = verify(islands[i].best_entry);
+      if (i == 0 || gi.inliers > g.inliers) {
+        g = std::move(gi);
+        chosen = i;
+      }
+    }
+    verified = true;
+    rerank_ms = msBetween(t_rerank, Clock::now());
+  }
+  const Island& island = islands[chosen];
   r->island_first = island.first;
   r->island_last = island.last;
   r->island_score = island.score;
@@ -177,28 +224,23 @@ void runQuery(const QueryContext& ctx, const DatabaseQuery& q, const DatabaseEnt
   if (it != last_candidates_.end() && it->entry == island.best_entry) r->best = *it;
   const bool consistent = state_->consistency.update(island, options_.temporal_verification);
   const auto t_verify = Clock::now();
-  r->timings.islands_ms = msBetween(t_islands, t_verify);
+  r->timings.islands_ms = msBetween(t_islands, t_verify) - rerank_ms;
+  r->timings.verification_ms = rerank_ms;
   if (!consistent) {
     r->status = LoopStatus::kNoTemporalConsistency;
     return;
   }
 
-  // Geometric verification of the best entry of the best island.
+  // Geometric verification of the best entry of the chosen island.
   const DatabaseEntry& match = database_->entry(island.best_entry);
   r->match_id = match.id;
   r->match_stamp = match.stamp;
-  if (!options_.geometric.enabled) {
+  if (!go.enabled) {
     r->status = LoopStatus::kLoopDetected;
     return;
   }
-  const DirectIndex query_direct =
-      options_.geometric.exhaustive
-          ? DirectIndex()
-          : directIndexFromWords(*vocabulary_, query_entry.words, database_->directLevel());
-  const VerificationView qv{&query_entry.keypoints, &query_entry.descriptors, &query_direct};
-  const VerificationView mv{&match.keypoints, &match.descriptors, &match.direct};
-  GeometricVerificationResult g = verifyGeometry(qv, mv, intrinsics, options_.geometric);
-  r->timings.verification_ms = msBetween(t_verify, Clock::now());
+  if (!verified) g = verify(island.best_entry);
+  r->timings.verification_ms = rerank_ms + msBetween(t_verify, Clock::now());
   r->status = g.status;
   r->correspondences = g.correspondences;
   r->inliers = g.inliers;
@@ -315,17 +357,10 @@ LoopResult LoopDetector::process(const KeyframeInput& keyframe) {
   entry.intrinsics = keyframe.intrinsics;
   fanCentre(keyframe, &entry.centre_x, &entry.centre_y);
 
-  // A query that yields no island breaks the temporal chains (eq. 7's
-  // previous scores and the temporal verification).
-  auto forgetPreviousQuery = [this]() {
-    state_->previous_etas.clear();
-    state_->consistency.breakChain();
-  };
-
   if (f.empty()) {
     // Added anyway so that entry ids stay aligned with keyframe indices.
     database_->add(std::move(entry));
-    forgetPreviousQuery();
+    recordUnscoredQuery(options_, state_.get());
     r.status = LoopStatus::kNoFeatures;
     r.timings.total_ms = msBetween(t0, Clock::now());
     return r;

@@ -82,6 +82,8 @@ void TemporalScoreOptions::validate() const {
   // when both are equal (eq. 6 -> w_prev = 1), freezing the score.
   if (!(w_max >= 0.0 && w_max < 1.0)) fail("temporal_score.w_max", "must be in [0, 1)", str(w_max));
   requireFinitePositive("temporal_score.alpha", alpha);
+  requireIntAtLeast("temporal_score.alignment_window", alignment_window, 0);
+  requireIntAtLeast("temporal_score.max_missed_queries", max_missed_queries, 0);
 }
 
 void IslandOptions::validate() const {
@@ -94,6 +96,7 @@ void IslandOptions::validate() const {
 void TemporalVerificationOptions::validate() const {
   requireIntAtLeast("temporal_verification.k", k, 0);
   requireIntAtLeast("temporal_verification.max_island_distance", max_island_distance, 0);
+  requireIntAtLeast("temporal_verification.max_missed_queries", max_missed_queries, 0);
 }
 
 void GeometricVerificationOptions::validate() const {
@@ -111,6 +114,7 @@ void GeometricVerificationOptions::validate() const {
   }
   // The 8-point algorithm needs 8 correspondences; fewer inliers prove nothing.
   requireIntAtLeast("geometric.min_inliers", min_inliers, 8);
+  requireIntAtLeast("geometric.candidates", candidates, 1);
 }
 
 void LoopDetectorOptions::validate() const {
@@ -148,9 +152,22 @@ LoopDetectorOptions LoopDetectorOptions::ablation(const std::string& row,
     o.word_groups.enabled = true;
     o.temporal_score.enabled = true;
     o.distribution.enabled = true;
+  } else if (row == "paper") {
+    // The paper's full method as written: every module on, every extension
+    // of this implementation off (normaliser floor, aligned temporal score,
+    // missed-query tolerance, geometric re-ranking; docs/method.md).
+    o.word_groups.enabled = true;
+    o.temporal_score.enabled = true;
+    o.distribution.enabled = true;
+    o.similarity.normaliser_floor = 0.0;
+    o.temporal_score.alignment_window = 0;
+    o.temporal_score.max_missed_queries = 0;
+    o.temporal_verification.max_missed_queries = 0;
+    o.geometric.candidates = 1;
   } else {
     throw InvalidParameter("ablation row '" + row +
-                           "' is unknown; valid rows: bow, word_groups, temporal, distribution");
+                           "' is unknown; valid rows: bow, word_groups, temporal, distribution, "
+                           "paper");
   }
   return o;
 }

@@ -144,6 +144,15 @@ std::vector<Row> makeRows() {
                            BOWG_FIELD(double, detector.temporal_score.alpha),
                            "alpha: scale of the score difference in eq. 6 (not the acceptance "
                            "threshold, see min_score)"));
+  rows.push_back(intRow("alignment_window", det, "temporal_score.alignment_window", 0, 1000, false,
+                        BOWG_FIELD(int, detector.temporal_score.alignment_window),
+                        "r: eq. 7's previous score is the best of the previous query's scores "
+                        "of entries tj-1-r .. tj-1+r, so passes at different speeds keep it "
+                        "(0 = eq. 7 exactly; docs/method.md)"));
+  rows.push_back(intRow("temporal_memory", det, "temporal_score.max_missed_queries", 0, 100, false,
+                        BOWG_FIELD(int, detector.temporal_score.max_missed_queries),
+                        "Queries that cannot be scored (no candidate, small normaliser) that "
+                        "eq. 7's previous scores survive (0 = the paper: forgotten at once)"));
   // --- Islands (Sec. III-D).
   rows.push_back(doubleRow("min_score", det, "islands.min_score", 0.0, 10.0, true,
                            BOWG_FIELD(double, detector.islands.min_score),
@@ -166,6 +175,11 @@ std::vector<Row> makeRows() {
                         10000, false,
                         BOWG_FIELD(int, detector.temporal_verification.max_island_distance),
                         "Two islands agree when their id intervals are at most this far apart"));
+  rows.push_back(intRow("temporal_max_missed", det, "temporal_verification.max_missed_queries", 0,
+                        100, false,
+                        BOWG_FIELD(int, detector.temporal_verification.max_missed_queries),
+                        "Queries without an island that do not break the temporal chain "
+                        "(0 = DLoopDetector: the first one breaks it)"));
   // --- Geometric verification.
   rows.push_back(boolRow("geometric_verification", det, "geometric.enabled", true,
                          BOWG_FIELD(bool, detector.geometric.enabled),
@@ -193,6 +207,10 @@ std::vector<Row> makeRows() {
   rows.push_back(intRow("min_inliers", det, "geometric.min_inliers", 8, 10000, true,
                         BOWG_FIELD(int, detector.geometric.min_inliers),
                         "Accept a loop with at least this many RANSAC inliers"));
+  rows.push_back(intRow("verified_candidates", det, "geometric.candidates", 1, 100, false,
+                        BOWG_FIELD(int, detector.geometric.candidates),
+                        "Geometric re-ranking: verify the best entries of this many top islands "
+                        "and keep the one with the most inliers (1 = the paper)"));
   // --- Features (Sec. III-A).
   rows.push_back(enumRow(
       "feature_detector", fea, "detector", {"gftt", "orb"},

@@ -234,9 +234,10 @@ TEST(DatabaseIo, VersionOneFilesLoadWithAnEmptyHistory) {
   const std::string v2 = outPath("v2.bowgdb");
   a.save(v2);
   std::string bytes = readBytes(v2);
-  // The history closes the payload: u32 count + count x 3 f64, then the
-  // u64 checksum. 44 keyframes had a previous one; the window is 50.
-  const std::size_t history = 4 + 44 * 24;
+  // The history closes the version-2 payload: u32 count + count x 3 f64;
+  // version 3 adds two i32 missed-query counters, then the u64 checksum.
+  // 44 keyframes had a previous one; the window is 50.
+  const std::size_t history = 4 + 44 * 24 + 2 * 4;
   ASSERT_GT(bytes.size(), history + 8 + 28);
   bytes.resize(bytes.size() - 8 - history);
   auto putLe = [&bytes](std::size_t at, std::uint64_t v, int n) {
@@ -257,13 +258,13 @@ TEST(DatabaseIo, VersionOneFilesLoadWithAnEmptyHistory) {
     expectSameCandidates(a, b);
   }
   // Versions beyond the current one are refused by number.
-  putLe(8, 3, 4);
+  putLe(8, 4, 4);
   writeBytes(v1, bytes);
   try {
     b.load(v1);
-    ADD_FAILURE() << "version 3 accepted";
+    ADD_FAILURE() << "version 4 accepted";
   } catch (const FormatError& e) {
-    EXPECT_NE(std::string(e.what()).find("unsupported version 3"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("unsupported version 4"), std::string::npos) << e.what();
   }
   std::remove(v1.c_str());
   std::remove(v2.c_str());

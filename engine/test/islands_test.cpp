@@ -229,10 +229,68 @@ TEST(TemporalConsistency, RestoreResumesTheChain) {
   EXPECT_EQ(tc.chainLength(), 3);  // failed restores change nothing
 }
 
+TEST(TemporalConsistency, MissedQueriesWithinTheToleranceKeepTheChain) {
+  // k = 2, up to one query without an island tolerated.
+  TemporalConsistency tc;
+  TemporalVerificationOptions o = verification(2, 3);
+  o.max_missed_queries = 1;
+  tc.update(island(10, 12), o);
+  tc.update(island(11, 13), o);
+  tc.miss(o);  // nothing above min_score for one query
+  EXPECT_EQ(tc.chainLength(), 2);
+  EXPECT_EQ(tc.missedQueries(), 1);
+  // The place moved on during the miss: the distance allowed is 3 * (1 + 1)
+  // = 6; [19, 20] is 19 - 13 = 6 from [11, 13].
+  EXPECT_TRUE(tc.update(island(19, 20), o));
+  EXPECT_EQ(tc.chainLength(), 3);
+  EXPECT_EQ(tc.missedQueries(), 0);
+  // Two misses in a row exceed the tolerance: the chain breaks.
+  tc.miss(o);
+  tc.miss(o);
+  EXPECT_EQ(tc.chainLength(), 0);
+  EXPECT_FALSE(tc.update(island(21, 22), o));
+  EXPECT_EQ(tc.chainLength(), 1);
+}
+
+TEST(TemporalConsistency, WithoutToleranceAMissBreaksTheChainAsDLoopDetector) {
+  TemporalConsistency tc;
+  const TemporalVerificationOptions o = verification(2, 3);
+  tc.update(island(10, 12), o);
+  tc.update(island(11, 13), o);
+  tc.miss(o);
+  EXPECT_EQ(tc.chainLength(), 0);
+  EXPECT_FALSE(tc.update(island(12, 14), o));
+  // Without the miss the same island would have passed: 3 > k.
+  TemporalConsistency other;
+  other.update(island(10, 12), o);
+  other.update(island(11, 13), o);
+  EXPECT_TRUE(other.update(island(12, 14), o));
+  // A distance of 6 after one tolerated miss is 6 > 3 without misses.
+  TemporalVerificationOptions tolerant = o;
+  tolerant.max_missed_queries = 1;
+  TemporalConsistency no_miss;
+  no_miss.update(island(10, 12), tolerant);
+  no_miss.update(island(11, 13), tolerant);
+  EXPECT_FALSE(no_miss.update(island(19, 20), tolerant));
+  EXPECT_EQ(no_miss.chainLength(), 1);
+}
+
+TEST(TemporalConsistency, RestoreKeepsTheMissedCount) {
+  TemporalConsistency tc;
+  tc.restore(island(11, 13), 2, 1);
+  EXPECT_EQ(tc.missedQueries(), 1);
+  EXPECT_THROW(tc.restore(island(11, 13), 0, 1), std::invalid_argument);
+  EXPECT_THROW(tc.restore(island(11, 13), 2, -1), std::invalid_argument);
+  EXPECT_EQ(tc.missedQueries(), 1);
+}
+
 TEST(TemporalConsistency, InvalidOptionsThrow) {
   TemporalConsistency tc;
   EXPECT_THROW(tc.update(island(1, 1), verification(-1)), InvalidParameter);
   EXPECT_THROW(tc.update(island(1, 1), verification(1, -2)), InvalidParameter);
+  TemporalVerificationOptions o = verification(1);
+  o.max_missed_queries = -1;
+  EXPECT_THROW(tc.miss(o), InvalidParameter);
 }
 
 }  // namespace

@@ -124,6 +124,20 @@ TEST(Options, SimilarityNormalisers) {
   });
 }
 
+TEST(Options, TemporalAlignmentAndMissedQueries) {
+  expectRejected([](LoopDetectorOptions& o) { o.temporal_score.alignment_window = -1; },
+                 "temporal_score.alignment_window");
+  expectRejected([](LoopDetectorOptions& o) { o.temporal_score.max_missed_queries = -1; },
+                 "temporal_score.max_missed_queries");
+  expectRejected([](LoopDetectorOptions& o) { o.temporal_verification.max_missed_queries = -2; },
+                 "temporal_verification.max_missed_queries");
+  expectAccepted([](LoopDetectorOptions& o) {
+    o.temporal_score.alignment_window = 3;
+    o.temporal_score.max_missed_queries = 2;
+    o.temporal_verification.max_missed_queries = 2;
+  });
+}
+
 TEST(Options, TemporalScore) {
   expectRejected([](LoopDetectorOptions& o) { o.temporal_score.w_max = 1.0; },
                  "temporal_score.w_max");
@@ -188,7 +202,10 @@ TEST(Options, Geometric) {
                  "geometric.ransac_confidence");
   expectRejected([](LoopDetectorOptions& o) { o.geometric.min_inliers = 7; },
                  "geometric.min_inliers");
+  expectRejected([](LoopDetectorOptions& o) { o.geometric.candidates = 0; },
+                 "geometric.candidates");
   expectAccepted([](LoopDetectorOptions& o) {
+    o.geometric.candidates = 5;
     o.geometric.min_inliers = 8;
     o.geometric.max_neighbour_ratio = 1.0;
     o.geometric.direct_index_level = 1;

@@ -60,6 +60,9 @@ const char* kUsage =
     "  --gt FILE                  ground truth 'query: match,...' (0-based frame indices)\n"
     "  --output DIR               where CSVs, the PR plot and summary.txt go [bowg_evaluation]\n"
     "  --ablation                 run bow, word_groups, temporal, distribution side by side\n"
+    "  --rows A,B,...             ablation rows to run instead (implies --ablation): bow,\n"
+    "                             word_groups, temporal, distribution (full method as\n"
+    "                             configured), paper (the paper's method as written)\n"
     "  --sweep rerun|score        PR curve: re-run the detector per threshold (exact, slower)\n"
     "                             or sweep the final score of one run at the lowest threshold\n"
     "                             [rerun]\n"
@@ -83,6 +86,7 @@ struct Args {
   long max_frames = 0;
   int jobs = 0;
   bool ablation = false, quiet = false;
+  std::vector<std::string> rows{"bow", "word_groups", "temporal", "distribution"};
   std::vector<double> thresholds;
 };
 
@@ -123,6 +127,16 @@ std::vector<double> parseThresholds(const std::string& v) {
   return out;
 }
 
+std::vector<std::string> splitList(const std::string& v) {
+  std::vector<std::string> out;
+  std::istringstream in(v);
+  std::string item;
+  while (std::getline(in, item, ',')) {
+    if (!item.empty()) out.push_back(item);
+  }
+  return out;
+}
+
 Args parseArgs(int argc, char** argv) {
   Args a;
   a.thresholds = parseThresholds("0.2:0.2:2");
@@ -149,6 +163,12 @@ Args parseArgs(int argc, char** argv) {
     else if (flag == "--sweep") a.sweep = v;
     else if (flag == "--thresholds") a.thresholds = parseThresholds(v);
     else if (flag == "--dump-candidates") a.dump_candidates = v;
+    else if (flag == "--rows") {
+      a.rows = splitList(v);
+      if (a.rows.empty()) throw std::invalid_argument("--rows needs at least one row");
+      for (const std::string& row : a.rows) LoopDetectorOptions::ablation(row, LoopDetectorOptions());
+      a.ablation = true;
+    }
     else if (flag == "--jobs") {
       const double j = toNumber(flag, v);
       if (j < 0 || j > 256 || j != static_cast<int>(j)) {
@@ -453,9 +473,7 @@ int run(int argc, char** argv) {
     if (!has_gt) throw std::invalid_argument("--dump-candidates needs --gt FILE");
     return dumpCandidates(a, vocabulary, pipeline.detector, frames, used_gt);
   }
-  const std::vector<std::string> rows =
-      a.ablation ? std::vector<std::string>{"bow", "word_groups", "temporal", "distribution"}
-                 : std::vector<std::string>{"bowg"};
+  const std::vector<std::string> rows = a.ablation ? a.rows : std::vector<std::string>{"bowg"};
   const double threshold = pipeline.detector.islands.min_score;
   const auto sameThreshold = [threshold](double t) { return std::abs(t - threshold) < 1e-12; };
   // The configured operating point is a point of the curve: its run exists

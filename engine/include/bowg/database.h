@@ -168,6 +168,9 @@ struct DetectorState {
   /// The previous query's final eta per scored entry (eq. 7's eta(t-1, .)),
   /// sorted by entry id.
   std::vector<std::pair<EntryId, double>> previous_etas;
+  /// Queries since previous_etas were set that could not be scored
+  /// (temporal_score.max_missed_queries, temporal_alignment.h).
+  int missed_queries = 0;
   /// The temporal-verification chain (Sec. III-D).
   TemporalConsistency consistency;
   /// Recent s(I_t, I_t-1), for the normaliser floor (normaliser_history.h).

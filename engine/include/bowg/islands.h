@@ -40,17 +40,24 @@ class TemporalConsistency {
   /// Records the current query's best island and returns whether it is
   /// consistent with the k previous ones (always true for k = 0).
   bool update(const Island& island, const TemporalVerificationOptions& options);
-  /// A query without an island breaks the chain.
+  /// A query without an island: the chain survives up to
+  /// options.max_missed_queries consecutive ones, then breaks.
+  void miss(const TemporalVerificationOptions& options);
+  /// Breaks the chain whatever the options (a query that could not be
+  /// scored at all, a reset).
   void breakChain();
   void reset() { breakChain(); }
   int chainLength() const { return chain_length_; }
+  /// Consecutive queries without an island since last_ (0 after update()).
+  int missedQueries() const { return missed_; }
   /// For persistence.
   const Island& lastIsland() const { return last_; }
-  void restore(const Island& last, int chain_length);
+  void restore(const Island& last, int chain_length, int missed_queries = 0);
 
  private:
   Island last_;
   int chain_length_ = 0;  ///< consecutive consistent queries ending at last_
+  int missed_ = 0;        ///< queries without an island since last_
 };
 
 }  // namespace bowg

@@ -62,6 +62,19 @@ struct TemporalScoreOptions {
   double w_max = 0.6;
   /// alpha: scale of the score difference in eq. 6, > 0.
   double alpha = 0.2;
+  /// r: eq. 7 reads eta(t-1, tj-1), which a true revisit only follows when
+  /// both passes advance one keyframe per keyframe (same speed and spacing).
+  /// With r > 0 the previous score is the best of the previous query's scores
+  /// of entries tj-1-r .. tj-1+r (the best-aligned earlier entry), so a pass
+  /// that advances 0 .. 1+r database entries per query (slower, stopped, up
+  /// to 1+r times faster) or backs up by up to r-1 still carries its score
+  /// (docs/method.md). 0 = eq. 7 exactly. >= 0.
+  int alignment_window = 0;
+  /// The previous scores survive this many consecutive queries that could
+  /// not be scored (no candidate, normaliser too small); the window then
+  /// centres on tj-1-missed and widens to r * (1 + missed). 0 = they are
+  /// forgotten at the first such query (the paper). >= 0.
+  int max_missed_queries = 0;
   void validate() const;
 };
 
@@ -88,6 +101,12 @@ struct TemporalVerificationOptions {
   /// Two islands are consistent when the gap between their id intervals is
   /// at most this (0 = they must overlap). >= 0.
   int max_island_distance = 3;
+  /// A query without an island (nothing above min_score) does not break the
+  /// chain for up to this many consecutive queries; it does not count towards
+  /// k either, and the allowed island distance grows to
+  /// max_island_distance * (1 + missed) (the place moved on meanwhile).
+  /// 0 = the first such query breaks the chain (DLoopDetector). >= 0.
+  int max_missed_queries = 0;
   void validate() const;
 };
 
@@ -109,6 +128,13 @@ struct GeometricVerificationOptions {
   double ransac_confidence = 0.99;
   /// Accept with at least this many inliers. >= 8.
   int min_inliers = 15;
+  /// Geometric re-ranking: the best entries of the top `candidates` islands
+  /// are verified and the one with the most inliers is the query's island
+  /// (for the temporal verification and the loop). Under aliasing the
+  /// best-scored island is often a look-alike while the true place is among
+  /// the next few; geometry separates them better than the word scores.
+  /// 1 = the paper (only the best island is verified). >= 1.
+  int candidates = 1;
   void validate() const;
 };
 
@@ -129,7 +155,9 @@ struct LoopDetectorOptions {
 
   /// The ablation presets: "bow" (pure bag of words), "word_groups",
   /// "temporal" (+ temporal score), "distribution" (+ distribution score).
-  /// Each row switches on one more module on top of the previous one.
+  /// Each row switches on one more module on top of the previous one and
+  /// keeps every other field of base. "paper": the full method as the paper
+  /// writes it, with this implementation's extensions switched off.
   static LoopDetectorOptions ablation(const std::string& row,
                                       const LoopDetectorOptions& base);
 };
