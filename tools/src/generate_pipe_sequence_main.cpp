@@ -5,8 +5,12 @@
 //   rosrun bowg_ros bowg_generate_pipe_sequence --bag pipe.bag [--images DIR]
 //       [--gt pipe_gt.txt] [--laps 1] [--frames N] [--seed 1] [--width 640]
 //       [--height 480] [--fx 320] [--roll-amplitude 60] [--marks-per-metre 1]
-//       [--grain-repeat 0.5]
-//       [--speed 0.2] [--rate 10] [--gt-distance 0.15] [--gt-heading 30]
+//       [--grain-repeat 0.5] [--texture-images DIR [--texture-crop 0.15]]
+//       [--route figure-eight|circuit|partial|no-revisit | --route-nodes 0,1,...]
+//       [--network-width 4] [--network-height 3] [--roll-knot-spacing 3]
+//       [--exposure-variation 0.2] [--exposure-step 0.15]
+//       [--speed 0.2] [--rate 10] [--speed-variation 0] [--speed-knot-seconds 4]
+//       [--allow-reverse] [--gt-distance 0.15] [--gt-heading 30]
 //       [--gt-exclude 3] [--compression none|lz4|bz2]
 #include <sys/stat.h>
 
@@ -34,6 +38,9 @@
 #include "bowg_pipe_sim/pipe_network.h"
 #include "bowg_pipe_sim/pipe_renderer.h"
 #include "bowg_pipe_sim/pipe_sequence.h"
+#include "bowg_pipe_sim/quilted_grain.h"
+#include "bowg_pipe_sim/route_programs.h"
+#include "bowg_pipe_sim/sequence_stats.h"
 #include "bowg_pipe_sim/wall_texture.h"
 
 namespace {
@@ -47,16 +54,30 @@ const char* kUsage =
     "                         /ground_truth/pose (geometry_msgs/PoseStamped, frame map)\n"
     "  --images DIR           write frame_000000.png ... (and poses.csv) into DIR\n"
     "  --gt FILE              ground-truth loops (default: <bag>_gt.txt or DIR/ground_truth.txt)\n"
-    "  --laps N               laps of the route (48 m of pipe each) [1]\n"
+    "  --route NAME           figure-eight, circuit, partial or no-revisit (docs/pipe_sequence.md)\n"
+    "                         [figure-eight]\n"
+    "  --route-nodes LIST     a custom route instead: node indices 0-5, e.g. 0,1,4,5,0,1\n"
+    "  --laps N               laps of the route (figure-eight: 48 m of pipe each; circuit) [1]\n"
+    "  --network-width M --network-height M\n"
+    "                         size of the network's rectangle [4 3]\n"
     "  --frames N             stop after N frames (0 = whole route) [0]\n"
     "  --seed N               texture, roll, exposure and noise seed [1]\n"
     "  --width W --height H   image size [640 480]\n"
     "  --fx F                 focal length in px (fy = fx, principal point at the centre) [W/2]\n"
     "  --roll-amplitude DEG   roll about the pipe axis in [-DEG, DEG] [60]\n"
+    "  --roll-knot-spacing M  metres of driving between the roll's random knots [3]\n"
+    "  --exposure-variation X --exposure-step X\n"
+    "                         auto exposure: smooth log-gain range and 8 s steps [0.2 0.15]\n"
     "  --marks-per-metre X    unique wall marks per metre (texture repetitiveness) [1]\n"
     "  --grain-repeat G       fraction of the wall grain repeated in every section, in [0, 1]\n"
     "                         (1 = pixel-identical sections, 0 = no shared grain) [0.5]\n"
-    "  --speed MPS --rate HZ  driving speed and frame rate [0.2 10]\n"
+    "  --texture-images DIR   quilt the wall grain from the PNG/JPG images in DIR [procedural]\n"
+    "  --texture-crop F       fraction of rows cut from the top and the bottom of those\n"
+    "                         images (text overlays) [0.15]\n"
+    "  --speed MPS --rate HZ  mean driving speed and frame rate [0.2 10]\n"
+    "  --speed-variation V    speed * (1 + V * smooth noise in [-1, 1]) [0 = constant]\n"
+    "  --speed-knot-seconds S seconds between the speed noise's knots [4]\n"
+    "  --allow-reverse        back up where the speed is negative (no value; default: stop)\n"
     "  --gt-distance M --gt-heading DEG --gt-exclude M\n"
     "                         ground-truth tolerances [0.15 30 3]\n"
     "  --compression C        bag compression: none, lz4 or bz2 (noisy images hardly\n"
@@ -64,6 +85,9 @@ const char* kUsage =
 
 struct Args {
   std::string bag, images, gt, compression = "none";
+  std::string route = "figure-eight", route_nodes, texture_images;
+  double texture_crop = 0.15;
+  bool texture_crop_given = false, route_given = false;
   SequenceOptions sequence;
   WallTextureOptions texture;
   CameraModel camera;
@@ -75,6 +99,18 @@ double toNumber(const std::string& flag, const std::string& value) {
   const double v = std::strtod(value.c_str(), &end);
   if (value.empty() || *end != '\0' || !std::isfinite(v)) {
     throw std::invalid_argument(flag + ": '" + value + "' is not a number");
+  }
+  return v;
+}
+
+/// For the options without a field check of their own: the message names
+/// the flag, not the struct field.
+double atLeast(const std::string& flag, const std::string& value, double low, bool inclusive) {
+  const double v = toNumber(flag, value);
+  if (inclusive ? v < low : v <= low) {
+    std::ostringstream message;
+    message << flag << " must be " << (inclusive ? ">= " : "> ") << low << ", not " << value;
+    throw std::invalid_argument(message.str());
   }
   return v;
 }
@@ -96,6 +132,10 @@ Args parseArgs(int argc, char** argv) {
       std::cout << kUsage;
       std::exit(0);
     }
+    if (flag == "--allow-reverse") {
+      a.sequence.allow_reverse = true;
+      continue;
+    }
     if (i + 1 >= argc) throw std::invalid_argument(flag + ": missing value (see --help)");
     const std::string v = argv[++i];
     if (flag == "--bag") a.bag = v;
@@ -116,6 +156,23 @@ Args parseArgs(int argc, char** argv) {
     else if (flag == "--grain-repeat") a.texture.grain_repeat = toNumber(flag, v);
     else if (flag == "--speed") a.sequence.speed_mps = toNumber(flag, v);
     else if (flag == "--rate") a.sequence.frame_rate_hz = toNumber(flag, v);
+    else if (flag == "--speed-variation") a.sequence.speed_variation = atLeast(flag, v, 0, true);
+    else if (flag == "--speed-knot-seconds") a.sequence.speed_knot_s = atLeast(flag, v, 0, false);
+    else if (flag == "--route") a.route = v, a.route_given = true;
+    else if (flag == "--route-nodes") a.route_nodes = v;
+    else if (flag == "--network-width") a.sequence.network_width_m = atLeast(flag, v, 0, false);
+    else if (flag == "--network-height") a.sequence.network_height_m = atLeast(flag, v, 0, false);
+    else if (flag == "--roll-knot-spacing") a.sequence.roll_knot_spacing_m = atLeast(flag, v, 0, false);
+    else if (flag == "--exposure-variation") a.sequence.exposure_variation = atLeast(flag, v, 0, true);
+    else if (flag == "--exposure-step") a.sequence.exposure_step = atLeast(flag, v, 0, true);
+    else if (flag == "--texture-images") a.texture_images = v;
+    else if (flag == "--texture-crop") {
+      a.texture_crop = toNumber(flag, v);
+      a.texture_crop_given = true;
+      if (!(a.texture_crop >= 0 && a.texture_crop <= 0.45)) {
+        throw std::invalid_argument("--texture-crop must be in [0, 0.45], not " + v);
+      }
+    }
     else if (flag == "--gt-distance") a.gt_options.max_distance_m = toNumber(flag, v);
     else if (flag == "--gt-heading") a.gt_options.max_heading_deg = toNumber(flag, v);
     else if (flag == "--gt-exclude") a.gt_options.exclude_recent_m = toNumber(flag, v);
@@ -126,6 +183,22 @@ Args parseArgs(int argc, char** argv) {
   }
   if (a.compression != "lz4" && a.compression != "bz2" && a.compression != "none") {
     throw std::invalid_argument("--compression must be lz4, bz2 or none, not " + a.compression);
+  }
+  if (std::find(routeProgramNames().begin(), routeProgramNames().end(), a.route) ==
+      routeProgramNames().end()) {
+    throw std::invalid_argument("--route must be figure-eight, circuit, partial or no-revisit, not " + a.route);
+  }
+  if (!a.route_nodes.empty() && a.route_given) {
+    throw std::invalid_argument("give --route or --route-nodes, not both");
+  }
+  if (!a.route_nodes.empty() && a.sequence.laps != 1) {
+    throw std::invalid_argument("--route-nodes is the whole route: --laps must be 1");
+  }
+  if ((a.route == "partial" || a.route == "no-revisit") && a.sequence.laps != 1) {
+    throw std::invalid_argument("--route " + a.route + " is one mission: --laps must be 1");
+  }
+  if (a.texture_crop_given && a.texture_images.empty()) {
+    throw std::invalid_argument("--texture-crop needs --texture-images");
   }
   a.camera.fx = a.camera.fy = fx > 0 ? fx : a.camera.width / 2.0;
   a.camera.cx = (a.camera.width - 1) / 2.0;
@@ -154,12 +227,31 @@ ros::Time stampOf(double seconds) {
 
 double wrapAngle(double a) { return std::atan2(std::sin(a), std::cos(a)); }
 
+std::vector<int> routeNodesOf(const Args& args) {
+  if (args.route_nodes.empty()) return routeProgramNodes(args.route, args.sequence.laps);
+  return parseRouteNodes(args.route_nodes, "--route-nodes");
+}
+
+/// The route, with a custom node list's errors (not joined, U-turn, no such
+/// node) attributed to the flag that gave it.
+Route makeRoute(const PipeNetwork& network, const Args& args) {
+  try {
+    return Route(network, routeNodesOf(args), args.sequence.bend_radius_m);
+  } catch (const std::invalid_argument& e) {
+    if (args.route_nodes.empty()) throw;
+    throw std::invalid_argument("--route-nodes " + args.route_nodes + ": " + e.what());
+  }
+}
+
 int run(int argc, char** argv) {
-  const Args args = parseArgs(argc, argv);
+  Args args = parseArgs(argc, argv);
   const PipeNetwork network = PipeNetwork::figureEight(args.sequence.network_width_m,
                                                        args.sequence.network_height_m);
-  const Route route(network, defaultRouteNodes(args.sequence.laps), args.sequence.bend_radius_m);
+  const Route route = makeRoute(network, args);
   const std::vector<FrameState> frames = planSequence(route, args.sequence);
+  if (!args.texture_images.empty()) {
+    args.texture.grain_images = loadGrainImages(args.texture_images, args.texture_crop);
+  }
   const WallTexture texture(network, args.texture);
   const PipeRenderer renderer(network, route, texture, args.camera, LightModel(), SensorModel());
 
@@ -190,7 +282,9 @@ int run(int argc, char** argv) {
   info.P = {args.camera.fx, 0, args.camera.cx, 0, 0, args.camera.fy, args.camera.cy, 0, 0, 0, 1, 0};
 
   std::ostringstream poses_csv;
-  poses_csv << "frame,stamp,x,y,z,qx,qy,qz,qw,roll_deg,exposure,distance\n";
+  // distance: position along the route; odometer: metres driven (they differ
+  // once the robot backs up).
+  poses_csv << "frame,stamp,x,y,z,qx,qy,qz,qw,roll_deg,exposure,distance,odometer\n";
   std::vector<eval::TravelPose> travel;
   double render_ms = 0, max_render_ms = 0;
   for (const FrameState& f : frames) {
@@ -240,7 +334,7 @@ int run(int argc, char** argv) {
     poses_csv << f.index << "," << std::fixed << f.stamp << "," << f.pose.position[0] << ","
               << f.pose.position[1] << "," << f.pose.position[2] << "," << q[0] << "," << q[1] << ","
               << q[2] << "," << q[3] << "," << f.roll_rad * 180 / M_PI << "," << f.exposure << ","
-              << f.distance << "\n";
+              << f.distance << "," << f.odometer << "\n";
     eval::TravelPose tp;
     tp.x = f.pose.position[0];
     tp.y = f.pose.position[1];
@@ -248,7 +342,9 @@ int run(int argc, char** argv) {
     tp.hx = f.tangent[0];
     tp.hy = f.tangent[1];
     tp.hz = f.tangent[2];
-    tp.distance = f.distance;
+    // The ground truth's "immediate past" is metres driven: backing up 1 m
+    // and coming forward again is 2 m, not 0.
+    tp.distance = f.odometer;
     travel.push_back(tp);
     if (f.index % 20 == 0 || f.index + 1 == static_cast<int>(frames.size())) {
       std::fprintf(stderr, "\rrendering %d/%zu", f.index + 1, frames.size());
@@ -271,9 +367,14 @@ int run(int argc, char** argv) {
           std::abs(wrapAngle(frames[kv.first].roll_rad - frames[m].roll_rad)) * 180 / M_PI);
     }
   }
-  std::sort(roll_differences.begin(), roll_differences.end());
-  const double median_roll =
-      roll_differences.empty() ? 0 : roll_differences[roll_differences.size() / 2];
+  const double median_roll = median(roll_differences);
+  const SequenceStats stats = sequenceStats(frames);
+  const std::string route_name = args.route_nodes.empty() ? args.route : "nodes " + args.route_nodes;
+  char spacing[160];
+  std::snprintf(spacing, sizeof(spacing),
+                "%.1f m driven (odometer), frame spacing min %.2f / median %.2f / max %.2f cm",
+                stats.driven_m, 100 * stats.spacing_min_m, 100 * stats.spacing_median_m,
+                100 * stats.spacing_max_m);
   std::ostringstream header;
   header << "bowg_ros pipe sequence ground truth (docs/pipe_sequence.md)\n"
          << "query: matches; 0-based index of the image messages (frames)\n"
@@ -281,6 +382,21 @@ int run(int argc, char** argv) {
          << args.sequence.laps << ", marks_per_metre " << args.texture.marks_per_metre
          << ", grain_repeat " << args.texture.grain_repeat
          << ", roll_amplitude_deg " << args.sequence.roll_amplitude_deg << "\n"
+         << "route " << route_name << ", network " << args.sequence.network_width_m << " x "
+         << args.sequence.network_height_m << " m, roll_knot_spacing_m "
+         << args.sequence.roll_knot_spacing_m << ", exposure_variation "
+         << args.sequence.exposure_variation << ", exposure_step " << args.sequence.exposure_step << "\n"
+         << "speed " << args.sequence.speed_mps << " m/s, rate " << args.sequence.frame_rate_hz
+         << " Hz, speed_variation " << args.sequence.speed_variation << ", speed_knot_seconds "
+         << args.sequence.speed_knot_s << ", allow_reverse " << (args.sequence.allow_reverse ? "yes" : "no")
+         << "\n"
+         << "texture "
+         << (args.texture_images.empty() ? "procedural" : "quilted from the images in " + args.texture_images);
+  if (!args.texture_images.empty()) {
+    header << " (" << args.texture.grain_images.size() << " images, crop " << args.texture_crop << ")";
+  }
+  header << "\n"
+         << spacing << "\n"
          << "tolerances: distance < " << args.gt_options.max_distance_m << " m, heading < "
          << args.gt_options.max_heading_deg << " deg, excluding the last "
          << args.gt_options.exclude_recent_m << " m driven\n"
@@ -288,7 +404,7 @@ int run(int argc, char** argv) {
          << median_roll << " deg";
   eval::writeGroundTruth(args.gt, gt, header.str());
 
-  std::printf("frames: %zu (%.1f m driven)\n", frames.size(), frames.back().distance);
+  std::printf("frames: %zu, %s\n", frames.size(), spacing);
   std::printf("render: %.1f ms mean, %.1f ms max per %dx%d frame\n", render_ms / frames.size(),
               max_render_ms, args.camera.width, args.camera.height);
   std::printf("ground truth: %d queries with a revisit, median roll difference %.1f deg -> %s\n",

@@ -4,23 +4,13 @@
 #include <stdexcept>
 
 #include "bowg_pipe_sim/random.h"
+#include "bowg_pipe_sim/speed_profile.h"
 
 namespace bowg {
 namespace pipe_sim {
 namespace {
 
 constexpr double kDeg = M_PI / 180.0;
-
-/// Smooth 1-D noise: uniform values in [-1, 1] at knots `spacing` apart,
-/// cosine-interpolated; a function of x only (and the stream id).
-double smoothNoise(std::uint64_t seed, std::uint64_t stream, double x, double spacing) {
-  const double k = std::floor(x / spacing), f = x / spacing - k;
-  const auto knot = [&](double i) {
-    return 2 * toUnit(hashCombine(seed, stream, static_cast<std::uint64_t>(static_cast<long long>(i)))) - 1;
-  };
-  const double w = 0.5 - 0.5 * std::cos(M_PI * f);
-  return knot(k) * (1 - w) + knot(k + 1) * w;
-}
 
 }  // namespace
 
@@ -41,6 +31,15 @@ void SequenceOptions::validate() const {
   if (!(exposure_variation >= 0) || !(exposure_step >= 0)) {
     throw std::invalid_argument("SequenceOptions.exposure_variation/exposure_step must be >= 0");
   }
+  if (!(speed_variation >= 0) || !std::isfinite(speed_variation)) {
+    throw std::invalid_argument("SequenceOptions.speed_variation must be >= 0");
+  }
+  if (!(speed_knot_s > 0) || !std::isfinite(speed_knot_s)) {
+    throw std::invalid_argument("SequenceOptions.speed_knot_s must be > 0");
+  }
+  if (!(network_width_m > 0) || !(network_height_m > 0)) {
+    throw std::invalid_argument("SequenceOptions.network_width_m/network_height_m must be > 0");
+  }
 }
 
 std::vector<int> defaultRouteNodes(int laps) {
@@ -57,16 +56,16 @@ std::vector<int> defaultRouteNodes(int laps) {
 
 std::vector<FrameState> planSequence(const Route& route, const SequenceOptions& o) {
   o.validate();
-  const double step = o.speed_mps / o.frame_rate_hz;
-  int frames = static_cast<int>(std::floor(route.length() / step)) + 1;
-  if (o.max_frames > 0) frames = std::min(frames, o.max_frames);
+  const std::vector<TravelSample> travel = drive(route.length(), o);
+  const int frames = static_cast<int>(travel.size());
   std::vector<FrameState> states;
   states.reserve(frames);
   for (int i = 0; i < frames; ++i) {
     FrameState f;
     f.index = i;
     f.stamp = o.start_stamp + i / o.frame_rate_hz;
-    f.distance = i * step;
+    f.distance = travel[i].distance;
+    f.odometer = travel[i].odometer;
     const CentrelinePoint c = route.at(f.distance);
     f.tangent = c.tangent;
     // Body axes before roll: x along the pipe, y left, z up (horizontal

@@ -74,6 +74,13 @@ void WallTextureOptions::validate() const {
     throw std::invalid_argument("WallTextureOptions.grain_repeat must be in [0, 1]");
   }
   if (!(margin_m >= 0)) throw std::invalid_argument("WallTextureOptions.margin_m must be >= 0");
+  for (const cv::Mat& image : grain_images) {
+    if (image.type() != CV_8UC1 || image.rows < QuiltedGrain::kPatch || image.cols < QuiltedGrain::kPatch) {
+      throw std::invalid_argument("WallTextureOptions.grain_images must be grey 8-bit images of at least " +
+                                  std::to_string(QuiltedGrain::kPatch) + " x " +
+                                  std::to_string(QuiltedGrain::kPatch) + " px");
+    }
+  }
 }
 
 WallTexture::WallTexture(const PipeNetwork& network, const WallTextureOptions& options)
@@ -162,10 +169,23 @@ void WallTexture::bakeTile() {
   const int rows = static_cast<int>(std::lround(options_.joint_spacing_m / options_.texel_m));
   const std::uint64_t seed = hashCombine(options_.seed, 0x74696c65ULL);
   const double g = options_.grain_repeat;
-  shared_noise_ = cv::Mat(rows, cols, CV_32F, cv::Scalar(0.48));
-  addGrainNoise(shared_noise_, seed, std::sqrt(g));
+  if (!options_.grain_images.empty()) {
+    quilt_ = std::make_shared<QuiltedGrain>(options_.grain_images);
+    // The quilted grain takes the procedural grain's mean and spread (noise,
+    // pits and scratches of one whole section), so that the joints, the seam
+    // and the marks stand out from it as they do from the procedural one.
+    cv::Mat procedural(rows, cols, CV_32F, cv::Scalar(0.48));
+    addGrainNoise(procedural, seed, 1.0);
+    addGrainFeatures(procedural, seed, 1.0);
+    cv::Scalar mean, spread;
+    cv::meanStdDev(procedural, mean, spread);
+    grain_mean_ = mean[0];
+    grain_spread_ = spread[0];
+  }
+  shared_noise_ = cv::Mat(rows, cols, CV_32F, cv::Scalar(grain_mean_));
+  addGrain(shared_noise_, seed, std::sqrt(g));
   tile_ = shared_noise_.clone();
-  addGrainFeatures(tile_, seed, g);
+  if (!quilt_) addGrainFeatures(tile_, seed, g);
   addJointAndSeam(tile_);
   cv::min(cv::max(tile_, 0.02), 0.98, tile_);
 }
@@ -177,14 +197,25 @@ cv::Mat WallTexture::sectionGrain(int edge, long section) const {
                                              static_cast<std::uint64_t>(section));
   const double g = options_.grain_repeat;
   cv::Mat tex = shared_noise_.clone();
-  addGrainNoise(tex, own_seed, std::sqrt(1 - g));
+  addGrain(tex, own_seed, std::sqrt(1 - g));
   // Shared features first (their draw sequence is the shared tile's), then
   // this section's own, so that grain_repeat = 1 is exactly the shared tile.
-  addGrainFeatures(tex, shared_seed, g);
-  addGrainFeatures(tex, own_seed, 1 - g);
+  // A quilted grain brings the pits and scratches of its photographs.
+  if (!quilt_) {
+    addGrainFeatures(tex, shared_seed, g);
+    addGrainFeatures(tex, own_seed, 1 - g);
+  }
   addJointAndSeam(tex);
   cv::min(cv::max(tex, 0.02), 0.98, tex);
   return tex;
+}
+
+void WallTexture::addGrain(cv::Mat& tex, std::uint64_t seed, double weight) const {
+  if (!quilt_) {
+    addGrainNoise(tex, seed, weight);
+  } else if (weight > 0) {
+    tex += quilt_->field(tex.rows, tex.cols, seed) * (weight * grain_spread_);
+  }
 }
 
 void WallTexture::addGrainFeatures(cv::Mat& tex, std::uint64_t seed, double fraction) const {

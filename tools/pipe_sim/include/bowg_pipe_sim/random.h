@@ -31,6 +31,18 @@ inline double toUnit(std::uint64_t bits) {
   return static_cast<double>(bits >> 11) * (1.0 / 9007199254740992.0);
 }
 
+/// Smooth 1-D noise: uniform values in [-1, 1] at knots `spacing` apart,
+/// cosine-interpolated; a function of x only (and the stream id), so that a
+/// pose or speed is a function of the place or time, not of drawing order.
+inline double smoothNoise(std::uint64_t seed, std::uint64_t stream, double x, double spacing) {
+  const double k = std::floor(x / spacing), f = x / spacing - k;
+  const auto knot = [&](double i) {
+    return 2 * toUnit(hashCombine(seed, stream, static_cast<std::uint64_t>(static_cast<long long>(i)))) - 1;
+  };
+  const double w = 0.5 - 0.5 * std::cos(M_PI * f);
+  return knot(k) * (1 - w) + knot(k + 1) * w;
+}
+
 class Random {
  public:
   explicit Random(std::uint64_t seed) : state_(splitMix64(seed)) {}

@@ -7,7 +7,9 @@
 //    pits, flecks, scratches) is one shared tile repeated in every section,
 //    the rest is drawn afresh for every section of every edge (seeded by
 //    seed, edge and section index). The shared part still fools a naive
-//    matcher; 1 gives the old pixel-identical tile, 0 no shared grain;
+//    matcher; 1 gives the old pixel-identical tile, 0 no shared grain.
+//    The grain is procedural, or quilted from photographs of real pipe
+//    walls (grain_images, quilted_grain.h) with the same mix;
 //  - a circumferential joint (groove + weld bead) every `joint_spacing`;
 //  - a longitudinal weld seam along every pipe at the same angle;
 //  - and, fixed to places, sparse unique marks (stains, cracks, deposits),
@@ -18,11 +20,13 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include <opencv2/core.hpp>
 
 #include "bowg_pipe_sim/pipe_network.h"
+#include "bowg_pipe_sim/quilted_grain.h"
 
 namespace bowg {
 namespace pipe_sim {
@@ -36,6 +40,10 @@ struct WallTextureOptions {
   /// Fraction of the grain shared by every section, in [0, 1]: 1 = every
   /// section's grain is a pixel-identical copy, 0 = every section has its own.
   double grain_repeat = 0.5;
+  /// Grey images (CV_8U, loadGrainImages) to quilt the grain from instead of
+  /// the procedural noise, pits and scratches (QuiltedGrain); empty = the
+  /// procedural grain. The shared / own mix of grain_repeat is the same.
+  std::vector<cv::Mat> grain_images;
   /// Margin baked beyond both ends of an edge (mitred elbows reach one
   /// radius past the node).
   double margin_m = 0.12;
@@ -75,6 +83,9 @@ class WallTexture {
 
  private:
   void bakeTile();
+  /// Adds weight * (the grain field seeded by `seed`): procedural noise, or
+  /// the quilted field scaled to the procedural grain's spread.
+  void addGrain(cv::Mat& tex, std::uint64_t seed, double weight) const;
   void addGrainFeatures(cv::Mat& tex, std::uint64_t seed, double fraction) const;
   void addJointAndSeam(cv::Mat& tex) const;
   void drawMark(cv::Mat& texture, const WallMark& mark, std::uint64_t seed) const;
@@ -82,7 +93,9 @@ class WallTexture {
   WallTextureOptions options_;
   double radius_ = 0.076;
   cv::Mat tile_;          // CV_32F albedo
-  cv::Mat shared_noise_;  // CV_32F, 0.48 + sqrt(grain_repeat) * shared noise
+  cv::Mat shared_noise_;  // CV_32F, grain mean + sqrt(grain_repeat) * shared field
+  std::shared_ptr<const QuiltedGrain> quilt_;  // null: procedural grain
+  double grain_mean_ = 0.48, grain_spread_ = 0;  // of the procedural grain
   std::vector<WallMark> marks_;
   std::vector<std::vector<cv::Mat>> levels_;
 };
