@@ -274,6 +274,68 @@ TEST(LoopDetector, TooFewInliersWithAnUnreachableInlierCount) {
   EXPECT_FALSE(contains(s, LoopStatus::kLoopDetected));
 }
 
+// A look-alike: the query's own descriptors at shuffled positions, so its
+// word score beats the true place while no epipolar geometry explains it.
+// Only the best-scored island verified (the paper), the query yields no loop;
+// with geometric re-ranking the true place wins.
+LoopResult queryBehindALookAlike(int candidates) {
+  const testing::Corridor c = testing::makeCorridor(70, 50, 5);
+  std::mt19937_64 rng(11);
+  LoopDetectorOptions o = defaultOptions();
+  o.word_groups.enabled = false;
+  o.temporal_score.enabled = false;
+  o.temporal_verification.k = 0;
+  o.islands.max_intra_island_gap = 0;  // every entry its own island
+  o.islands.recent_exclusion = 5;
+  o.islands.min_score = 0.0;
+  o.geometric.candidates = candidates;
+  // ~400 random correspondences give RANSAC ~15 chance inliers (one line
+  // constraint per point); the true place gives hundreds.
+  o.geometric.min_inliers = 40;
+  LoopDetector det(vocabulary(), o);
+  double stamp = 1.0;
+  for (int i = 0; i < 40; ++i) det.process(testing::observeCorridor(c, i, stamp++, rng, 2, 0.5));
+  KeyframeInput query = testing::observeCorridor(c, 10.2, 0.0, rng, 0, 0.5);
+  KeyframeInput look_alike = query;  // entry 40
+  // A random permutation: no homography (a reflection would be one, and
+  // points related by a homography fit many fundamental matrices).
+  std::shuffle(look_alike.features.keypoints.begin(), look_alike.features.keypoints.end(), rng);
+  look_alike.stamp = stamp++;
+  det.process(look_alike);
+  // Far away (entries 41..45, excluded as recent), then back near x = 10 so
+  // that the query's previous keyframe is a healthy normaliser.
+  for (int i = 0; i < 5; ++i) det.process(testing::observeCorridor(c, 50 + i, stamp++, rng, 2, 0.5));
+  det.process(testing::observeCorridor(c, 8.2, stamp++, rng, 2, 0.5));
+  det.process(testing::observeCorridor(c, 9.2, stamp++, rng, 2, 0.5));
+  query.stamp = stamp++;
+  const LoopResult r = det.process(query);
+  // The look-alike is the best-scored candidate in both cases.
+  const auto& all = det.lastCandidates();
+  const auto best = std::max_element(
+      all.begin(), all.end(),
+      [](const CandidateScores& a, const CandidateScores& b) { return a.eta < b.eta; });
+  EXPECT_EQ(best->entry, 40u);
+  return r;
+}
+
+TEST(LoopDetector, WithoutReRankingALookAlikeHidesTheTruePlace) {
+  const LoopResult r = queryBehindALookAlike(1);
+  EXPECT_EQ(r.match_id, 0u);
+  EXPECT_NE(r.status, LoopStatus::kLoopDetected);
+  EXPECT_EQ(r.island_first, 40u);
+}
+
+TEST(LoopDetector, GeometricReRankingFindsTheTruePlaceBehindALookAlike) {
+  const LoopResult r = queryBehindALookAlike(5);
+  ASSERT_EQ(r.status, LoopStatus::kLoopDetected) << toString(r.status);
+  // Forward keyframe i is at x = i; the query is at x = 10.2.
+  EXPECT_GE(r.match_id, 9u);
+  EXPECT_LE(r.match_id, 11u);
+  EXPECT_EQ(r.island_first, r.match_id);
+  EXPECT_GE(r.inliers, 40);
+  EXPECT_GT(r.timings.verification_ms, 0.0);
+}
+
 TEST(LoopDetector, WithoutGeometricVerificationTheIslandIsTheLoop) {
   LoopDetectorOptions o = defaultOptions();
   o.geometric.enabled = false;

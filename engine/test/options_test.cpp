@@ -265,6 +265,31 @@ TEST(Ablation, RowsSwitchOnOneModuleEach) {
   EXPECT_TRUE(m.distribution);
 }
 
+TEST(Ablation, PaperRowIsTheFullMethodWithoutTheExtensions) {
+  LoopDetectorOptions base;
+  base.word_groups.enabled = false;
+  base.similarity.normaliser_floor = 1.0;
+  base.temporal_score.alignment_window = 2;
+  base.temporal_score.max_missed_queries = 3;
+  base.temporal_verification.max_missed_queries = 1;
+  base.geometric.candidates = 10;
+  base.geometric.min_inliers = 25;
+  const LoopDetectorOptions o = LoopDetectorOptions::ablation("paper", base);
+  EXPECT_TRUE(o.word_groups.enabled);
+  EXPECT_TRUE(o.temporal_score.enabled);
+  EXPECT_TRUE(o.distribution.enabled);
+  EXPECT_EQ(o.similarity.normaliser_floor, 0.0);
+  EXPECT_EQ(o.temporal_score.alignment_window, 0);
+  EXPECT_EQ(o.temporal_score.max_missed_queries, 0);
+  EXPECT_EQ(o.temporal_verification.max_missed_queries, 0);
+  EXPECT_EQ(o.geometric.candidates, 1);
+  EXPECT_EQ(o.geometric.min_inliers, 25);  // thresholds are the preset's
+  // The module rows keep the extensions of the base.
+  const LoopDetectorOptions full = LoopDetectorOptions::ablation("distribution", base);
+  EXPECT_EQ(full.geometric.candidates, 10);
+  EXPECT_EQ(full.temporal_score.alignment_window, 2);
+}
+
 TEST(Ablation, KeepsTheOtherFields) {
   LoopDetectorOptions base;
   base.scoring = ScoringType::kL2;
