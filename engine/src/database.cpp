@@ -119,6 +119,9 @@ EntryId Database::add(DatabaseEntry e, bool bow_normalised) {
   if (!entries_.empty() && !(e.stamp > entries_.back().stamp)) {
     throw std::invalid_argument("Database::add: stamp does not increase");
   }
+  if (!std::isnan(e.odometer) && !(std::isfinite(e.odometer) && e.odometer >= 0.0)) {
+    throw std::invalid_argument("Database::add: odometer must be NaN (unknown) or finite >= 0");
+  }
   e.id = static_cast<EntryId>(entries_.size());
   if (!bow_normalised) normaliseBowVector(scoring_, &e.bow);
   // Only the TF part of eq. 1 is stored (in the group inverse index): the IDF

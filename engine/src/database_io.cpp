@@ -18,8 +18,9 @@ namespace {
 
 const char kMagic[8] = {'B', 'O', 'W', 'G', 'D', 'B', 0, 0};
 // Version 2 appends the normaliser history; version 3 then the two
-// missed-query counters (previous scores, temporal chain). Older files still
-// load, with an empty history and zero counters.
+// missed-query counters (previous scores, temporal chain) and the entries'
+// odometers (u32 count = entries, f64 each, NaN = unknown). Older files still
+// load, with an empty history, zero counters and unknown odometers.
 const std::uint32_t kVersion = 3;
 const std::uint32_t kOldestVersion = 1;
 // magic + version + fingerprint + payload size | ... | checksum
@@ -198,6 +199,8 @@ void saveDetectorFile(const std::string& path, const Database& database,
   }
   w.i32(state.missed_queries);
   w.i32(state.consistency.missedQueries());
+  w.u32(static_cast<std::uint32_t>(database.size()));
+  for (const DatabaseEntry& e : database.entries()) w.f64(e.odometer);
 
   std::string& bytes = w.str();
   const std::uint64_t payload = bytes.size() - payload_start;
@@ -250,6 +253,10 @@ std::unique_ptr<Database> loadDetectorFile(const std::string& path,
   // Vectors stored for the same scoring type are used bit for bit.
   const bool bow_normalised = static_cast<ScoringType>(stored_scoring) == scoring;
   const std::size_t n = p.count(kEntryFixedBytes, "entries");
+  // Entries join the database once the state after them (their odometers,
+  // version 3) has been read.
+  std::vector<DatabaseEntry> entries;
+  entries.reserve(n);
   try {
     for (std::size_t i = 0; i < n; ++i) {
       DatabaseEntry e;
@@ -281,8 +288,7 @@ std::unique_ptr<Database> loadDetectorFile(const std::string& path,
       }
       e.bow = p.pairs("BoW vector");
       e.raw_groups = p.pairs("word groups");
-      db->addToGroupTable(e.raw_groups);
-      db->add(std::move(e), bow_normalised);
+      entries.push_back(std::move(e));
     }
     state->previous_etas = p.pairs("previous scores");
     if (!state->previous_etas.empty() && state->previous_etas.back().first >= n) {
@@ -320,6 +326,21 @@ std::unique_ptr<Database> loadDetectorFile(const std::string& path,
         p.fail("missed queries counted without previous scores");
       }
       if (chain_missed > 0 && chain == 0) p.fail("missed queries counted without a temporal chain");
+      if (p.count(8, "odometers") != n) p.fail("odometer count differs from the entry count");
+      double last = -1.0;
+      for (std::size_t i = 0; i < n; ++i) {
+        const double o = p.f64("odometer");
+        entries[i].odometer = o;
+        if (std::isnan(o)) continue;
+        if (!std::isfinite(o) || o < 0.0 || o < last) {
+          p.fail("entry " + std::to_string(i) + " has a negative, non-finite or decreasing odometer");
+        }
+        last = o;
+      }
+    }
+    for (DatabaseEntry& e : entries) {
+      db->addToGroupTable(e.raw_groups);
+      db->add(std::move(e), bow_normalised);
     }
     state->consistency.restore(last, chain, chain_missed);
   } catch (const std::invalid_argument& e) {

@@ -67,6 +67,36 @@ void recordUnscoredQuery(const LoopDetectorOptions& options, DetectorState* stat
   state->consistency.miss(options.temporal_verification);
 }
 
+// The largest odometer in the database (-inf when none is known).
+double lastOdometer(const Database& database) {
+  const auto& entries = database.entries();
+  for (auto it = entries.rbegin(); it != entries.rend(); ++it) {
+    if (!std::isnan(it->odometer)) return it->odometer;
+  }
+  return -std::numeric_limits<double>::infinity();
+}
+
+// Entries with id < the returned limit may be candidates. In keyframes: all
+// but the `recent_exclusion` newest. In metres (the query has an odometer and
+// recent_exclusion_m > 0): the entries before the newest one driven at least
+// recent_exclusion_m before the query; entries without an odometer there are
+// treated as recent. Walks back from the newest entry: the window is short.
+EntryId candidateLimit(const Database& database, const IslandOptions& options, double odometer) {
+  const std::size_t n = database.size();
+  if (std::isnan(odometer) || !(options.recent_exclusion_m > 0.0)) {
+    const std::size_t excluded = static_cast<std::size_t>(options.recent_exclusion);
+    return static_cast<EntryId>(n > excluded ? n - excluded : 0);
+  }
+  const auto& entries = database.entries();
+  std::size_t limit = n;
+  while (limit > 0) {
+    const double o = entries[limit - 1].odometer;
+    if (!std::isnan(o) && odometer - o >= options.recent_exclusion_m) break;
+    --limit;
+  }
+  return static_cast<EntryId>(limit);
+}
+
 struct QueryContext {
   const Vocabulary& vocabulary;
   const LoopDetectorOptions& options;
@@ -87,7 +117,6 @@ void runQuery(const QueryContext& ctx, const DatabaseQuery& q, const DatabaseEnt
   const Vocabulary* vocabulary_ = &ctx.vocabulary;
   const auto t_query = Clock::now();
   const std::size_t n = database_->size();
-  const std::size_t excluded = static_cast<std::size_t>(options_.islands.recent_exclusion);
   auto finish = [&](LoopStatus status) {
     r->status = status;
     recordUnscoredQuery(options_, state_);
@@ -109,12 +138,12 @@ void runQuery(const QueryContext& ctx, const DatabaseQuery& q, const DatabaseEnt
   r->word_normaliser = norm.s_w;
   r->group_normaliser = with_groups ? norm.s_g : 0.0;
   r->distribution_normaliser = with_distribution ? norm.s_d : 0.0;
-  if (n <= excluded) {
+  const EntryId limit = candidateLimit(*database_, options_.islands, query_entry.odometer);
+  if (limit == 0) {
     finish(LoopStatus::kDatabaseTooSmall);
     r->timings.query_ms = msBetween(t_query, Clock::now());
     return;
   }
-  const EntryId limit = static_cast<EntryId>(n - excluded);
   // A normaliser of 0 (I_{t-1} shares no word / group / occupied fan bin with
   // I_t) cannot divide eqs. 2 and 4 even when the minimum is set to 0 (a valid
   // value): such a keyframe is always low_normaliser, never inf/NaN scores.
@@ -339,6 +368,18 @@ LoopResult LoopDetector::process(const KeyframeInput& keyframe) {
   if (!std::isfinite(keyframe.stamp)) {
     throw std::invalid_argument("LoopDetector::process: keyframe.stamp is not finite");
   }
+  if (!std::isnan(keyframe.odometer)) {
+    if (!std::isfinite(keyframe.odometer) || keyframe.odometer < 0.0) {
+      throw std::invalid_argument("LoopDetector::process: keyframe.odometer must be NaN "
+                                  "(unknown) or finite >= 0");
+    }
+    const double last = lastOdometer(*database_);
+    if (keyframe.odometer < last) {
+      throw std::invalid_argument("LoopDetector::process: keyframe.odometer " +
+                                  std::to_string(keyframe.odometer) + " decreases (last " +
+                                  std::to_string(last) + ")");
+    }
+  }
   if (!database_->empty() && !(keyframe.stamp > database_->entries().back().stamp)) {
     throw std::invalid_argument("LoopDetector::process: keyframe.stamp " +
                                 std::to_string(keyframe.stamp) + " does not increase (last stamp " +
@@ -355,6 +396,7 @@ LoopResult LoopDetector::process(const KeyframeInput& keyframe) {
   entry.keypoints = f.keypoints;
   entry.descriptors = f.descriptors;
   entry.intrinsics = keyframe.intrinsics;
+  entry.odometer = keyframe.odometer;
   fanCentre(keyframe, &entry.centre_x, &entry.centre_y);
 
   if (f.empty()) {

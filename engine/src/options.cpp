@@ -89,6 +89,7 @@ void TemporalScoreOptions::validate() const {
 void IslandOptions::validate() const {
   requireFiniteAtLeast("islands.min_score", min_score, 0.0);
   requireIntAtLeast("islands.recent_exclusion", recent_exclusion, 0);
+  requireFiniteAtLeast("islands.recent_exclusion_m", recent_exclusion_m, 0.0);
   requireIntAtLeast("islands.max_intra_island_gap", max_intra_island_gap, 0);
   requireIntAtLeast("islands.min_island_size", min_island_size, 1);
 }
@@ -136,6 +137,24 @@ LoopDetectorOptions LoopDetectorOptions::ablation(const std::string& row,
   // Rows of the paper's ablation study (Sec. IV): each switches on one more
   // module on top of the previous row; every other field is kept from base.
   LoopDetectorOptions o = base;
+  if (row == "configured") return o;  // the configuration as it is
+  if (row == "paper" || row == "paper_bow") {
+    // The paper's method as written (every module on) or the same pipeline
+    // with pure bag-of-words scores (DBoW2 + DLoopDetector's islands and
+    // checks): every extension of this implementation off (normaliser floor,
+    // aligned temporal score, missed-query tolerance, geometric re-ranking;
+    // docs/method.md), the configuration's thresholds kept.
+    const bool all = row == "paper";
+    o.word_groups.enabled = all;
+    o.temporal_score.enabled = all;
+    o.distribution.enabled = all;
+    o.similarity.normaliser_floor = 0.0;
+    o.temporal_score.alignment_window = 0;
+    o.temporal_score.max_missed_queries = 0;
+    o.temporal_verification.max_missed_queries = 0;
+    o.geometric.candidates = 1;
+    return o;
+  }
   if (row == "bow") {
     o.word_groups.enabled = false;
     o.temporal_score.enabled = false;
@@ -152,22 +171,10 @@ LoopDetectorOptions LoopDetectorOptions::ablation(const std::string& row,
     o.word_groups.enabled = true;
     o.temporal_score.enabled = true;
     o.distribution.enabled = true;
-  } else if (row == "paper") {
-    // The paper's full method as written: every module on, every extension
-    // of this implementation off (normaliser floor, aligned temporal score,
-    // missed-query tolerance, geometric re-ranking; docs/method.md).
-    o.word_groups.enabled = true;
-    o.temporal_score.enabled = true;
-    o.distribution.enabled = true;
-    o.similarity.normaliser_floor = 0.0;
-    o.temporal_score.alignment_window = 0;
-    o.temporal_score.max_missed_queries = 0;
-    o.temporal_verification.max_missed_queries = 0;
-    o.geometric.candidates = 1;
   } else {
     throw InvalidParameter("ablation row '" + row +
                            "' is unknown; valid rows: bow, word_groups, temporal, distribution, "
-                           "paper");
+                           "paper_bow, paper, configured");
   }
   return o;
 }

@@ -161,6 +161,10 @@ std::vector<Row> makeRows() {
   rows.push_back(intRow("recent_exclusion", det, "islands.recent_exclusion", 0, 1000000, false,
                         BOWG_FIELD(int, detector.islands.recent_exclusion),
                         "The most recent keyframes are never loop candidates"));
+  rows.push_back(doubleRow("recent_exclusion_m", det, "islands.recent_exclusion_m", 0.0, 1e6,
+                           false, BOWG_FIELD(double, detector.islands.recent_exclusion_m),
+                           "The same window in metres driven, used instead when odometry gives "
+                           "the keyframes an odometer (0 = keyframes always)"));
   rows.push_back(intRow("max_intra_island_gap", det, "islands.max_intra_island_gap", 0, 10000,
                         false, BOWG_FIELD(int, detector.islands.max_intra_island_gap),
                         "Candidates whose ids differ by at most this form one island"));

@@ -3,6 +3,7 @@
 // missing file, and the strong guarantee (a failed load keeps the old state).
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <memory>
@@ -226,6 +227,43 @@ TEST(DatabaseIo, NormaliserHistoryRoundTrips) {
 // loads: the same file without the history, its version, payload size and
 // checksum rewritten as version 1 wrote them. Without the floor it behaves
 // exactly like the version-2 file.
+TEST(DatabaseIo, OdometersAndMissedQueryCountersRoundTrip) {
+  const auto voc = vocabulary();
+  auto kfs = keyframes();
+  // Odometer: metres driven (forward 0..39, then back), unknown for the
+  // first five keyframes (odometry that started late).
+  double driven = 0.0;
+  for (std::size_t i = 0; i < kfs.size(); ++i) {
+    if (i > 0) driven += i < 40 ? 1.0 : (i == 40 ? 0.5 : 1.0);
+    if (i >= 5) kfs[i].odometer = driven;
+  }
+  LoopDetectorOptions o = options();
+  o.islands.recent_exclusion_m = 8.0;
+  o.temporal_score.max_missed_queries = 2;
+  o.temporal_verification.max_missed_queries = 2;
+  LoopDetector a(voc, o);
+  for (int i = 0; i < 50; ++i) a.process(kfs[i]);
+  const std::string path = outPath("odometer.bowgdb");
+  a.save(path);
+  LoopDetector b(voc, o);
+  b.load(path);
+  ASSERT_EQ(b.database().size(), 50u);
+  for (std::size_t i = 0; i < 50; ++i) {
+    const double x = a.database().entry(static_cast<EntryId>(i)).odometer;
+    const double y = b.database().entry(static_cast<EntryId>(i)).odometer;
+    if (i < 5) {
+      EXPECT_TRUE(std::isnan(y)) << i;
+    } else {
+      EXPECT_EQ(x, y) << i;
+    }
+  }
+  for (std::size_t i = 50; i < kfs.size(); ++i) {
+    expectSameResult(a.process(kfs[i]), b.process(kfs[i]));
+    expectSameCandidates(a, b);
+  }
+  std::remove(path.c_str());
+}
+
 TEST(DatabaseIo, VersionOneFilesLoadWithAnEmptyHistory) {
   const auto voc = vocabulary();
   const auto kfs = keyframes();
@@ -235,9 +273,10 @@ TEST(DatabaseIo, VersionOneFilesLoadWithAnEmptyHistory) {
   a.save(v2);
   std::string bytes = readBytes(v2);
   // The history closes the version-2 payload: u32 count + count x 3 f64;
-  // version 3 adds two i32 missed-query counters, then the u64 checksum.
-  // 44 keyframes had a previous one; the window is 50.
-  const std::size_t history = 4 + 44 * 24 + 2 * 4;
+  // version 3 adds two i32 missed-query counters and the odometers (u32
+  // count + 45 f64), then the u64 checksum. 44 keyframes had a previous one;
+  // the window is 50.
+  const std::size_t history = 4 + 44 * 24 + 2 * 4 + 4 + 45 * 8;
   ASSERT_GT(bytes.size(), history + 8 + 28);
   bytes.resize(bytes.size() - 8 - history);
   auto putLe = [&bytes](std::size_t at, std::uint64_t v, int n) {

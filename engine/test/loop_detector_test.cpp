@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <memory>
 #include <random>
 #include <set>
@@ -334,6 +335,70 @@ TEST(LoopDetector, GeometricReRankingFindsTheTruePlaceBehindALookAlike) {
   EXPECT_EQ(r.island_first, r.match_id);
   EXPECT_GE(r.inliers, 40);
   EXPECT_GT(r.timings.verification_ms, 0.0);
+}
+
+// Keyframes every 0.5 m forward (x = 0.5 i), then back over the same wall:
+// keyframe ids and metres differ by a factor of 2.
+std::vector<KeyframeInput> halfMetreRun(bool with_odometer) {
+  const testing::Corridor c = testing::makeCorridor(45, 50, 9);
+  std::mt19937_64 rng(21);
+  std::vector<KeyframeInput> out;
+  double driven = 0.0, x = 0.0;
+  for (int i = 0; i < 120; ++i) {
+    const double next = i < 70 ? 0.5 * i : 34.75 - 0.5 * (i - 70);
+    if (i > 0) driven += std::fabs(next - x);
+    x = next;
+    out.push_back(testing::observeCorridor(c, x, 1.0 + i, rng, 2, 0.5));
+    if (with_odometer) out.back().odometer = driven;
+  }
+  return out;
+}
+
+TEST(LoopDetector, RecentExclusionInMetresFollowsTheOdometer) {
+  LoopDetectorOptions o = defaultOptions();
+  o.islands.recent_exclusion = 100000;  // in keyframes: nothing is ever a candidate
+  o.islands.recent_exclusion_m = 5.0;
+  LoopDetector with(vocabulary(), o);
+  const auto kfs = halfMetreRun(true);
+  int loops = 0;
+  for (std::size_t t = 0; t < kfs.size(); ++t) {
+    const LoopResult r = with.process(kfs[t]);
+    // Entries driven less than 5 m before the query (10 keyframes at
+    // 0.5 m) are never candidates: the first 10 queries have none at all.
+    if (t < 10) {
+      EXPECT_EQ(r.status, LoopStatus::kDatabaseTooSmall) << t;
+    }
+    for (const CandidateScores& c : with.lastCandidates()) {
+      EXPECT_GE(kfs[t].odometer - kfs[c.entry].odometer, 5.0) << "query " << t << " entry " << c.entry;
+    }
+    if (r.status == LoopStatus::kLoopDetected) ++loops;
+  }
+  EXPECT_GT(loops, 10) << "the return pass revisits 35 m of wall";
+  // Without odometers the window is in keyframes again: no candidate ever.
+  LoopDetector without(vocabulary(), o);
+  for (const KeyframeInput& kf : halfMetreRun(false)) {
+    EXPECT_EQ(without.process(kf).status, LoopStatus::kDatabaseTooSmall);
+  }
+}
+
+TEST(LoopDetector, BadOdometersAreRefused) {
+  LoopDetector det(vocabulary(), defaultOptions());
+  auto kfs = halfMetreRun(true);
+  det.process(kfs[0]);
+  det.process(kfs[1]);
+  KeyframeInput back = kfs[2];
+  back.odometer = 0.1;  // below the last 0.5
+  EXPECT_THROW(det.process(back), std::invalid_argument);
+  back.odometer = -1.0;
+  EXPECT_THROW(det.process(back), std::invalid_argument);
+  back.odometer = std::numeric_limits<double>::infinity();
+  EXPECT_THROW(det.process(back), std::invalid_argument);
+  EXPECT_EQ(det.database().size(), 2u);
+  back.odometer = std::numeric_limits<double>::quiet_NaN();  // unknown: fine
+  EXPECT_NO_THROW(det.process(back));
+  LoopDetectorOptions o = defaultOptions();
+  o.islands.recent_exclusion_m = -1.0;
+  EXPECT_THROW(LoopDetector(vocabulary(), o), InvalidParameter);
 }
 
 TEST(LoopDetector, WithoutGeometricVerificationTheIslandIsTheLoop) {

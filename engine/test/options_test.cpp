@@ -284,6 +284,18 @@ TEST(Ablation, PaperRowIsTheFullMethodWithoutTheExtensions) {
   EXPECT_EQ(o.temporal_verification.max_missed_queries, 0);
   EXPECT_EQ(o.geometric.candidates, 1);
   EXPECT_EQ(o.geometric.min_inliers, 25);  // thresholds are the preset's
+  const LoopDetectorOptions pb = LoopDetectorOptions::ablation("paper_bow", base);
+  EXPECT_FALSE(pb.word_groups.enabled);
+  EXPECT_FALSE(pb.temporal_score.enabled);
+  EXPECT_FALSE(pb.distribution.enabled);
+  EXPECT_EQ(pb.similarity.normaliser_floor, 0.0);
+  EXPECT_EQ(pb.temporal_score.alignment_window, 0);
+  EXPECT_EQ(pb.geometric.candidates, 1);
+  EXPECT_EQ(pb.geometric.min_inliers, 25);
+  const LoopDetectorOptions as_is = LoopDetectorOptions::ablation("configured", base);
+  EXPECT_FALSE(as_is.word_groups.enabled);
+  EXPECT_EQ(as_is.geometric.candidates, 10);
+  EXPECT_EQ(as_is.similarity.normaliser_floor, 1.0);
   // The module rows keep the extensions of the base.
   const LoopDetectorOptions full = LoopDetectorOptions::ablation("distribution", base);
   EXPECT_EQ(full.geometric.candidates, 10);

@@ -36,6 +36,7 @@
 #include "bowg_evaluation/detector_run.h"
 #include "bowg_evaluation/ground_truth.h"
 #include "bowg_evaluation/metrics.h"
+#include "bowg_evaluation/odometry_file.h"
 #include "bowg_evaluation/parallel_runs.h"
 #include "bowg_evaluation/pr_report.h"
 
@@ -53,6 +54,9 @@ const char* kUsage =
     "  --images DIR               image folder (png/jpg/jpeg/pgm/bmp, sorted by file name)\n"
     "  --rate HZ                  stamps of folder images: frame n at n / HZ s [1]\n"
     "  --max-frames N             use the first N images only [all]\n"
+    "  --odometry FILE            metres driven per frame (CSV with 'frame' and 'odometer' or\n"
+    "                             'distance' columns, e.g. the generator's poses.csv): the\n"
+    "                             recent-exclusion window in metres (recent_exclusion_m)\n"
     "Engine:\n"
     "  --vocabulary FILE          any format bowg::loadVocabulary reads (required)\n"
     "  --config FILE              parameter file, e.g. config/pipe.yaml [engine defaults]\n"
@@ -61,8 +65,10 @@ const char* kUsage =
     "  --output DIR               where CSVs, the PR plot and summary.txt go [bowg_evaluation]\n"
     "  --ablation                 run bow, word_groups, temporal, distribution side by side\n"
     "  --rows A,B,...             ablation rows to run instead (implies --ablation): bow,\n"
-    "                             word_groups, temporal, distribution (full method as\n"
-    "                             configured), paper (the paper's method as written)\n"
+    "                             word_groups, temporal, distribution (each with the\n"
+    "                             configuration's extensions), paper (the paper's method as\n"
+    "                             written), paper_bow (its pipeline with pure bag of words:\n"
+    "                             DBoW2 + DLoopDetector), configured (the configuration)\n"
     "  --sweep rerun|score        PR curve: re-run the detector per threshold (exact, slower)\n"
     "                             or sweep the final score of one run at the lowest threshold\n"
     "                             [rerun]\n"
@@ -81,6 +87,7 @@ const char* kUsage =
 struct Args {
   std::string bag, image_topic = "/camera/image_raw", info_topic = "/camera/camera_info";
   std::string images, vocabulary, config, gt, output = "bowg_evaluation", sweep = "rerun";
+  std::string odometry;
   std::string dump_candidates;
   double rate = 1.0;
   long max_frames = 0;
@@ -163,6 +170,7 @@ Args parseArgs(int argc, char** argv) {
     else if (flag == "--sweep") a.sweep = v;
     else if (flag == "--thresholds") a.thresholds = parseThresholds(v);
     else if (flag == "--dump-candidates") a.dump_candidates = v;
+    else if (flag == "--odometry") a.odometry = v;
     else if (flag == "--rows") {
       a.rows = splitList(v);
       if (a.rows.empty()) throw std::invalid_argument("--rows needs at least one row");
@@ -352,6 +360,7 @@ int dumpCandidates(const Args& a, std::shared_ptr<const Vocabulary> vocabulary,
     input.stamp = frames[i].stamp;
     input.features = frames[i].features;
     input.intrinsics = frames[i].intrinsics;
+    input.odometer = frames[i].odometer;
     const LoopResult r = detector.process(input);
     bar(i + 1, frames.size());
     feature_counts.push_back(static_cast<double>(frames[i].features.size()));
@@ -457,7 +466,15 @@ int run(int argc, char** argv) {
     throw IoError("cannot create the output folder " + a.output);
   }
 
-  const std::vector<FrameInput> frames = loadFrames(a, extractor);
+  std::vector<FrameInput> frames = loadFrames(a, extractor);
+  if (!a.odometry.empty()) {
+    const std::vector<double> odometer = readOdometry(a.odometry);
+    if (odometer.size() < frames.size()) {
+      throw FormatError(a.odometry + ": odometers for " + std::to_string(odometer.size()) +
+                        " frames, the input has " + std::to_string(frames.size()));
+    }
+    for (std::size_t i = 0; i < frames.size(); ++i) frames[i].odometer = odometer[i];
+  }
   if (has_gt && !gt.loops.empty() && gt.loops.rbegin()->first >= static_cast<int>(frames.size()) &&
       a.max_frames == 0) {
     std::fprintf(stderr, "warning: the ground truth names frame %d but the input has %zu frames\n",

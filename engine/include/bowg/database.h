@@ -23,6 +23,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <string>
 #include <utility>
@@ -55,6 +56,9 @@ struct DatabaseEntry {
   GroupVector raw_groups;             ///< raw w_{g,t}^(i) (before eq. 1)
   double centre_x = 0, centre_y = 0;  ///< centre of the distribution fan
   CameraIntrinsics intrinsics;
+  /// Metres driven since the first keyframe (KeyframeInput::odometer); NaN
+  /// when unknown.
+  double odometer = std::numeric_limits<double>::quiet_NaN();
   // Derived (rebuilt on option changes, never saved):
   DirectIndex direct;  ///< at Database::directLevel()
   // The distribution vector for the current m lives in the database's

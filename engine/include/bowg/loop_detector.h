@@ -7,6 +7,7 @@
 // between keyframes (the nodelet serialises both with a mutex).
 #pragma once
 
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -67,6 +68,11 @@ struct KeyframeInput {
   /// Optional: enables the relative pose from the essential matrix and sets
   /// the centre of the distribution fan (else the image centre).
   CameraIntrinsics intrinsics;
+  /// Optional: metres driven since the first keyframe (path length of the
+  /// odometry, whatever its drift: only differences of a few metres are
+  /// used), never decreasing; NaN = unknown. With it the recent-exclusion
+  /// window is measured in metres (IslandOptions::recent_exclusion_m).
+  double odometer = std::numeric_limits<double>::quiet_NaN();
 };
 
 struct LoopResult {

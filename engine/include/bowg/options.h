@@ -86,6 +86,13 @@ struct IslandOptions {
   /// The most recent keyframes are never candidates (the robot just saw
   /// them). >= 0.
   int recent_exclusion = 20;
+  /// The same window in metres driven, used instead of recent_exclusion when
+  /// the query has an odometer (KeyframeInput::odometer): entries driven less
+  /// than this before the query, or without an odometer, are never
+  /// candidates. A window in metres holds whatever the keyframe spacing; in
+  /// keyframes it is a distance only for one spacing. 0 = keyframes always.
+  /// >= 0.
+  double recent_exclusion_m = 0.0;
   /// Entries whose ids differ by at most this belong to one island. >= 0.
   int max_intra_island_gap = 3;
   /// Islands with fewer members are ignored. >= 1.
@@ -157,7 +164,9 @@ struct LoopDetectorOptions {
   /// "temporal" (+ temporal score), "distribution" (+ distribution score).
   /// Each row switches on one more module on top of the previous one and
   /// keeps every other field of base. "paper": the full method as the paper
-  /// writes it, with this implementation's extensions switched off.
+  /// writes it, with this implementation's extensions switched off;
+  /// "paper_bow": the same pipeline with pure bag-of-words scores (DBoW2 with
+  /// DLoopDetector's checks); "configured": base unchanged.
   static LoopDetectorOptions ablation(const std::string& row,
                                       const LoopDetectorOptions& base);
 };

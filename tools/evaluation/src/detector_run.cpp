@@ -23,6 +23,7 @@ DetectorRun runDetector(std::shared_ptr<const Vocabulary> vocabulary,
     input.stamp = frames[i].stamp;
     input.features = frames[i].features;
     input.intrinsics = frames[i].intrinsics;
+    input.odometer = frames[i].odometer;
     KeyframeRecord k;
     k.frame = static_cast<int>(i);
     k.stamp = frames[i].stamp;

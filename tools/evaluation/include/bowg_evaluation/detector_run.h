@@ -6,6 +6,7 @@
 #pragma once
 
 #include <functional>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -27,6 +28,8 @@ struct FrameInput {
   ImageFeatures features;
   CameraIntrinsics intrinsics;
   double feature_ms = 0;  ///< time the feature extraction took
+  /// Metres driven (odometry_file.h); NaN = unknown.
+  double odometer = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// The per-keyframe outcome (LoopResult without the correspondences).

@@ -1,0 +1,27 @@
+// Odometers per frame for the offline evaluation (`bowg_evaluate
+// --odometry FILE`): with them the detector measures its recent-exclusion
+// window in metres driven (IslandOptions::recent_exclusion_m), as the nodelet
+// does from its `odom` topic.
+//
+// Format: CSV with a header line naming the columns (the generator's
+// poses.csv is one): `frame` (0-based index, rows in increasing order) and
+// `odometer` (metres driven, never decreasing), or `distance` where no
+// `odometer` column exists. Other columns are ignored.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace bowg {
+namespace eval {
+
+/// odometer[frame]; frames the file does not list are NaN (unknown).
+/// Throws bowg::IoError when the file cannot be read, bowg::FormatError
+/// ("<path>:<line>: <why>") on a missing column, a non-numeric, negative or
+/// decreasing odometer, or frames out of order.
+std::vector<double> readOdometry(const std::string& path);
+/// Same, from text (`source` names it in messages).
+std::vector<double> parseOdometry(const std::string& text, const std::string& source);
+
+}  // namespace eval
+}  // namespace bowg

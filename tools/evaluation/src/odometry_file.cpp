@@ -1,0 +1,93 @@
+#include "bowg_evaluation/odometry_file.h"
+
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <limits>
+#include <sstream>
+
+#include "bowg/errors.h"
+
+namespace bowg {
+namespace eval {
+namespace {
+
+std::vector<std::string> splitCsv(const std::string& line) {
+  std::vector<std::string> cells;
+  std::istringstream in(line);
+  std::string cell;
+  while (std::getline(in, cell, ',')) {
+    const auto b = cell.find_first_not_of(" \t\r");
+    const auto e = cell.find_last_not_of(" \t\r");
+    cells.push_back(b == std::string::npos ? std::string() : cell.substr(b, e - b + 1));
+  }
+  return cells;
+}
+
+bool toDouble(const std::string& s, double* v) {
+  if (s.empty()) return false;
+  char* end = nullptr;
+  *v = std::strtod(s.c_str(), &end);
+  return *end == '\0';
+}
+
+}  // namespace
+
+std::vector<double> parseOdometry(const std::string& text, const std::string& source) {
+  std::istringstream in(text);
+  std::string line;
+  int line_no = 0;
+  const auto fail = [&](const std::string& why) {
+    throw FormatError(source + ":" + std::to_string(line_no) + ": " + why);
+  };
+  // Header.
+  while (std::getline(in, line)) {
+    ++line_no;
+    if (line.find_first_not_of(" \t\r") != std::string::npos) break;
+  }
+  const std::vector<std::string> header = splitCsv(line);
+  int frame_col = -1, odo_col = -1, distance_col = -1;
+  for (std::size_t i = 0; i < header.size(); ++i) {
+    if (header[i] == "frame") frame_col = static_cast<int>(i);
+    if (header[i] == "odometer") odo_col = static_cast<int>(i);
+    if (header[i] == "distance") distance_col = static_cast<int>(i);
+  }
+  if (odo_col < 0) odo_col = distance_col;
+  if (frame_col < 0 || odo_col < 0) {
+    fail("the header needs a 'frame' and an 'odometer' (or 'distance') column");
+  }
+  std::vector<double> odometer;
+  double last = -1.0;
+  while (std::getline(in, line)) {
+    ++line_no;
+    if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+    const std::vector<std::string> cells = splitCsv(line);
+    double frame = 0, value = 0;
+    if (static_cast<int>(cells.size()) <= std::max(frame_col, odo_col)) fail("too few columns");
+    if (!toDouble(cells[frame_col], &frame) || frame < 0 || frame != std::floor(frame) ||
+        frame > 1e9) {
+      fail("frame '" + cells[frame_col] + "' is not a non-negative integer");
+    }
+    if (!toDouble(cells[odo_col], &value) || !std::isfinite(value) || value < 0) {
+      fail("odometer '" + cells[odo_col] + "' is not a finite number >= 0");
+    }
+    if (value < last) fail("the odometer decreases (" + cells[odo_col] + " after " + std::to_string(last) + ")");
+    const std::size_t f = static_cast<std::size_t>(frame);
+    if (f < odometer.size()) fail("frame " + cells[frame_col] + " is not after the previous row's");
+    odometer.resize(f + 1, std::numeric_limits<double>::quiet_NaN());
+    odometer[f] = value;
+    last = value;
+  }
+  return odometer;
+}
+
+std::vector<double> readOdometry(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw IoError("cannot read the odometry file " + path);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return parseOdometry(text.str(), path);
+}
+
+}  // namespace eval
+}  // namespace bowg

@@ -1,0 +1,65 @@
+#include "bowg_evaluation/odometry_file.h"
+
+#include <cmath>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "bowg/errors.h"
+
+namespace bowg {
+namespace eval {
+namespace {
+
+std::string errorOf(const std::string& text) {
+  try {
+    parseOdometry(text, "poses.csv");
+  } catch (const FormatError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(OdometryFile, ReadsTheOdometerColumnOfTheGeneratorsPoses) {
+  const std::string text =
+      "frame,stamp,x,distance,odometer\n"
+      "0,1.0,0.0,0.00,0.00\n"
+      "1,1.5,0.1,0.10,0.10\n"
+      "2,2.0,0.05,0.05,0.15\n";  // backing up: distance falls, odometer grows
+  const std::vector<double> o = parseOdometry(text, "poses.csv");
+  ASSERT_EQ(o.size(), 3u);
+  EXPECT_DOUBLE_EQ(o[0], 0.0);
+  EXPECT_DOUBLE_EQ(o[1], 0.1);
+  EXPECT_DOUBLE_EQ(o[2], 0.15);
+}
+
+TEST(OdometryFile, FallsBackToDistanceAndLeavesMissingFramesUnknown) {
+  const std::vector<double> o = parseOdometry("frame, distance\n1, 2.5\n\n4, 3.0\n", "p");
+  ASSERT_EQ(o.size(), 5u);
+  EXPECT_TRUE(std::isnan(o[0]));
+  EXPECT_DOUBLE_EQ(o[1], 2.5);
+  EXPECT_TRUE(std::isnan(o[2]));
+  EXPECT_TRUE(std::isnan(o[3]));
+  EXPECT_DOUBLE_EQ(o[4], 3.0);
+}
+
+TEST(OdometryFile, BadFilesNameTheFileAndLine) {
+  EXPECT_EQ(errorOf("frame,x\n0,1\n"),
+            "poses.csv:1: the header needs a 'frame' and an 'odometer' (or 'distance') column");
+  EXPECT_EQ(errorOf("frame,odometer\n0,1\n1,0.5\n"),
+            "poses.csv:3: the odometer decreases (0.5 after 1.000000)");
+  EXPECT_EQ(errorOf("frame,odometer\n0,-1\n"),
+            "poses.csv:2: odometer '-1' is not a finite number >= 0");
+  EXPECT_EQ(errorOf("frame,odometer\n0,nan\n"),
+            "poses.csv:2: odometer 'nan' is not a finite number >= 0");
+  EXPECT_EQ(errorOf("frame,odometer\n1,1\n1,2\n"),
+            "poses.csv:3: frame 1 is not after the previous row's");
+  EXPECT_EQ(errorOf("frame,odometer\n0.5,1\n"),
+            "poses.csv:2: frame '0.5' is not a non-negative integer");
+  EXPECT_EQ(errorOf("frame,odometer\n0\n"), "poses.csv:2: too few columns");
+  EXPECT_THROW(readOdometry("/nonexistent/poses.csv"), IoError);
+}
+
+}  // namespace
+}  // namespace eval
+}  // namespace bowg
