@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -52,6 +53,7 @@ Database::Database(std::shared_ptr<const Vocabulary> vocabulary, ScoringType sco
 
 void Database::clear() {
   entries_.clear();
+  odometers_.clear();
   distributions_.clear();
   group_table_.clear();
   for (auto& l : word_index_) l.clear();
@@ -131,6 +133,9 @@ EntryId Database::add(DatabaseEntry e, bool bow_normalised) {
   const std::vector<double> dist =
       distributionVector(e.keypoints, e.centre_x, e.centre_y, fan_bins_);
   distributions_.insert(distributions_.end(), dist.begin(), dist.end());
+  odometers_.push_back(!std::isnan(e.odometer) ? e.odometer
+                       : odometers_.empty()     ? -std::numeric_limits<double>::infinity()
+                                                : odometers_.back());
   entries_.push_back(std::move(e));
   const DatabaseEntry& stored = entries_.back();
   indexWords(stored);

@@ -3,6 +3,7 @@
 // anything is allocated, so a corrupt count cannot trigger a huge allocation;
 // the checksum is verified before any content is interpreted.
 #include <cmath>
+#include <limits>
 #include <cstring>
 #include <fstream>
 #include <sstream>
@@ -201,6 +202,8 @@ void saveDetectorFile(const std::string& path, const Database& database,
   w.i32(state.consistency.missedQueries());
   w.u32(static_cast<std::uint32_t>(database.size()));
   for (const DatabaseEntry& e : database.entries()) w.f64(e.odometer);
+  w.f64(state.previous_odometer);
+  w.f64(state.consistency.lastQueryOdometer());
 
   std::string& bytes = w.str();
   const std::uint64_t payload = bytes.size() - payload_start;
@@ -318,6 +321,7 @@ std::unique_ptr<Database> loadDetectorFile(const std::string& path,
       state->normalisers.restore(normalisers);
     }
     int chain_missed = 0;
+    double last_query_m = std::numeric_limits<double>::quiet_NaN();
     if (version >= 3) {
       state->missed_queries = p.i32("missed queries");
       chain_missed = p.i32("missed queries");
@@ -327,22 +331,32 @@ std::unique_ptr<Database> loadDetectorFile(const std::string& path,
       }
       if (chain_missed > 0 && chain == 0) p.fail("missed queries counted without a temporal chain");
       if (p.count(8, "odometers") != n) p.fail("odometer count differs from the entry count");
-      double last = -1.0;
+      double previous = -1.0;
       for (std::size_t i = 0; i < n; ++i) {
         const double o = p.f64("odometer");
         entries[i].odometer = o;
         if (std::isnan(o)) continue;
-        if (!std::isfinite(o) || o < 0.0 || o < last) {
+        if (!std::isfinite(o) || o < 0.0 || o < previous) {
           p.fail("entry " + std::to_string(i) + " has a negative, non-finite or decreasing odometer");
         }
-        last = o;
+        previous = o;
+      }
+      state->previous_odometer = p.f64("odometer");
+      last_query_m = p.f64("odometer");
+      for (double o : {state->previous_odometer, last_query_m}) {
+        if (!std::isnan(o) && !(std::isfinite(o) && o >= 0.0)) p.fail("a stored query odometer is invalid");
       }
     }
     for (DatabaseEntry& e : entries) {
       db->addToGroupTable(e.raw_groups);
       db->add(std::move(e), bow_normalised);
     }
-    state->consistency.restore(last, chain, chain_missed);
+    if (chain > 0) {
+      if (last.first > last.last || last.last >= n) p.fail("the last island lies outside the database");
+      last.first_m = db->entry(last.first).odometer;
+      last.last_m = db->entry(last.last).odometer;
+    }
+    state->consistency.restore(last, chain, chain_missed, last_query_m);
   } catch (const std::invalid_argument& e) {
     // Content the database itself rejects (word ids out of range,
     // non-increasing stamps, invalid weights): still a format problem.

@@ -12,6 +12,7 @@
 #include "bowg/islands.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <stdexcept>
@@ -79,7 +80,14 @@ bool islandsConsistent(const Island& a, const Island& b, int max_distance) {
   return gap <= max_distance;
 }
 
-bool TemporalConsistency::update(const Island& island, const TemporalVerificationOptions& options) {
+namespace {
+
+bool finiteExtent(const Island& i) { return std::isfinite(i.first_m) && std::isfinite(i.last_m); }
+
+}  // namespace
+
+bool TemporalConsistency::update(const Island& island, const TemporalVerificationOptions& options,
+                                 double query_m) {
   options.validate();
   // DLoopDetector's updateTemporalWindow: the chain counts the queries whose
   // best islands were pairwise consistent with their predecessor, including
@@ -91,13 +99,30 @@ bool TemporalConsistency::update(const Island& island, const TemporalVerificatio
   // Queries without an island in between (miss(), at most max_missed_queries
   // of them) neither break nor extend the chain; the place moved on during
   // them, so the allowed distance grows with their number.
-  const int distance = options.max_island_distance * (1 + missed_);
-  if (chain_length_ > 0 && islandsConsistent(last_, island, distance)) {
+  //
+  // In metres (max_island_distance_m, odometers known): the previous island
+  // moves with the robot by the metres driven since its query; the
+  // distance travelled already covers any missed queries in between.
+  bool consistent = false;
+  if (chain_length_ > 0) {
+    if (options.max_island_distance_m > 0.0 && std::isfinite(query_m) &&
+        std::isfinite(last_query_m_) && finiteExtent(last_) && finiteExtent(island)) {
+      const double driven = query_m - last_query_m_;
+      const double gap = std::max(island.first_m, last_.first_m + driven) -
+                         std::min(island.last_m, last_.last_m + driven);
+      consistent = gap <= options.max_island_distance_m;
+    } else {
+      const int distance = options.max_island_distance * (1 + missed_);
+      consistent = islandsConsistent(last_, island, distance);
+    }
+  }
+  if (consistent) {
     if (chain_length_ < std::numeric_limits<int>::max()) ++chain_length_;
   } else {
     chain_length_ = 1;
   }
   last_ = island;
+  last_query_m_ = query_m;
   missed_ = 0;
   return chain_length_ > options.k;
 }
@@ -119,9 +144,11 @@ void TemporalConsistency::breakChain() {
   last_ = Island();
   chain_length_ = 0;
   missed_ = 0;
+  last_query_m_ = std::numeric_limits<double>::quiet_NaN();
 }
 
-void TemporalConsistency::restore(const Island& last, int chain_length, int missed_queries) {
+void TemporalConsistency::restore(const Island& last, int chain_length, int missed_queries,
+                                  double last_query_m) {
   if (chain_length < 0) {
     throw std::invalid_argument("TemporalConsistency::restore: chain_length must be >= 0 (got " +
                                 std::to_string(chain_length) + ")");
@@ -139,6 +166,7 @@ void TemporalConsistency::restore(const Island& last, int chain_length, int miss
   last_ = chain_length > 0 ? last : Island();
   chain_length_ = chain_length;
   missed_ = missed_queries;
+  last_query_m_ = chain_length > 0 ? last_query_m : std::numeric_limits<double>::quiet_NaN();
 }
 
 }  // namespace bowg

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -63,6 +64,7 @@ void recordUnscoredQuery(const LoopDetectorOptions& options, DetectorState* stat
   } else {
     state->previous_etas.clear();
     state->missed_queries = 0;
+    state->previous_odometer = std::numeric_limits<double>::quiet_NaN();
   }
   state->consistency.miss(options.temporal_verification);
 }
@@ -169,6 +171,13 @@ void runQuery(const QueryContext& ctx, const DatabaseQuery& q, const DatabaseEnt
   r->candidates_scored = scores.size();
   std::vector<std::pair<EntryId, double>> etas;
   etas.reserve(scores.size());
+  // Eq. 7's predecessor in metres when odometry allows it (options.h,
+  // alignment_window_m), else in keyframes.
+  const TemporalScoreOptions& to = options_.temporal_score;
+  const bool metric_alignment = to.alignment_window_m > 0.0 &&
+                                !std::isnan(query_entry.odometer) &&
+                                !std::isnan(state_->previous_odometer);
+  const double driven = metric_alignment ? query_entry.odometer - state_->previous_odometer : 0.0;
   last_candidates_.reserve(scores.size());
   for (const EntryScores& s : scores) {
     CandidateScores c;
@@ -181,14 +190,18 @@ void runQuery(const QueryContext& ctx, const DatabaseQuery& q, const DatabaseEnt
     // Eqs. 6-7: eta(t-1, tj-1) is the previous query's final score of the
     // entry before this one (alignment_window 0), or the best-aligned one
     // near it (temporal_alignment.h); 0 when none was scored then.
-    const double eta_prev = alignedPreviousScore(state_->previous_etas, s.entry,
-                                                 state_->missed_queries, options_.temporal_score);
+    const double eta_prev =
+        metric_alignment
+            ? alignedPreviousScoreInMetres(state_->previous_etas, database_->odometers(), s.entry,
+                                           driven, to.alignment_window_m)
+            : alignedPreviousScore(state_->previous_etas, s.entry, state_->missed_queries, to);
     c.eta = temporalScore(c.eta_sim, eta_prev, options_.temporal_score);
     last_candidates_.push_back(c);
     etas.emplace_back(c.entry, c.eta);
   }
   state_->previous_etas = etas;  // sorted by entry id, as the scores are
   state_->missed_queries = 0;
+  state_->previous_odometer = query_entry.odometer;
   const auto t_islands = Clock::now();
   r->timings.query_ms = msBetween(t_query, t_islands);
 
@@ -202,7 +215,11 @@ void runQuery(const QueryContext& ctx, const DatabaseQuery& q, const DatabaseEnt
       [](const CandidateScores& a, const CandidateScores& b) { return a.eta < b.eta; });
 
   // Islands (Sec. III-D, eq. 10) and temporal verification.
-  const std::vector<Island> islands = computeIslands(etas, options_.islands);
+  std::vector<Island> islands = computeIslands(etas, options_.islands);
+  for (Island& i : islands) {
+    i.first_m = database_->entry(i.first).odometer;
+    i.last_m = database_->entry(i.last).odometer;
+  }
   if (islands.empty()) {
     r->status = LoopStatus::kNoScoreAboveThreshold;
     state_->consistency.miss(options_.temporal_verification);
@@ -251,7 +268,8 @@ void runQuery(const QueryContext& ctx, const DatabaseQuery& q, const DatabaseEnt
       std::lower_bound(last_candidates_.begin(), last_candidates_.end(), island.best_entry,
                        [](const CandidateScores& c, EntryId id) { return c.entry < id; });
   if (it != last_candidates_.end() && it->entry == island.best_entry) r->best = *it;
-  const bool consistent = state_->consistency.update(island, options_.temporal_verification);
+  const bool consistent =
+      state_->consistency.update(island, options_.temporal_verification, query_entry.odometer);
   const auto t_verify = Clock::now();
   r->timings.islands_ms = msBetween(t_islands, t_verify) - rerank_ms;
   r->timings.verification_ms = rerank_ms;

@@ -84,6 +84,7 @@ void TemporalScoreOptions::validate() const {
   requireFinitePositive("temporal_score.alpha", alpha);
   requireIntAtLeast("temporal_score.alignment_window", alignment_window, 0);
   requireIntAtLeast("temporal_score.max_missed_queries", max_missed_queries, 0);
+  requireFiniteAtLeast("temporal_score.alignment_window_m", alignment_window_m, 0.0);
 }
 
 void IslandOptions::validate() const {
@@ -98,6 +99,7 @@ void TemporalVerificationOptions::validate() const {
   requireIntAtLeast("temporal_verification.k", k, 0);
   requireIntAtLeast("temporal_verification.max_island_distance", max_island_distance, 0);
   requireIntAtLeast("temporal_verification.max_missed_queries", max_missed_queries, 0);
+  requireFiniteAtLeast("temporal_verification.max_island_distance_m", max_island_distance_m, 0.0);
 }
 
 void GeometricVerificationOptions::validate() const {

@@ -153,6 +153,12 @@ std::vector<Row> makeRows() {
                         BOWG_FIELD(int, detector.temporal_score.max_missed_queries),
                         "Queries that cannot be scored (no candidate, small normaliser) that "
                         "eq. 7's previous scores survive (0 = the paper: forgotten at once)"));
+  rows.push_back(doubleRow("alignment_window_m", det, "temporal_score.alignment_window_m", 0.0,
+                           100.0, false,
+                           BOWG_FIELD(double, detector.temporal_score.alignment_window_m),
+                           "With odometry: eq. 7's previous score is the best among the entries "
+                           "within this many metres of where tj was when the previous query was "
+                           "taken (0 = alignment_window in keyframes)"));
   // --- Islands (Sec. III-D).
   rows.push_back(doubleRow("min_score", det, "islands.min_score", 0.0, 10.0, true,
                            BOWG_FIELD(double, detector.islands.min_score),
@@ -184,6 +190,11 @@ std::vector<Row> makeRows() {
                         BOWG_FIELD(int, detector.temporal_verification.max_missed_queries),
                         "Queries without an island that do not break the temporal chain "
                         "(0 = DLoopDetector: the first one breaks it)"));
+  rows.push_back(doubleRow("max_island_distance_m", det,
+                           "temporal_verification.max_island_distance_m", 0.0, 100.0, false,
+                           BOWG_FIELD(double, detector.temporal_verification.max_island_distance_m),
+                           "With odometry: the previous island moved by the metres driven must "
+                           "come within this of the current one (0 = max_island_distance in ids)"));
   // --- Geometric verification.
   rows.push_back(boolRow("geometric_verification", det, "geometric.enabled", true,
                          BOWG_FIELD(bool, detector.geometric.enabled),

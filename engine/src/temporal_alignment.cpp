@@ -1,6 +1,7 @@
 #include "bowg/temporal_alignment.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <stdexcept>
 #include <string>
@@ -29,6 +30,32 @@ double alignedPreviousScore(const std::vector<std::pair<EntryId, double>>& previ
   for (; it != previous.end() && static_cast<std::int64_t>(it->first) <= last; ++it) {
     best = std::max(best, it->second);
   }
+  return best;
+}
+
+double alignedPreviousScoreInMetres(const std::vector<std::pair<EntryId, double>>& previous,
+                                    const std::vector<double>& odometers, EntryId entry,
+                                    double driven, double window_m) {
+  if (entry >= odometers.size()) {
+    throw std::invalid_argument("alignedPreviousScoreInMetres: entry " + std::to_string(entry) +
+                                " beyond the " + std::to_string(odometers.size()) + " odometers");
+  }
+  if (!(std::isfinite(driven) && driven >= 0.0) || !(std::isfinite(window_m) && window_m >= 0.0)) {
+    throw std::invalid_argument("alignedPreviousScoreInMetres: driven and window_m must be finite "
+                                "and >= 0");
+  }
+  // Where the entry's place was when the previous query was taken.
+  const double centre = odometers[entry] - driven;
+  const auto lo = std::lower_bound(odometers.begin(), odometers.end(), centre - window_m);
+  const auto hi = std::upper_bound(lo, odometers.end(), centre + window_m);
+  if (lo == hi) return 0.0;
+  const EntryId first = static_cast<EntryId>(lo - odometers.begin());
+  const EntryId last = static_cast<EntryId>(hi - odometers.begin()) - 1;
+  auto it = std::lower_bound(
+      previous.begin(), previous.end(), first,
+      [](const std::pair<EntryId, double>& p, EntryId id) { return p.first < id; });
+  double best = 0.0;
+  for (; it != previous.end() && it->first <= last; ++it) best = std::max(best, it->second);
   return best;
 }
 

@@ -239,6 +239,8 @@ TEST(DatabaseIo, OdometersAndMissedQueryCountersRoundTrip) {
   }
   LoopDetectorOptions o = options();
   o.islands.recent_exclusion_m = 8.0;
+  o.temporal_score.alignment_window_m = 1.5;
+  o.temporal_verification.max_island_distance_m = 2.0;
   o.temporal_score.max_missed_queries = 2;
   o.temporal_verification.max_missed_queries = 2;
   LoopDetector a(voc, o);
@@ -273,10 +275,10 @@ TEST(DatabaseIo, VersionOneFilesLoadWithAnEmptyHistory) {
   a.save(v2);
   std::string bytes = readBytes(v2);
   // The history closes the version-2 payload: u32 count + count x 3 f64;
-  // version 3 adds two i32 missed-query counters and the odometers (u32
-  // count + 45 f64), then the u64 checksum. 44 keyframes had a previous one;
-  // the window is 50.
-  const std::size_t history = 4 + 44 * 24 + 2 * 4 + 4 + 45 * 8;
+  // version 3 adds two i32 missed-query counters, the odometers (u32
+  // count + 45 f64) and two query odometers (f64), then the u64 checksum.
+  // 44 keyframes had a previous one; the window is 50.
+  const std::size_t history = 4 + 44 * 24 + 2 * 4 + 4 + 45 * 8 + 2 * 8;
   ASSERT_GT(bytes.size(), history + 8 + 28);
   bytes.resize(bytes.size() - 8 - history);
   auto putLe = [&bytes](std::size_t at, std::uint64_t v, int n) {

@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include <algorithm>
 #include <random>
 #include <stdexcept>
@@ -273,6 +275,32 @@ TEST(TemporalConsistency, WithoutToleranceAMissBreaksTheChainAsDLoopDetector) {
   no_miss.update(island(11, 13), tolerant);
   EXPECT_FALSE(no_miss.update(island(19, 20), tolerant));
   EXPECT_EQ(no_miss.chainLength(), 1);
+}
+
+Island placed(EntryId first, EntryId last, double first_m, double last_m) {
+  Island i = island(first, last);
+  i.first_m = first_m;
+  i.last_m = last_m;
+  return i;
+}
+
+TEST(TemporalConsistency, InMetresTheIslandMovesWithTheRobot) {
+  TemporalConsistency tc;
+  TemporalVerificationOptions o = verification(1, 3);
+  o.max_island_distance_m = 0.1;
+  // Query at 10.0 m matched the first pass at [2.0, 2.2] m (ids 20..22, a
+  // 0.1 m spacing); the query then drove 0.6 m: the place is now expected
+  // at [2.6, 2.8] m. An island at [2.75, 2.85] m (ids 80..82 of a denser
+  // stretch) overlaps it: consistent although its ids are 58 away.
+  EXPECT_FALSE(tc.update(placed(20, 22, 2.0, 2.2), o, 10.0));
+  EXPECT_TRUE(tc.update(placed(80, 82, 2.75, 2.85), o, 10.6));
+  // Driven 0.2 m more: expected [2.95, 3.05]; an island at [3.3, 3.4] m is
+  // 0.25 m away: inconsistent although its ids (83..84) are adjacent.
+  EXPECT_FALSE(tc.update(placed(83, 84, 3.3, 3.4), o, 10.8));
+  EXPECT_EQ(tc.chainLength(), 1);
+  // Without a query odometer the ids decide: 85 is 1 id from [83, 84].
+  EXPECT_TRUE(tc.update(placed(85, 85, 9.0, 9.0), o));
+  EXPECT_TRUE(std::isnan(tc.lastQueryOdometer()));
 }
 
 TEST(TemporalConsistency, RestoreKeepsTheMissedCount) {

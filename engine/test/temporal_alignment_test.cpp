@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <stdexcept>
 
 #include "bowg/similarity.h"
@@ -93,6 +94,39 @@ TEST(AlignedPreviousScore, TheWindowIsClippedAtEntryZero) {
   EXPECT_DOUBLE_EQ(alignedPreviousScore(previous, 0, 0, window(0)), 0.0);
   // Entry 0, window 1: -2..0 -> entry 0.
   EXPECT_DOUBLE_EQ(alignedPreviousScore(previous, 0, 0, window(1)), 0.25);
+}
+
+TEST(AlignedPreviousScoreInMetres, FindsThePredecessorByTheMetresDriven) {
+  // Entries every 0.1 m of the first pass: odometers 0.0, 0.1, ..., 2.0.
+  std::vector<double> odometers;
+  for (int i = 0; i <= 20; ++i) odometers.push_back(0.1 * i);
+  const Scores previous{{8, 0.4}, {10, 1.3}, {11, 0.9}, {14, 2.2}};
+  // The query drove 0.3 m since the previous scored query (a pass three
+  // times the first one's spacing): candidate 13 (1.3 m) had its place at
+  // 1.0 m, entry 10, then. Window 0.05 m: [0.95, 1.05] -> entry 10 only.
+  EXPECT_DOUBLE_EQ(alignedPreviousScoreInMetres(previous, odometers, 13, 0.3, 0.05), 1.3);
+  // Window 0.12 m: [0.88, 1.12] -> entries 9..11, best 1.3.
+  EXPECT_DOUBLE_EQ(alignedPreviousScoreInMetres(previous, odometers, 13, 0.3, 0.12), 1.3);
+  // Eq. 7's tj-1 (entry 12) was not scored: the keyframe reading finds nothing.
+  TemporalScoreOptions o;
+  EXPECT_DOUBLE_EQ(alignedPreviousScore(previous, 13, 0, o), 0.0);
+  // Stopped (driven 0): the same place, entry 14.
+  EXPECT_DOUBLE_EQ(alignedPreviousScoreInMetres(previous, odometers, 14, 0.0, 0.05), 2.2);
+  // Nothing scored near 0.3 m before entry 5 (0.2 m): 0.
+  EXPECT_DOUBLE_EQ(alignedPreviousScoreInMetres(previous, odometers, 5, 0.3, 0.05), 0.0);
+  EXPECT_THROW(alignedPreviousScoreInMetres(previous, odometers, 21, 0.3, 0.05),
+               std::invalid_argument);
+  EXPECT_THROW(alignedPreviousScoreInMetres(previous, odometers, 5, -0.1, 0.05),
+               std::invalid_argument);
+}
+
+TEST(AlignedPreviousScoreInMetres, EntriesWithoutOdometerNeverMatch) {
+  // Database::odometers() gives -inf before the first known odometer.
+  const double inf = std::numeric_limits<double>::infinity();
+  const std::vector<double> odometers{-inf, -inf, 0.0, 0.5, 1.0};
+  const Scores previous{{0, 9.0}, {1, 9.0}, {3, 0.7}};
+  EXPECT_DOUBLE_EQ(alignedPreviousScoreInMetres(previous, odometers, 4, 0.5, 0.1), 0.7);
+  EXPECT_DOUBLE_EQ(alignedPreviousScoreInMetres(previous, odometers, 4, 1.0, 0.1), 0.0);
 }
 
 }  // namespace

@@ -89,6 +89,11 @@ class Database {
   bool empty() const { return entries_.empty(); }
   const DatabaseEntry& entry(EntryId id) const { return entries_.at(id); }
   const std::vector<DatabaseEntry>& entries() const { return entries_; }
+  /// Odometer per entry, non-decreasing: an entry without one (NaN) takes
+  /// the last known value before it (-inf before the first), so that an
+  /// entry id range of a metre interval is two binary searches
+  /// (temporal_alignment.h).
+  const std::vector<double>& odometers() const { return odometers_; }
   const Vocabulary& vocabulary() const { return *vocabulary_; }
   const WordGroupTable& groupTable() const { return group_table_; }
   /// The cached distribution vector of entry `id` for the current m.
@@ -148,6 +153,7 @@ class Database {
   int direct_level_;
   int fan_bins_;
   std::vector<DatabaseEntry> entries_;
+  std::vector<double> odometers_;  ///< see odometers()
   WordGroupTable group_table_;
   /// word -> (entry, normalised weight), entries ascending.
   std::vector<std::vector<std::pair<EntryId, double>>> word_index_;
@@ -175,6 +181,8 @@ struct DetectorState {
   /// Queries since previous_etas were set that could not be scored
   /// (temporal_score.max_missed_queries, temporal_alignment.h).
   int missed_queries = 0;
+  /// Odometer of the query previous_etas belong to (NaN = unknown).
+  double previous_odometer = std::numeric_limits<double>::quiet_NaN();
   /// The temporal-verification chain (Sec. III-D).
   TemporalConsistency consistency;
   /// Recent s(I_t, I_t-1), for the normaliser floor (normaliser_history.h).

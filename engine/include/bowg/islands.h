@@ -3,6 +3,7 @@
 #pragma once
 
 #include <deque>
+#include <limits>
 #include <utility>
 #include <vector>
 
@@ -17,6 +18,11 @@ struct Island {
   EntryId best_entry = 0;       ///< member with the highest eta
   double best_score = 0;
   int size = 0;
+  /// Odometers of the first and last entries (NaN when unknown): the
+  /// island's place in metres, for TemporalVerificationOptions::
+  /// max_island_distance_m. Set by the caller; computeIslands leaves NaN.
+  double first_m = std::numeric_limits<double>::quiet_NaN();
+  double last_m = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// Groups (entry, eta) candidates with eta >= options.min_score into islands:
@@ -39,7 +45,13 @@ class TemporalConsistency {
  public:
   /// Records the current query's best island and returns whether it is
   /// consistent with the k previous ones (always true for k = 0).
-  bool update(const Island& island, const TemporalVerificationOptions& options);
+  /// `query_m`: the query's odometer (NaN = unknown); with it, the previous
+  /// query's and both islands' odometers, and max_island_distance_m > 0,
+  /// consistency is judged in metres: the previous island shifted by the
+  /// metres driven between the two queries must come within
+  /// max_island_distance_m of this one.
+  bool update(const Island& island, const TemporalVerificationOptions& options,
+              double query_m = std::numeric_limits<double>::quiet_NaN());
   /// A query without an island: the chain survives up to
   /// options.max_missed_queries consecutive ones, then breaks.
   void miss(const TemporalVerificationOptions& options);
@@ -52,12 +64,16 @@ class TemporalConsistency {
   int missedQueries() const { return missed_; }
   /// For persistence.
   const Island& lastIsland() const { return last_; }
-  void restore(const Island& last, int chain_length, int missed_queries = 0);
+  /// The odometer of the query that recorded lastIsland() (NaN = unknown).
+  double lastQueryOdometer() const { return last_query_m_; }
+  void restore(const Island& last, int chain_length, int missed_queries = 0,
+               double last_query_m = std::numeric_limits<double>::quiet_NaN());
 
  private:
   Island last_;
   int chain_length_ = 0;  ///< consecutive consistent queries ending at last_
   int missed_ = 0;        ///< queries without an island since last_
+  double last_query_m_ = std::numeric_limits<double>::quiet_NaN();
 };
 
 }  // namespace bowg

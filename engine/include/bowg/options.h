@@ -75,6 +75,15 @@ struct TemporalScoreOptions {
   /// centres on tj-1-missed and widens to r * (1 + missed). 0 = they are
   /// forgotten at the first such query (the paper). >= 0.
   int max_missed_queries = 0;
+  /// The aligned window in metres driven, used instead of alignment_window
+  /// when the query, the previous scored query and the entries have
+  /// odometers: eta(t-1, .) is the best previous score among the entries
+  /// whose odometer is within alignment_window_m of odometer(tj) - d, d the
+  /// metres the robot drove from the previous scored query to this one. Both
+  /// passes drive the same path between two places, whatever their speeds
+  /// and keyframe spacings, so this is where tj's predecessor lies
+  /// (temporal_alignment.h). 0 = keyframes always. >= 0.
+  double alignment_window_m = 0.0;
   void validate() const;
 };
 
@@ -114,6 +123,13 @@ struct TemporalVerificationOptions {
   /// max_island_distance * (1 + missed) (the place moved on meanwhile).
   /// 0 = the first such query breaks the chain (DLoopDetector). >= 0.
   int max_missed_queries = 0;
+  /// Consistency in metres driven, used instead of max_island_distance when
+  /// both queries and the islands' entries have odometers: the previous
+  /// island shifted by the metres driven between the two queries must come
+  /// within this of the current island (the same place seen from a moving
+  /// robot, whatever the keyframe spacing of either pass). 0 = ids always.
+  /// >= 0.
+  double max_island_distance_m = 0.0;
   void validate() const;
 };
 

@@ -27,4 +27,15 @@ namespace bowg {
 double alignedPreviousScore(const std::vector<std::pair<EntryId, double>>& previous, EntryId entry,
                             int missed, const TemporalScoreOptions& options);
 
+/// The same window in metres (TemporalScoreOptions::alignment_window_m):
+/// the largest previous score among the entries whose odometer lies in
+/// [odometers[entry] - driven - window_m, odometers[entry] - driven +
+/// window_m], `driven` the metres from the previous scored query to this
+/// one, `odometers` non-decreasing per entry (Database::odometers()).
+/// 0 when none was scored there. Throws std::invalid_argument for an entry
+/// beyond `odometers`, a negative or non-finite driven or window_m.
+double alignedPreviousScoreInMetres(const std::vector<std::pair<EntryId, double>>& previous,
+                                    const std::vector<double>& odometers, EntryId entry,
+                                    double driven, double window_m);
+
 }  // namespace bowg
