@@ -2,6 +2,7 @@
 #include "bowg_ros/keyframe_gate.h"
 
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 namespace bowg_ros {
@@ -60,8 +61,10 @@ GateDecision KeyframeGate::check(double stamp) {
 void KeyframeGate::addPosition(double x, double y, double z) {
   if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z)) return;
   if (has_position_) {
-    travelled_ += std::sqrt((x - last_x_) * (x - last_x_) + (y - last_y_) * (y - last_y_) +
-                            (z - last_z_) * (z - last_z_));
+    const double step = std::sqrt((x - last_x_) * (x - last_x_) + (y - last_y_) * (y - last_y_) +
+                                  (z - last_z_) * (z - last_z_));
+    travelled_ += step;
+    odometer_ += step;
   }
   has_position_ = true;
   last_x_ = x;
@@ -73,6 +76,18 @@ void KeyframeGate::reset() {
   has_frame_ = has_keyframe_ = has_position_ = false;
   last_frame_stamp_ = last_keyframe_stamp_ = 0.0;
   travelled_ = 0.0;
+  odometer_ = 0.0;
+}
+
+double KeyframeGate::odometer() const {
+  return has_position_ ? odometer_ : std::numeric_limits<double>::quiet_NaN();
+}
+
+void KeyframeGate::setOdometer(double base) {
+  if (!std::isfinite(base) || base < 0.0) {
+    throw std::invalid_argument("KeyframeGate::setOdometer: base must be finite and >= 0");
+  }
+  odometer_ = base;
 }
 
 }  // namespace bowg_ros

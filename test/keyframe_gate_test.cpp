@@ -91,6 +91,28 @@ TEST(KeyframeGate, ResetForgetsFramesAndPositions) {
   EXPECT_EQ(gate.check(1.0), GateDecision::kAccept);  // older stamp accepted after a reset
 }
 
+TEST(KeyframeGate, OdometerIsThePathLengthSinceTheStartAcrossKeyframes) {
+  KeyframeGate gate;
+  EXPECT_TRUE(std::isnan(gate.odometer()));  // no odometry yet
+  gate.addPosition(0, 0, 0);
+  EXPECT_DOUBLE_EQ(gate.odometer(), 0.0);
+  gate.addPosition(3, 4, 0);  // 5 m
+  EXPECT_EQ(gate.check(1.0), GateDecision::kAccept);
+  gate.addPosition(3, 4, 2);  // 2 m more; a keyframe does not restart it
+  EXPECT_DOUBLE_EQ(gate.odometer(), 7.0);
+  EXPECT_DOUBLE_EQ(gate.travelledSinceKeyframe(), 2.0);
+  gate.addPosition(3, 4, 1);  // backing up counts too: metres driven
+  EXPECT_DOUBLE_EQ(gate.odometer(), 8.0);
+  // After loading a database driven up to 120 m the odometer continues.
+  gate.reset();
+  EXPECT_TRUE(std::isnan(gate.odometer()));
+  gate.setOdometer(120.0);
+  gate.addPosition(0, 0, 0);
+  gate.addPosition(0, 0.5, 0);
+  EXPECT_DOUBLE_EQ(gate.odometer(), 120.5);
+  EXPECT_THROW(gate.setOdometer(-1.0), std::invalid_argument);
+}
+
 TEST(KeyframeGate, RejectsInvalidOptions) {
   KeyframeGateOptions o;
   o.min_interval = -1.0;

@@ -132,8 +132,15 @@ GeometricVerificationResult verifyGeometry(const VerificationView& query,
                                            const VerificationView& match,
                                            const CameraIntrinsics& intrinsics,
                                            const GeometricVerificationOptions& options) {
+  return verifyCorrespondences(findCorrespondences(query, match, options), query, match,
+                               intrinsics, options);
+}
+
+GeometricVerificationResult verifyCorrespondences(
+    const std::vector<std::pair<std::uint32_t, std::uint32_t>>& pairs,
+    const VerificationView& query, const VerificationView& match,
+    const CameraIntrinsics& intrinsics, const GeometricVerificationOptions& options) {
   GeometricVerificationResult result;
-  const auto pairs = findCorrespondences(query, match, options);
   result.correspondences = static_cast<int>(pairs.size());
   // 8 points: the minimum of the 8-point algorithm findFundamentalMat runs.
   if (pairs.size() < 8) {

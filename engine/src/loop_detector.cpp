@@ -251,7 +251,14 @@ void runQuery(const QueryContext& ctx, const DatabaseQuery& q, const DatabaseEnt
   if (reranked > 1) {
     const auto t_rerank = Clock::now();
     for (std::size_t i = 0; i < reranked; ++i) {
-      GeometricVerificationResult gi = verify(islands[i].best_entry);
+      const DatabaseEntry& m = database_->entry(islands[i].best_entry);
+      const VerificationView mv{&m.keypoints, &m.descriptors, &m.direct};
+      const auto pairs = findCorrespondences(qv, mv, go);
+      // Inliers are a subset of the correspondences: a candidate with no
+      // more correspondences than the best inlier count so far cannot win,
+      // so its RANSAC is skipped (the choice is the same).
+      if (i > 0 && static_cast<int>(pairs.size()) <= g.inliers) continue;
+      GeometricVerificationResult gi = verifyCorrespondences(pairs, qv, mv, intrinsics, go);
       if (i == 0 || gi.inliers > g.inliers) {
         g = std::move(gi);
         chosen = i;

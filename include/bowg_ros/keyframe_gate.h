@@ -41,6 +41,13 @@ class KeyframeGate {
   void addPosition(double x, double y, double z);
 
   double travelledSinceKeyframe() const { return travelled_; }
+  /// Path length of every odometry position so far plus the base of
+  /// setOdometer(): the keyframes' odometer for the detector's windows in
+  /// metres (bowg::KeyframeInput::odometer). NaN before the first position.
+  double odometer() const;
+  /// Continues the odometer from `base` metres (after loading a database
+  /// whose keyframes were driven up to `base`). Finite and >= 0.
+  void setOdometer(double base);
   bool hasOdometry() const { return has_position_; }
   const KeyframeGateOptions& options() const { return options_; }
   void setOptions(const KeyframeGateOptions& options);
@@ -54,6 +61,7 @@ class KeyframeGate {
   double last_frame_stamp_ = 0, last_keyframe_stamp_ = 0;
   double last_x_ = 0, last_y_ = 0, last_z_ = 0;
   double travelled_ = 0;
+  double odometer_ = 0;  ///< path length since reset() / setOdometer()
 };
 
 }  // namespace bowg_ros

@@ -28,6 +28,8 @@
 #include <atomic>
 #include <boost/thread/recursive_mutex.hpp>
 #include <chrono>
+#include <cmath>
+#include <limits>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -80,12 +82,21 @@ bool isNodeParameter(const std::string& name) {
   return false;
 }
 
+/// Where a loaded database's odometers end (0 when it has none): the gate's
+/// odometer continues from there, so the keyframes' odometers keep growing.
+double lastOdometer(const bowg::LoopDetector& detector) {
+  const std::vector<double>& o = detector.database().odometers();
+  return !o.empty() && std::isfinite(o.back()) ? o.back() : 0.0;
+}
+
 /// One frame waiting for the worker: exactly one of the three inputs is set.
 struct Frame {
   std_msgs::Header header;
   cv_bridge::CvImageConstPtr image;                 // raw image, shared (no copy)
   sensor_msgs::CompressedImageConstPtr compressed;  // decoded by the worker
   KeyframeFeatures::ConstPtr features;              // upstream features
+  /// Metres driven when the frame passed the gate (NaN without odometry).
+  double odometer = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// Counters for the diagnostics, guarded by LoopDetectorNodelet::stats_mutex_.
@@ -299,6 +310,7 @@ void LoopDetectorNodelet::onInit() {
     }
   }
   gate_.setOptions(gate_options_);
+  gate_.setOdometer(lastOdometer(*detector_));
   queue_.reset(new BoundedQueue<Frame>(static_cast<std::size_t>(queue_size_)));
 
   // Outputs.
@@ -357,9 +369,10 @@ void LoopDetectorNodelet::onInit() {
   // the sibling of the image topic, image_pipeline's convention.
   info_sub_ = nh.subscribe(image_transport::getCameraInfoTopic(nh.resolveName("image")), 1,
                            &LoopDetectorNodelet::cameraInfoCallback, this);
-  if (gate_options_.min_distance > 0.0) {
-    odom_sub_ = nh.subscribe("odom", 50, &LoopDetectorNodelet::odometryCallback, this);
-  }
+  // Odometry feeds the distance gate and the keyframes' odometer (windows in
+  // metres: recent_exclusion_m, alignment_window_m, max_island_distance_m);
+  // without a publisher those fall back to keyframes.
+  odom_sub_ = nh.subscribe("odom", 50, &LoopDetectorNodelet::odometryCallback, this);
   NODELET_INFO("bowg_ros ready: input %s, keyframe interval %.3f s, distance %.3f m, queue %d",
                use_features_input_ ? nh.resolveName("keyframe_features").c_str()
                                    : nh.resolveName("image").c_str(),
@@ -371,6 +384,7 @@ bool LoopDetectorNodelet::offer(Frame frame) {
   {
     std::lock_guard<std::mutex> lock(gate_mutex_);
     d = gate_.check(frame.header.stamp.toSec());
+    frame.odometer = gate_.odometer();
   }
   {
     std::lock_guard<std::mutex> lock(stats_mutex_);
@@ -476,6 +490,7 @@ void LoopDetectorNodelet::processFrame(const Frame& frame) {
 
   bowg::KeyframeInput input;
   input.stamp = frame.header.stamp.toSec();
+  input.odometer = frame.odometer;
   {
     std::lock_guard<std::mutex> lock(intrinsics_mutex_);
     input.intrinsics = intrinsics_;
@@ -633,6 +648,7 @@ bool LoopDetectorNodelet::loadDatabase(LoadDatabase::Request& req, LoadDatabase:
       // Stamps restart from the loaded database's; let the gate follow.
       std::lock_guard<std::mutex> gate_lock(gate_mutex_);
       gate_.reset();
+      gate_.setOdometer(lastOdometer(*detector_));
     }
     res.success = true;
     res.message =

@@ -59,6 +59,13 @@ GeometricVerificationResult verifyGeometry(const VerificationView& query,
                                            const CameraIntrinsics& intrinsics,
                                            const GeometricVerificationOptions& options);
 
+/// The same on correspondences already found by findCorrespondences(query,
+/// match, options) (the re-ranking counts them before it runs RANSAC).
+GeometricVerificationResult verifyCorrespondences(
+    const std::vector<std::pair<std::uint32_t, std::uint32_t>>& pairs,
+    const VerificationView& query, const VerificationView& match,
+    const CameraIntrinsics& intrinsics, const GeometricVerificationOptions& options);
+
 /// Relative pose T_Q_M from point pairs (query pixel, match pixel) with the
 /// essential matrix; false when it cannot be estimated.
 bool relativePoseFromCorrespondences(const std::vector<Correspondence>& pairs,
