@@ -22,7 +22,7 @@ PACKAGES=(
   libnav-msgs-dev ros-nav-msgs python3-nav-msgs
   librosbag-dev python3-rosbag
   libgtest-dev googletest librostest-dev python3-rostest libros-rosgraph-msgs-dev
-  libbenchmark-dev python3-numpy python3-yaml
+  libbenchmark-dev python3-numpy python3-yaml python3-matplotlib
 )
 
 missing=()
