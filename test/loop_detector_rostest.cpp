@@ -1,5 +1,5 @@
-// End-to-end tests of bowg_ros/LoopDetectorNodelet (issue 3, "How we will
-// know"). The .test files start a nodelet manager named bowg_manager; each
+// End-to-end tests of bowg_ros/LoopDetectorNodelet (what a user relies
+// on). The .test files start a nodelet manager named bowg_manager; each
 // test loads its own nodelet instance into it through the manager's
 // load_nodelet service (as bowg_nodelet.launch does), publishes a synthetic
 // sequence and watches the outputs. Which tests run is chosen with

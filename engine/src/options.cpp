@@ -145,7 +145,10 @@ LoopDetectorOptions LoopDetectorOptions::ablation(const std::string& row,
     // with pure bag-of-words scores (DBoW2 + DLoopDetector's islands and
     // checks): every extension of this implementation off (normaliser floor,
     // aligned temporal score, missed-query tolerance, geometric re-ranking;
-    // docs/method.md), the configuration's thresholds kept.
+    // docs/method.md). The configuration's
+    // thresholds and its recent-exclusion window (the "immediate past", in
+    // metres where odometry is given) are kept: every row is judged on the
+    // same candidates.
     const bool all = row == "paper";
     o.word_groups.enabled = all;
     o.temporal_score.enabled = all;
@@ -154,6 +157,8 @@ LoopDetectorOptions LoopDetectorOptions::ablation(const std::string& row,
     o.temporal_score.alignment_window = 0;
     o.temporal_score.max_missed_queries = 0;
     o.temporal_verification.max_missed_queries = 0;
+    o.temporal_score.alignment_window_m = 0.0;
+    o.temporal_verification.max_island_distance_m = 0.0;
     o.geometric.candidates = 1;
     return o;
   }

@@ -274,7 +274,13 @@ TEST(Ablation, PaperRowIsTheFullMethodWithoutTheExtensions) {
   base.temporal_verification.max_missed_queries = 1;
   base.geometric.candidates = 10;
   base.geometric.min_inliers = 25;
+  base.temporal_score.alignment_window_m = 0.05;
+  base.temporal_verification.max_island_distance_m = 0.1;
+  base.islands.recent_exclusion_m = 3.0;
   const LoopDetectorOptions o = LoopDetectorOptions::ablation("paper", base);
+  EXPECT_EQ(o.temporal_score.alignment_window_m, 0.0);
+  EXPECT_EQ(o.temporal_verification.max_island_distance_m, 0.0);
+  EXPECT_EQ(o.islands.recent_exclusion_m, 3.0);  // the same candidates in every row
   EXPECT_TRUE(o.word_groups.enabled);
   EXPECT_TRUE(o.temporal_score.enabled);
   EXPECT_TRUE(o.distribution.enabled);

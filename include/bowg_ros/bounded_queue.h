@@ -1,5 +1,5 @@
 // A bounded multi-producer queue between the camera callback and the worker
-// thread (issue 3, "Keyframes"): push() never blocks, so the camera callback
+// thread: push() never blocks, so the camera callback
 // never waits for the detector; when the queue is full the OLDEST item is
 // dropped (the newest image is the most useful to a loop detector that runs
 // behind) and counted for the diagnostics. ROS-free.

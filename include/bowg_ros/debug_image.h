@@ -1,5 +1,5 @@
 // The ~debug_image: query and match keyframes side by side with the inlier
-// correspondences (issue 3, "Output"). ROS-free; the nodelet calls it only
+// correspondences. ROS-free; the nodelet calls it only
 // while somebody subscribes.
 #pragma once
 

@@ -1,4 +1,4 @@
-// Keyframe selection (issue 3, "Keyframes"): not every camera frame is a
+// Keyframe selection: not every camera frame is a
 // keyframe. A frame becomes one when at least `min_interval` seconds passed
 // since the last keyframe and, when `min_distance` > 0 and odometry is
 // arriving, the robot travelled at least `min_distance` metres (path length of

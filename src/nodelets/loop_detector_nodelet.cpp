@@ -1,5 +1,5 @@
-// bowg_ros/LoopDetectorNodelet: the thin ROS shell around bowg::LoopDetector
-// (issue 3). Parameters in (through the engine's parameter table), engine call
+// bowg_ros/LoopDetectorNodelet: the thin ROS shell around bowg::LoopDetector.
+// Parameters in (through the engine's parameter table), engine call
 // on a worker thread, messages out:
 //
 //   image (+ camera_info) or keyframe_features
