@@ -24,7 +24,7 @@ shared="${BOWG_SHARED_DATA:-$repo/../shared/data}"
 half="${BOWG_SUITE_HALF:-all}"
 config="${BOWG_SUITE_CONFIG:-$repo/config/pipe.yaml}"
 rows="${BOWG_SUITE_ROWS:-paper_bow,paper,configured}"
-thresholds="${BOWG_SUITE_THRESHOLDS:-0.8,1,1.2,1.4,1.7,2,2.5}"
+thresholds="${BOWG_SUITE_THRESHOLDS:-0.6,0.8,1,1.2,1.4,1.7,2,2.5}"
 vocabulary="$repo/data/default_vocabulary.bowgvoc"
 list="${BOWG_SUITE_LIST:-$repo/tools/suite/robustness_suite.txt}"
 [ -r "$list" ] || { echo "suite: cannot read the sequence list $list" >&2; exit 2; }
