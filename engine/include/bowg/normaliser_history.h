@@ -7,8 +7,8 @@
 // that keyframe is unusually dissimilar (an exposure step, a jolt), every eta
 // of the query is lifted by the same factor and the best of its hundreds of
 // candidates - usually a look-alike - outscores every true revisit of the
-// sequence (docs/results.md: the top-scored loops of every ablation row were
-// false for that reason). The median of the last few normalisers is a robust
+// sequence (on a rendered pipe sequence the top-scored loops of every
+// ablation row were false for that reason). The median of the last few normalisers is a robust
 // estimate of the same expectation; the floor keeps the paper's normaliser
 // whenever it is not unusually small (docs/method.md, "Normaliser floor").
 #pragma once
