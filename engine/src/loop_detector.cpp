@@ -69,33 +69,25 @@ void recordUnscoredQuery(const LoopDetectorOptions& options, DetectorState* stat
   state->consistency.miss(options.temporal_verification);
 }
 
-// The largest odometer in the database (-inf when none is known).
-double lastOdometer(const Database& database) {
-  const auto& entries = database.entries();
-  for (auto it = entries.rbegin(); it != entries.rend(); ++it) {
-    if (!std::isnan(it->odometer)) return it->odometer;
-  }
-  return -std::numeric_limits<double>::infinity();
-}
-
 // Entries with id < the returned limit may be candidates. In keyframes: all
 // but the `recent_exclusion` newest. In metres (the query has an odometer and
 // recent_exclusion_m > 0): the entries before the newest one driven at least
 // recent_exclusion_m before the query; entries without an odometer there are
-// treated as recent. Walks back from the newest entry: the window is short.
+// treated as recent.
 EntryId candidateLimit(const Database& database, const IslandOptions& options, double odometer) {
   const std::size_t n = database.size();
   if (std::isnan(odometer) || !(options.recent_exclusion_m > 0.0)) {
     const std::size_t excluded = static_cast<std::size_t>(options.recent_exclusion);
     return static_cast<EntryId>(n > excluded ? n - excluded : 0);
   }
-  const auto& entries = database.entries();
-  std::size_t limit = n;
-  while (limit > 0) {
-    const double o = entries[limit - 1].odometer;
-    if (!std::isnan(o) && odometer - o >= options.recent_exclusion_m) break;
-    --limit;
-  }
+  // The non-decreasing odometers find the entries driven far enough back;
+  // those at the end of that range without an odometer of their own carry
+  // the one before them and are dropped.
+  const std::vector<double>& odometers = database.odometers();
+  std::size_t limit = static_cast<std::size_t>(
+      std::upper_bound(odometers.begin(), odometers.end(), odometer - options.recent_exclusion_m) -
+      odometers.begin());
+  while (limit > 0 && std::isnan(database.entries()[limit - 1].odometer)) --limit;
   return static_cast<EntryId>(limit);
 }
 
@@ -227,15 +219,20 @@ void runQuery(const QueryContext& ctx, const DatabaseQuery& q, const DatabaseEnt
     return;
   }
   const GeometricVerificationOptions& go = options_.geometric;
-  const DirectIndex query_direct =
-      go.enabled && !go.exhaustive
-          ? directIndexFromWords(*vocabulary_, query_entry.words, database_->directLevel())
-          : DirectIndex();
-  const VerificationView qv{&query_entry.keypoints, &query_entry.descriptors, &query_direct};
-  const auto verify = [&](EntryId id) {
+  // The query's direct index is built on the first verification only: with
+  // one verified candidate most queries stop at the temporal check before it.
+  DirectIndex query_direct;
+  bool query_direct_built = go.exhaustive;
+  const auto queryView = [&]() {
+    if (!query_direct_built) {
+      query_direct = directIndexFromWords(*vocabulary_, query_entry.words, database_->directLevel());
+      query_direct_built = true;
+    }
+    return VerificationView{&query_entry.keypoints, &query_entry.descriptors, &query_direct};
+  };
+  const auto matchView = [database_](EntryId id) {
     const DatabaseEntry& m = database_->entry(id);
-    const VerificationView mv{&m.keypoints, &m.descriptors, &m.direct};
-    return verifyGeometry(qv, mv, intrinsics, go);
+    return VerificationView{&m.keypoints, &m.descriptors, &m.direct};
   };
 
   // Geometric re-ranking (options.h, GeometricVerificationOptions::candidates):
@@ -250,9 +247,9 @@ void runQuery(const QueryContext& ctx, const DatabaseQuery& q, const DatabaseEnt
   double rerank_ms = 0;
   if (reranked > 1) {
     const auto t_rerank = Clock::now();
+    const VerificationView qv = queryView();
     for (std::size_t i = 0; i < reranked; ++i) {
-      const DatabaseEntry& m = database_->entry(islands[i].best_entry);
-      const VerificationView mv{&m.keypoints, &m.descriptors, &m.direct};
+      const VerificationView mv = matchView(islands[i].best_entry);
       const auto pairs = findCorrespondences(qv, mv, go);
       // Inliers are a subset of the correspondences: a candidate with no
       // more correspondences than the best inlier count so far cannot win,
@@ -293,7 +290,7 @@ void runQuery(const QueryContext& ctx, const DatabaseQuery& q, const DatabaseEnt
     r->status = LoopStatus::kLoopDetected;
     return;
   }
-  if (!verified) g = verify(island.best_entry);
+  if (!verified) g = verifyGeometry(queryView(), matchView(island.best_entry), intrinsics, go);
   r->timings.verification_ms = rerank_ms + msBetween(t_verify, Clock::now());
   r->status = g.status;
   r->correspondences = g.correspondences;
@@ -398,7 +395,7 @@ LoopResult LoopDetector::process(const KeyframeInput& keyframe) {
       throw std::invalid_argument("LoopDetector::process: keyframe.odometer must be NaN "
                                   "(unknown) or finite >= 0");
     }
-    const double last = lastOdometer(*database_);
+    const double last = database_->lastOdometer();
     if (keyframe.odometer < last) {
       throw std::invalid_argument("LoopDetector::process: keyframe.odometer " +
                                   std::to_string(keyframe.odometer) + " decreases (last " +

@@ -28,7 +28,6 @@
 #include <atomic>
 #include <boost/thread/recursive_mutex.hpp>
 #include <chrono>
-#include <cmath>
 #include <limits>
 #include <map>
 #include <memory>
@@ -85,8 +84,7 @@ bool isNodeParameter(const std::string& name) {
 /// Where a loaded database's odometers end (0 when it has none): the gate's
 /// odometer continues from there, so the keyframes' odometers keep growing.
 double lastOdometer(const bowg::LoopDetector& detector) {
-  const std::vector<double>& o = detector.database().odometers();
-  return !o.empty() && std::isfinite(o.back()) ? o.back() : 0.0;
+  return std::max(0.0, detector.database().lastOdometer());
 }
 
 /// One frame waiting for the worker: exactly one of the three inputs is set.

@@ -94,6 +94,10 @@ class Database {
   /// entry id range of a metre interval is two binary searches
   /// (temporal_alignment.h).
   const std::vector<double>& odometers() const { return odometers_; }
+  /// The largest odometer known (-inf when no entry has one).
+  double lastOdometer() const {
+    return odometers_.empty() ? -std::numeric_limits<double>::infinity() : odometers_.back();
+  }
   const Vocabulary& vocabulary() const { return *vocabulary_; }
   const WordGroupTable& groupTable() const { return group_table_; }
   /// The cached distribution vector of entry `id` for the current m.
