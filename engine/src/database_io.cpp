@@ -21,8 +21,10 @@ const char kMagic[8] = {'B', 'O', 'W', 'G', 'D', 'B', 0, 0};
 // Version 2 appends the normaliser history; version 3 then the two
 // missed-query counters (previous scores, temporal chain) and the entries'
 // odometers (u32 count = entries, f64 each, NaN = unknown). Older files still
-// load, with an empty history, zero counters and unknown odometers.
-const std::uint32_t kVersion = 3;
+// load, with an empty history, zero counters and unknown odometers. Version 4
+// appends the temporal verification's other hypotheses (u32 count, then an
+// island and an i32 chain length each); older files load with none.
+const std::uint32_t kVersion = 4;
 const std::uint32_t kOldestVersion = 1;
 // magic + version + fingerprint + payload size | ... | checksum
 const std::size_t kHeaderBytes = 8 + 4 + 8 + 8;
@@ -32,6 +34,7 @@ const std::size_t kEntryFixedBytes = 8 * 3 + 1 + 8 * 4 + 4 + 4 + 4;
 const std::size_t kFeatureBytes = 6 * 4 + 32 + 4;
 const std::size_t kPairBytes = 4 + 8;
 const std::size_t kNormaliserBytes = 3 * 8;
+const std::size_t kIslandBytes = 4 + 4 + 8 + 4 + 8 + 4;
 
 class Writer {
  public:
@@ -136,6 +139,26 @@ class Reader {
   const char* end_;
 };
 
+void writeIsland(Writer* w, const Island& i) {
+  w->u32(i.first);
+  w->u32(i.last);
+  w->f64(i.score);
+  w->u32(i.best_entry);
+  w->f64(i.best_score);
+  w->i32(i.size);
+}
+
+Island readIsland(Reader* r) {
+  Island i;
+  i.first = r->u32("island");
+  i.last = r->u32("island");
+  i.score = r->f64("island");
+  i.best_entry = r->u32("island");
+  i.best_score = r->f64("island");
+  i.size = r->i32("island");
+  return i;
+}
+
 std::string readWholeFile(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw IoError("cannot open database file '" + path + "' for reading");
@@ -183,13 +206,7 @@ void saveDetectorFile(const std::string& path, const Database& database,
     w.pairs(e.raw_groups);
   }
   w.pairs(state.previous_etas);
-  const Island& last = state.consistency.lastIsland();
-  w.u32(last.first);
-  w.u32(last.last);
-  w.f64(last.score);
-  w.u32(last.best_entry);
-  w.f64(last.best_score);
-  w.i32(last.size);
+  writeIsland(&w, state.consistency.lastIsland());
   w.i32(state.consistency.chainLength());
   const std::vector<Normalisers> normalisers = state.normalisers.values();
   w.u32(static_cast<std::uint32_t>(normalisers.size()));
@@ -204,6 +221,12 @@ void saveDetectorFile(const std::string& path, const Database& database,
   for (const DatabaseEntry& e : database.entries()) w.f64(e.odometer);
   w.f64(state.previous_odometer);
   w.f64(state.consistency.lastQueryOdometer());
+  const std::vector<IslandHypothesis>& others = state.consistency.otherHypotheses();
+  w.u32(static_cast<std::uint32_t>(others.size()));
+  for (const IslandHypothesis& h : others) {
+    writeIsland(&w, h.island);
+    w.i32(h.chain_length);
+  }
 
   std::string& bytes = w.str();
   const std::uint64_t payload = bytes.size() - payload_start;
@@ -297,13 +320,7 @@ std::unique_ptr<Database> loadDetectorFile(const std::string& path,
     if (!state->previous_etas.empty() && state->previous_etas.back().first >= n) {
       p.fail("previous scores refer to an entry beyond the database");
     }
-    Island last;
-    last.first = p.u32("island");
-    last.last = p.u32("island");
-    last.score = p.f64("island");
-    last.best_entry = p.u32("island");
-    last.best_score = p.f64("island");
-    last.size = p.i32("island");
+    Island last = readIsland(&p);
     const int chain = p.i32("chain length");
     if (chain < 0) p.fail("negative temporal-consistency chain length");
     if (version >= 2) {
@@ -347,16 +364,32 @@ std::unique_ptr<Database> loadDetectorFile(const std::string& path,
         if (!std::isnan(o) && !(std::isfinite(o) && o >= 0.0)) p.fail("a stored query odometer is invalid");
       }
     }
+    std::vector<IslandHypothesis> others;
+    if (version >= 4) {
+      const std::size_t no = p.count(kIslandBytes + 4, "hypotheses");
+      if (no > 0 && chain == 0) p.fail("temporal hypotheses stored without a temporal chain");
+      others.resize(no);
+      for (IslandHypothesis& h : others) {
+        h.island = readIsland(&p);
+        h.chain_length = p.i32("chain length");
+        if (h.chain_length < 1) p.fail("a temporal hypothesis has a chain length < 1");
+      }
+    }
     for (DatabaseEntry& e : entries) {
       db->addToGroupTable(e.raw_groups);
       db->add(std::move(e), bow_normalised);
     }
-    if (chain > 0) {
-      if (last.first > last.last || last.last >= n) p.fail("the last island lies outside the database");
-      last.first_m = db->entry(last.first).odometer;
-      last.last_m = db->entry(last.last).odometer;
-    }
-    state->consistency.restore(last, chain, chain_missed, last_query_m);
+    const auto place = [&](Island* i) {
+      if (i->first > i->last || i->last >= n || i->best_entry < i->first ||
+          i->best_entry > i->last) {
+        p.fail("a temporal island lies outside the database");
+      }
+      i->first_m = db->entry(i->first).odometer;
+      i->last_m = db->entry(i->last).odometer;
+    };
+    if (chain > 0) place(&last);
+    for (IslandHypothesis& h : others) place(&h.island);
+    state->consistency.restore(last, chain, chain_missed, last_query_m, std::move(others));
   } catch (const std::invalid_argument& e) {
     // Content the database itself rejects (word ids out of range,
     // non-increasing stamps, invalid weights): still a format problem.

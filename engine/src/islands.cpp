@@ -86,9 +86,32 @@ bool finiteExtent(const Island& i) { return std::isfinite(i.first_m) && std::isf
 
 }  // namespace
 
+bool TemporalConsistency::consistent(const Island& previous, const Island& current,
+                                     const TemporalVerificationOptions& options,
+                                     double query_m) const {
+  if (options.max_island_distance_m > 0.0 && std::isfinite(query_m) &&
+      std::isfinite(last_query_m_) && finiteExtent(previous) && finiteExtent(current)) {
+    const double driven = query_m - last_query_m_;
+    const double gap = std::max(current.first_m, previous.first_m + driven) -
+                       std::min(current.last_m, previous.last_m + driven);
+    return gap <= options.max_island_distance_m;
+  }
+  const int distance = options.max_island_distance * (1 + missed_);
+  return islandsConsistent(previous, current, distance);
+}
+
 bool TemporalConsistency::update(const Island& island, const TemporalVerificationOptions& options,
                                  double query_m) {
+  return update(std::vector<Island>{island}, 0, options, query_m);
+}
+
+bool TemporalConsistency::update(const std::vector<Island>& islands, std::size_t chosen,
+                                 const TemporalVerificationOptions& options, double query_m) {
   options.validate();
+  if (chosen >= islands.size()) {
+    throw std::invalid_argument("TemporalConsistency::update: chosen island " +
+                                std::to_string(chosen) + " of " + std::to_string(islands.size()));
+  }
   // DLoopDetector's updateTemporalWindow: the chain counts the queries whose
   // best islands were pairwise consistent with their predecessor, including
   // the current one. It restarts at 1 when the new island is not consistent
@@ -103,25 +126,27 @@ bool TemporalConsistency::update(const Island& island, const TemporalVerificatio
   // In metres (max_island_distance_m, odometers known): the previous island
   // moves with the robot by the metres driven since its query; the
   // distance travelled already covers any missed queries in between.
-  bool consistent = false;
-  if (chain_length_ > 0) {
-    if (options.max_island_distance_m > 0.0 && std::isfinite(query_m) &&
-        std::isfinite(last_query_m_) && finiteExtent(last_) && finiteExtent(island)) {
-      const double driven = query_m - last_query_m_;
-      const double gap = std::max(island.first_m, last_.first_m + driven) -
-                         std::min(island.last_m, last_.last_m + driven);
-      consistent = gap <= options.max_island_distance_m;
-    } else {
-      const int distance = options.max_island_distance * (1 + missed_);
-      consistent = islandsConsistent(last_, island, distance);
+  //
+  // Several hypotheses: every followed island of this query takes the
+  // longest consistent chain among the previous query's followed islands.
+  std::vector<IslandHypothesis> next(islands.size());
+  for (std::size_t i = 0; i < islands.size(); ++i) {
+    int longest = 0;
+    if (chain_length_ > 0) {
+      if (consistent(last_, islands[i], options, query_m)) longest = chain_length_;
+      for (const IslandHypothesis& h : others_) {
+        if (h.chain_length > longest && consistent(h.island, islands[i], options, query_m)) {
+          longest = h.chain_length;
+        }
+      }
     }
+    next[i].island = islands[i];
+    next[i].chain_length = longest < std::numeric_limits<int>::max() ? longest + 1 : longest;
   }
-  if (consistent) {
-    if (chain_length_ < std::numeric_limits<int>::max()) ++chain_length_;
-  } else {
-    chain_length_ = 1;
-  }
-  last_ = island;
+  last_ = next[chosen].island;
+  chain_length_ = next[chosen].chain_length;
+  next.erase(next.begin() + static_cast<std::ptrdiff_t>(chosen));
+  others_ = std::move(next);
   last_query_m_ = query_m;
   missed_ = 0;
   return chain_length_ > options.k;
@@ -142,13 +167,14 @@ void TemporalConsistency::breakChain() {
   // max_distance_between_queries from the last matched one; here the caller
   // breaks the chain on every query that yields no island.
   last_ = Island();
+  others_.clear();
   chain_length_ = 0;
   missed_ = 0;
   last_query_m_ = std::numeric_limits<double>::quiet_NaN();
 }
 
 void TemporalConsistency::restore(const Island& last, int chain_length, int missed_queries,
-                                  double last_query_m) {
+                                  double last_query_m, std::vector<IslandHypothesis> others) {
   if (chain_length < 0) {
     throw std::invalid_argument("TemporalConsistency::restore: chain_length must be >= 0 (got " +
                                 std::to_string(chain_length) + ")");
@@ -163,6 +189,14 @@ void TemporalConsistency::restore(const Island& last, int chain_length, int miss
                                 std::to_string(missed_queries) +
                                 " is negative or set without a chain");
   }
+  for (const IslandHypothesis& h : others) {
+    if (chain_length == 0 || h.chain_length < 1 || h.island.first > h.island.last) {
+      throw std::invalid_argument(
+          "TemporalConsistency::restore: a hypothesis without a chain, with a chain < 1 or "
+          "with first > last");
+    }
+  }
+  others_ = std::move(others);
   last_ = chain_length > 0 ? last : Island();
   chain_length_ = chain_length;
   missed_ = missed_queries;

@@ -138,23 +138,28 @@ void runQuery(const QueryContext& ctx, const DatabaseQuery& q, const DatabaseEnt
     r->timings.query_ms = msBetween(t_query, Clock::now());
     return;
   }
+  // What eqs. 2 and 4 divide by: s(I_t, I_t-1), raised to the normaliser
+  // floor where it is unusually small.
+  const Normalisers divisor = flooredNormalisers(previous, expected, so.normaliser_floor);
   // A normaliser of 0 (I_{t-1} shares no word / group / occupied fan bin with
   // I_t) cannot divide eqs. 2 and 4 even when the minimum is set to 0 (a valid
   // value): such a keyframe is always low_normaliser, never inf/NaN scores.
+  // Without the floor (the paper) the test reads s(I_t, I_t-1) itself. With
+  // it, the floored divisor: a previous keyframe that shares little with this
+  // one (keyframes 10-20 cm apart, a jolt, a roll) no longer silences the
+  // query while the recent keyframes scored normally; an image too poor to
+  // score still gets scores too small for any island.
+  const Normalisers& tested = so.normaliser_floor > 0.0 ? divisor : previous;
   const auto low = [](double normaliser, double minimum) {
     return !(normaliser > 0.0) || normaliser < minimum;
   };
-  if (low(norm.s_w, so.min_word_normaliser) ||
-      (with_groups && low(norm.s_g, so.min_group_normaliser)) ||
-      (with_distribution && low(norm.s_d, so.min_distribution_normaliser))) {
+  if (low(tested.word, so.min_word_normaliser) ||
+      (with_groups && low(tested.group, so.min_group_normaliser)) ||
+      (with_distribution && low(tested.distribution, so.min_distribution_normaliser))) {
     finish(LoopStatus::kLowNormaliser);
     r->timings.query_ms = msBetween(t_query, Clock::now());
     return;
   }
-
-  // The low-normaliser test above reads the raw s(I_t, I_t-1) (an image too
-  // poor to score); the division uses the floored value.
-  const Normalisers divisor = flooredNormalisers(previous, expected, so.normaliser_floor);
   r->word_divisor = divisor.word;
   r->group_divisor = with_groups ? divisor.group : 0.0;
   r->distribution_divisor = with_distribution ? divisor.distribution : 0.0;
@@ -272,8 +277,15 @@ void runQuery(const QueryContext& ctx, const DatabaseQuery& q, const DatabaseEnt
       std::lower_bound(last_candidates_.begin(), last_candidates_.end(), island.best_entry,
                        [](const CandidateScores& c, EntryId id) { return c.entry < id; });
   if (it != last_candidates_.end() && it->entry == island.best_entry) r->best = *it;
-  const bool consistent =
-      state_->consistency.update(island, options_.temporal_verification, query_entry.odometer);
+  // The followed hypotheses (TemporalVerificationOptions::hypotheses): the
+  // chosen island first, then the best-scored others.
+  std::vector<Island> followed{island};
+  const std::size_t wanted = static_cast<std::size_t>(options_.temporal_verification.hypotheses);
+  for (std::size_t i = 0; i < islands.size() && followed.size() < wanted; ++i) {
+    if (i != chosen) followed.push_back(islands[i]);
+  }
+  const bool consistent = state_->consistency.update(followed, 0, options_.temporal_verification,
+                                                     query_entry.odometer);
   const auto t_verify = Clock::now();
   r->timings.islands_ms = msBetween(t_islands, t_verify) - rerank_ms;
   r->timings.verification_ms = rerank_ms;

@@ -100,6 +100,7 @@ void TemporalVerificationOptions::validate() const {
   requireIntAtLeast("temporal_verification.max_island_distance", max_island_distance, 0);
   requireIntAtLeast("temporal_verification.max_missed_queries", max_missed_queries, 0);
   requireFiniteAtLeast("temporal_verification.max_island_distance_m", max_island_distance_m, 0.0);
+  requireIntAtLeast("temporal_verification.hypotheses", hypotheses, 1);
 }
 
 void GeometricVerificationOptions::validate() const {
@@ -159,6 +160,7 @@ LoopDetectorOptions LoopDetectorOptions::ablation(const std::string& row,
     o.temporal_verification.max_missed_queries = 0;
     o.temporal_score.alignment_window_m = 0.0;
     o.temporal_verification.max_island_distance_m = 0.0;
+    o.temporal_verification.hypotheses = 1;
     o.geometric.candidates = 1;
     return o;
   }

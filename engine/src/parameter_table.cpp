@@ -195,6 +195,10 @@ std::vector<Row> makeRows() {
                            BOWG_FIELD(double, detector.temporal_verification.max_island_distance_m),
                            "With odometry: the previous island moved by the metres driven must "
                            "come within this of the current one (0 = max_island_distance in ids)"));
+  rows.push_back(intRow("temporal_hypotheses", det, "temporal_verification.hypotheses", 1, 100,
+                        false, BOWG_FIELD(int, detector.temporal_verification.hypotheses),
+                        "Islands per query followed with their own temporal chains "
+                        "(1 = DLoopDetector: the chosen island only)"));
   // --- Geometric verification.
   rows.push_back(boolRow("geometric_verification", det, "geometric.enabled", true,
                          BOWG_FIELD(bool, detector.geometric.enabled),

@@ -266,6 +266,44 @@ TEST(DatabaseIo, OdometersAndMissedQueryCountersRoundTrip) {
   std::remove(path.c_str());
 }
 
+TEST(DatabaseIo, TemporalHypothesesRoundTrip) {
+  const auto voc = vocabulary();
+  const auto kfs = keyframes();
+  LoopDetectorOptions one = options();
+  one.islands.min_score = 0.05;  // several islands per query
+  one.islands.max_intra_island_gap = 0;
+  LoopDetectorOptions four = one;
+  four.temporal_verification.hypotheses = 4;
+  LoopDetector a(voc, four), single(voc, one);
+  const std::string path = outPath("hypotheses.bowgdb");
+  const std::string path_one = outPath("hypotheses_one.bowgdb");
+  // Saved after the first query that followed other hypotheses: the file is
+  // longer than the one-hypothesis file by a whole number of them (an
+  // island and its chain length each), at most 3.
+  const std::size_t per_hypothesis = 4 + 4 + 8 + 4 + 8 + 4 + 4;
+  std::size_t saved_at = 0;
+  for (std::size_t i = 0; i < kfs.size() && saved_at == 0; ++i) {
+    a.process(kfs[i]);
+    single.process(kfs[i]);
+    a.save(path);
+    single.save(path_one);
+    const std::size_t extra = readBytes(path).size() - readBytes(path_one).size();
+    EXPECT_EQ(extra % per_hypothesis, 0u);
+    EXPECT_LE(extra / per_hypothesis, 3u);
+    if (extra > 0) saved_at = i + 1;
+  }
+  ASSERT_GT(saved_at, 0u) << "no query followed more than one island";
+  ASSERT_LT(saved_at, kfs.size());
+  LoopDetector b(voc, four);
+  b.load(path);
+  for (std::size_t i = saved_at; i < kfs.size(); ++i) {
+    expectSameResult(a.process(kfs[i]), b.process(kfs[i]));
+    expectSameCandidates(a, b);
+  }
+  std::remove(path.c_str());
+  std::remove(path_one.c_str());
+}
+
 TEST(DatabaseIo, VersionOneFilesLoadWithAnEmptyHistory) {
   const auto voc = vocabulary();
   const auto kfs = keyframes();
@@ -276,9 +314,10 @@ TEST(DatabaseIo, VersionOneFilesLoadWithAnEmptyHistory) {
   std::string bytes = readBytes(v2);
   // The history closes the version-2 payload: u32 count + count x 3 f64;
   // version 3 adds two i32 missed-query counters, the odometers (u32
-  // count + 45 f64) and two query odometers (f64), then the u64 checksum.
-  // 44 keyframes had a previous one; the window is 50.
-  const std::size_t history = 4 + 44 * 24 + 2 * 4 + 4 + 45 * 8 + 2 * 8;
+  // count + 45 f64) and two query odometers (f64), version 4 the other
+  // temporal hypotheses (u32 count, 0 with one hypothesis), then the u64
+  // checksum. 44 keyframes had a previous one; the window is 50.
+  const std::size_t history = 4 + 44 * 24 + 2 * 4 + 4 + 45 * 8 + 2 * 8 + 4;
   ASSERT_GT(bytes.size(), history + 8 + 28);
   bytes.resize(bytes.size() - 8 - history);
   auto putLe = [&bytes](std::size_t at, std::uint64_t v, int n) {
@@ -299,13 +338,13 @@ TEST(DatabaseIo, VersionOneFilesLoadWithAnEmptyHistory) {
     expectSameCandidates(a, b);
   }
   // Versions beyond the current one are refused by number.
-  putLe(8, 4, 4);
+  putLe(8, 5, 4);
   writeBytes(v1, bytes);
   try {
     b.load(v1);
-    ADD_FAILURE() << "version 4 accepted";
+    ADD_FAILURE() << "version 5 accepted";
   } catch (const FormatError& e) {
-    EXPECT_NE(std::string(e.what()).find("unsupported version 4"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("unsupported version 5"), std::string::npos) << e.what();
   }
   std::remove(v1.c_str());
   std::remove(v2.c_str());

@@ -312,6 +312,84 @@ TEST(TemporalConsistency, RestoreKeepsTheMissedCount) {
   EXPECT_EQ(tc.missedQueries(), 1);
 }
 
+// Several hypotheses per query (TemporalVerificationOptions::hypotheses).
+TEST(TemporalConsistency, HypothesesKeepAChainWhoseIslandAlternates) {
+  // Two equally true places (the same stretch on two earlier laps): the
+  // chosen island alternates between the track at 10.. and the one at 110..
+  const TemporalVerificationOptions o = verification(2, 1);
+  TemporalConsistency one, two;
+  // Query 1 chooses A, query 2 B, query 3 A again.
+  EXPECT_FALSE(one.update(island(10, 10), o));
+  EXPECT_FALSE(one.update(island(111, 111), o));  // 101 ids from [10, 10]
+  EXPECT_EQ(one.chainLength(), 1);
+  EXPECT_FALSE(one.update(island(12, 12), o));
+  EXPECT_EQ(one.chainLength(), 1);
+  // Followed as two hypotheses: B2 extends B1 (chain 2), A3 extends A2
+  // (chain 3 > k = 2, passes), both having been followed all along.
+  EXPECT_FALSE(two.update({island(10, 10), island(110, 110)}, 0, o));
+  EXPECT_EQ(two.chainLength(), 1);
+  ASSERT_EQ(two.otherHypotheses().size(), 1u);
+  EXPECT_EQ(two.otherHypotheses()[0].chain_length, 1);
+  EXPECT_FALSE(two.update({island(111, 111), island(11, 11)}, 0, o));
+  EXPECT_EQ(two.chainLength(), 2);
+  EXPECT_EQ(two.otherHypotheses()[0].chain_length, 2);
+  EXPECT_TRUE(two.update({island(112, 112), island(12, 12)}, 1, o));
+  EXPECT_EQ(two.chainLength(), 3);
+  EXPECT_EQ(two.lastIsland().first, 12u);
+  EXPECT_EQ(two.otherHypotheses()[0].island.first, 112u);
+}
+
+TEST(TemporalConsistency, ALookAlikeForOneQueryDoesNotRestartTheTruePlace) {
+  const TemporalVerificationOptions o = verification(2, 1);
+  TemporalConsistency tc;
+  tc.update({island(10, 10)}, 0, o);
+  tc.update({island(11, 11)}, 0, o);
+  // A look-alike at 500 wins query 3; the true place (12) is followed too.
+  EXPECT_FALSE(tc.update({island(500, 500), island(12, 12)}, 0, o));
+  EXPECT_EQ(tc.chainLength(), 1);
+  EXPECT_EQ(tc.otherHypotheses()[0].chain_length, 3);
+  // Query 4 chooses the true place again: 1 + 3, passes at once. [16, 16]
+  // is 4 ids from [12, 12]: a new chain.
+  EXPECT_TRUE(tc.update({island(13, 13), island(16, 16)}, 0, o));
+  EXPECT_EQ(tc.chainLength(), 4);
+  EXPECT_EQ(tc.otherHypotheses()[0].chain_length, 1);
+  // [14, 15] is consistent with both (gaps 1 and 1): the longer chain wins.
+  EXPECT_TRUE(tc.update({island(14, 15)}, 0, o));
+  EXPECT_EQ(tc.chainLength(), 5);
+}
+
+TEST(TemporalConsistency, OneHypothesisIsTheSingleChain) {
+  // update({island}, 0) and update(island) are the same rule.
+  const TemporalVerificationOptions o = verification(2, 3);
+  TemporalConsistency a, b;
+  const std::vector<Island> seq{island(10, 12), island(11, 13), island(40, 41), island(42, 42),
+                                island(44, 45), island(46, 46)};
+  for (const Island& i : seq) {
+    EXPECT_EQ(a.update(i, o), b.update(std::vector<Island>{i}, 0, o));
+    EXPECT_EQ(a.chainLength(), b.chainLength());
+    EXPECT_TRUE(b.otherHypotheses().empty());
+  }
+}
+
+TEST(TemporalConsistency, HypothesesAreForgottenWithTheChainAndRestored) {
+  const TemporalVerificationOptions o = verification(2, 1);
+  TemporalConsistency tc;
+  EXPECT_THROW(tc.update(std::vector<Island>{island(1, 1)}, 1, o), std::invalid_argument);
+  EXPECT_THROW(tc.update(std::vector<Island>{}, 0, o), std::invalid_argument);
+  tc.update({island(10, 10), island(50, 50)}, 0, o);
+  tc.breakChain();
+  EXPECT_TRUE(tc.otherHypotheses().empty());
+  // Restored: the other hypothesis [50, 51] with chain 2 carries on.
+  tc.restore(island(11, 13), 1, 0, std::nan(""), {IslandHypothesis{island(50, 51), 2}});
+  EXPECT_TRUE(tc.update({island(52, 52)}, 0, o));
+  EXPECT_EQ(tc.chainLength(), 3);
+  EXPECT_THROW(tc.restore(island(11, 13), 0, 0, std::nan(""), {IslandHypothesis{island(50, 51), 2}}),
+               std::invalid_argument);
+  EXPECT_THROW(tc.restore(island(11, 13), 1, 0, std::nan(""), {IslandHypothesis{island(50, 51), 0}}),
+               std::invalid_argument);
+  EXPECT_EQ(tc.chainLength(), 3);  // failed restores change nothing
+}
+
 TEST(TemporalConsistency, InvalidOptionsThrow) {
   TemporalConsistency tc;
   EXPECT_THROW(tc.update(island(1, 1), verification(-1)), InvalidParameter);
@@ -319,6 +397,9 @@ TEST(TemporalConsistency, InvalidOptionsThrow) {
   TemporalVerificationOptions o = verification(1);
   o.max_missed_queries = -1;
   EXPECT_THROW(tc.miss(o), InvalidParameter);
+  o = verification(1);
+  o.hypotheses = 0;
+  EXPECT_THROW(tc.update(island(1, 1), o), InvalidParameter);
 }
 
 }  // namespace

@@ -502,6 +502,37 @@ TEST(LoopDetector, NormaliserFloorDividesByTheRecentMedianAfterAnUnusualKeyframe
   EXPECT_GT(kept, 0) << "ordinary queries keep the paper's normaliser";
 }
 
+// With the floor, the low-normaliser test reads the floored divisor: one
+// keyframe from elsewhere (a jolt) shares nothing with the next query, whose
+// s(I_t, I_t-1) falls below the minimum. Without the floor the query is
+// low_normaliser (the paper); with it, it is scored against the median of the
+// recent normalisers.
+TEST(LoopDetector, WithTheFloorADissimilarPreviousKeyframeDoesNotSilenceTheQuery) {
+  for (const double floor : {0.0, 1.0}) {
+    SCOPED_TRACE(floor);
+    LoopDetectorOptions o = defaultOptions();
+    o.islands.recent_exclusion = 0;
+    o.similarity.normaliser_floor = floor;
+    o.similarity.normaliser_window = 5;
+    LoopDetector det(vocabulary(), o);
+    const testing::Corridor a = testing::makeCorridor(20, 50, 11);
+    const testing::Corridor b = testing::makeCorridor(20, 50, 12);  // other landmarks
+    std::mt19937_64 rng(1);
+    for (int t = 0; t < 6; ++t) det.process(testing::observeCorridor(a, 2.0 + 0.2 * t, 1.0 + t, rng));
+    det.process(testing::observeCorridor(b, 5.0, 7.0, rng));  // the jolt
+    const LoopResult r = det.process(testing::observeCorridor(a, 3.4, 8.0, rng));
+    EXPECT_LT(r.word_normaliser, o.similarity.min_word_normaliser);
+    if (floor == 0.0) {
+      EXPECT_EQ(r.status, LoopStatus::kLowNormaliser);
+      EXPECT_FALSE(r.has_candidate);
+    } else {
+      EXPECT_NE(r.status, LoopStatus::kLowNormaliser);
+      EXPECT_GT(r.word_divisor, o.similarity.min_word_normaliser);
+      EXPECT_TRUE(r.has_candidate);
+    }
+  }
+}
+
 TEST(LoopDetector, WithoutFloorTheDivisorIsTheNormaliser) {
   LoopDetector det(vocabulary(), defaultOptions());  // normaliser_floor 0
   const CorridorRun run = runCorridor(&det, true, 30);

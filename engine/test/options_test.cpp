@@ -204,6 +204,8 @@ TEST(Options, Geometric) {
                  "geometric.min_inliers");
   expectRejected([](LoopDetectorOptions& o) { o.geometric.candidates = 0; },
                  "geometric.candidates");
+  expectRejected([](LoopDetectorOptions& o) { o.temporal_verification.hypotheses = 0; },
+                 "temporal_verification.hypotheses");
   expectAccepted([](LoopDetectorOptions& o) {
     o.geometric.candidates = 5;
     o.geometric.min_inliers = 8;
@@ -273,6 +275,7 @@ TEST(Ablation, PaperRowIsTheFullMethodWithoutTheExtensions) {
   base.temporal_score.max_missed_queries = 3;
   base.temporal_verification.max_missed_queries = 1;
   base.geometric.candidates = 10;
+  base.temporal_verification.hypotheses = 4;
   base.geometric.min_inliers = 25;
   base.temporal_score.alignment_window_m = 0.05;
   base.temporal_verification.max_island_distance_m = 0.1;
@@ -289,6 +292,7 @@ TEST(Ablation, PaperRowIsTheFullMethodWithoutTheExtensions) {
   EXPECT_EQ(o.temporal_score.max_missed_queries, 0);
   EXPECT_EQ(o.temporal_verification.max_missed_queries, 0);
   EXPECT_EQ(o.geometric.candidates, 1);
+  EXPECT_EQ(o.temporal_verification.hypotheses, 1);
   EXPECT_EQ(o.geometric.min_inliers, 25);  // thresholds are the preset's
   const LoopDetectorOptions pb = LoopDetectorOptions::ablation("paper_bow", base);
   EXPECT_FALSE(pb.word_groups.enabled);
@@ -297,10 +301,12 @@ TEST(Ablation, PaperRowIsTheFullMethodWithoutTheExtensions) {
   EXPECT_EQ(pb.similarity.normaliser_floor, 0.0);
   EXPECT_EQ(pb.temporal_score.alignment_window, 0);
   EXPECT_EQ(pb.geometric.candidates, 1);
+  EXPECT_EQ(pb.temporal_verification.hypotheses, 1);
   EXPECT_EQ(pb.geometric.min_inliers, 25);
   const LoopDetectorOptions as_is = LoopDetectorOptions::ablation("configured", base);
   EXPECT_FALSE(as_is.word_groups.enabled);
   EXPECT_EQ(as_is.geometric.candidates, 10);
+  EXPECT_EQ(as_is.temporal_verification.hypotheses, 4);
   EXPECT_EQ(as_is.similarity.normaliser_floor, 1.0);
   // The module rows keep the extensions of the base.
   const LoopDetectorOptions full = LoopDetectorOptions::ablation("distribution", base);

@@ -196,8 +196,10 @@ struct DetectorState {
 /// Persistence (database_io.cpp). One versioned little-endian binary file:
 ///   magic "BOWGDB\0\0" | u32 version | u64 vocabulary fingerprint |
 ///   u64 payload size | payload (u32 scoring type of the stored BoW
-///   vectors, entries, then the detector state; version 2 ends the state
-///   with the normaliser history, version 1 files load without it) |
+///   vectors, entries, then the detector state; version 2 adds the
+///   normaliser history, version 3 the missed-query counters and the
+///   odometers, version 4 the temporal verification's other hypotheses;
+///   older files load without them) |
 ///   u64 Checksum64 of every preceding byte.
 /// Entries carry everything the indexes, the group table and the caches are
 /// rebuilt from; the options-dependent parts (scoring, level, m) follow the

@@ -37,10 +37,19 @@ std::vector<Island> computeIslands(std::vector<std::pair<EntryId, double>> candi
 /// (overlapping intervals have a gap <= 0).
 bool islandsConsistent(const Island& a, const Island& b, int max_distance);
 
+/// One island a query followed, with the length of its chain (consecutive
+/// queries with consistent islands ending at it, itself included).
+struct IslandHypothesis {
+  Island island;
+  int chain_length = 0;
+};
+
 /// DLoopDetector-style temporal verification: remembers the best island of
 /// each previous query; a match is temporally consistent when the islands of
 /// the k previous consecutive queries form a chain of consistent islands
-/// ending at the current one.
+/// ending at the current one. With several hypotheses per query
+/// (TemporalVerificationOptions::hypotheses) each followed island carries its
+/// own chain, extended from any previous hypothesis it is consistent with.
 class TemporalConsistency {
  public:
   /// Records the current query's best island and returns whether it is
@@ -51,6 +60,14 @@ class TemporalConsistency {
   /// metres driven between the two queries must come within
   /// max_island_distance_m of this one.
   bool update(const Island& island, const TemporalVerificationOptions& options,
+              double query_m = std::numeric_limits<double>::quiet_NaN());
+  /// The same with several islands of the query followed: `islands[chosen]`
+  /// is the query's island (returned verdict, lastIsland()); every island's
+  /// chain is one more than the longest chain of the previous query's
+  /// hypotheses it is consistent with (1 when none). The others are kept as
+  /// otherHypotheses() for the next query.
+  bool update(const std::vector<Island>& islands, std::size_t chosen,
+              const TemporalVerificationOptions& options,
               double query_m = std::numeric_limits<double>::quiet_NaN());
   /// A query without an island: the chain survives up to
   /// options.max_missed_queries consecutive ones, then breaks.
@@ -66,10 +83,19 @@ class TemporalConsistency {
   const Island& lastIsland() const { return last_; }
   /// The odometer of the query that recorded lastIsland() (NaN = unknown).
   double lastQueryOdometer() const { return last_query_m_; }
+  /// The previous query's followed islands besides lastIsland().
+  const std::vector<IslandHypothesis>& otherHypotheses() const { return others_; }
   void restore(const Island& last, int chain_length, int missed_queries = 0,
-               double last_query_m = std::numeric_limits<double>::quiet_NaN());
+               double last_query_m = std::numeric_limits<double>::quiet_NaN(),
+               std::vector<IslandHypothesis> others = {});
 
  private:
+  /// Whether `previous` (of the previous query) and `current` are the same
+  /// place seen by the moving robot.
+  bool consistent(const Island& previous, const Island& current,
+                  const TemporalVerificationOptions& options, double query_m) const;
+
+  std::vector<IslandHypothesis> others_;
   Island last_;
   int chain_length_ = 0;  ///< consecutive consistent queries ending at last_
   int missed_ = 0;        ///< queries without an island since last_

@@ -130,6 +130,15 @@ struct TemporalVerificationOptions {
   /// robot, whatever the keyframe spacing of either pass). 0 = ids always.
   /// >= 0.
   double max_island_distance_m = 0.0;
+  /// Hypotheses followed per query: the query's island (the best-scored one,
+  /// or the geometric re-ranking's choice) and the next best-scored islands,
+  /// up to this many in all, each with its own chain. A new island extends
+  /// the longest chain of any previous hypothesis it is consistent with. In
+  /// pipes the chosen island often alternates between equally true places
+  /// (the same stretch on two earlier laps) or one look-alike wins a single
+  /// query: with one hypothesis either restarts the chain, with several the
+  /// true place's chain survives. 1 = DLoopDetector (one chain). >= 1.
+  int hypotheses = 1;
   void validate() const;
 };
 
