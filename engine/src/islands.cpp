@@ -129,6 +129,22 @@ bool TemporalConsistency::update(const std::vector<Island>& islands, std::size_t
   //
   // Several hypotheses: every followed island of this query takes the
   // longest consistent chain among the previous query's followed islands.
+  //
+  // A query driven less than min_step_m after the last counted one (a robot
+  // standing still) is the same view again: it passes when the chain it
+  // continues passed already, and leaves the state as it is, so that the
+  // next query is judged against the last counted one with the metres
+  // driven since.
+  if (options.min_step_m > 0.0 && chain_length_ > 0 && std::isfinite(query_m) &&
+      std::isfinite(last_query_m_) && query_m - last_query_m_ < options.min_step_m) {
+    int longest = consistent(last_, islands[chosen], options, query_m) ? chain_length_ : 0;
+    for (const IslandHypothesis& h : others_) {
+      if (h.chain_length > longest && consistent(h.island, islands[chosen], options, query_m)) {
+        longest = h.chain_length;
+      }
+    }
+    return options.k == 0 || longest > options.k;
+  }
   std::vector<IslandHypothesis> next(islands.size());
   for (std::size_t i = 0; i < islands.size(); ++i) {
     int longest = 0;

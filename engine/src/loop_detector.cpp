@@ -91,6 +91,22 @@ EntryId candidateLimit(const Database& database, const IslandOptions& options, d
   return static_cast<EntryId>(limit);
 }
 
+// The normalisers' I_{t-1} (SimilarityOptions::normaliser_distance_m): the
+// newest entry driven at least that far before the query, when both have
+// odometers; else the previous keyframe (the paper).
+EntryId normaliserEntry(const Database& database, const SimilarityOptions& options,
+                        double odometer) {
+  const EntryId previous = static_cast<EntryId>(database.size() - 1);
+  if (std::isnan(odometer) || !(options.normaliser_distance_m > 0.0)) return previous;
+  const std::vector<double>& odometers = database.odometers();
+  const std::size_t behind = static_cast<std::size_t>(
+      std::upper_bound(odometers.begin(), odometers.end(),
+                       odometer - options.normaliser_distance_m) -
+      odometers.begin());
+  if (behind == 0 || std::isnan(database.entries()[behind - 1].odometer)) return previous;
+  return static_cast<EntryId>(behind - 1);
+}
+
 struct QueryContext {
   const Vocabulary& vocabulary;
   const LoopDetectorOptions& options;
@@ -120,12 +136,14 @@ void runQuery(const QueryContext& ctx, const DatabaseQuery& q, const DatabaseEnt
     r->timings.query_ms = msBetween(t_query, Clock::now());
     return;
   }
-  const SimilarityOptions& so = options_.similarity;
 
-  // Normalisers (eqs. 2, 4): the same scores against I_{t-1}, the last entry.
-  // They join the history from the first keyframe on, so that the floor has
-  // its median ready when the database is large enough to be queried.
-  const EntryScores norm = database_->score(q, static_cast<EntryId>(n - 1));
+  const SimilarityOptions& so = options_.similarity;
+  // Normalisers (eqs. 2, 4): the same scores against I_{t-1}, the last entry
+  // (or the one driven normaliser_distance_m back). They join the history
+  // from the first keyframe on, so that the floor has its median ready when
+  // the database is large enough to be queried.
+  const EntryScores norm =
+      database_->score(q, normaliserEntry(*database_, so, query_entry.odometer));
   const Normalisers previous{norm.s_w, norm.s_g, norm.s_d};
   const Normalisers expected = state_->normalisers.median();
   state_->normalisers.push(previous, static_cast<std::size_t>(so.normaliser_window));

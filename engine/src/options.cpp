@@ -75,6 +75,7 @@ void SimilarityOptions::validate() const {
   requireFiniteAtLeast("similarity.min_distribution_normaliser", min_distribution_normaliser, 0.0);
   requireFiniteAtLeast("similarity.normaliser_floor", normaliser_floor, 0.0);
   requireIntAtLeast("similarity.normaliser_window", normaliser_window, 1);
+  requireFiniteAtLeast("similarity.normaliser_distance_m", normaliser_distance_m, 0.0);
 }
 
 void TemporalScoreOptions::validate() const {
@@ -101,6 +102,7 @@ void TemporalVerificationOptions::validate() const {
   requireIntAtLeast("temporal_verification.max_missed_queries", max_missed_queries, 0);
   requireFiniteAtLeast("temporal_verification.max_island_distance_m", max_island_distance_m, 0.0);
   requireIntAtLeast("temporal_verification.hypotheses", hypotheses, 1);
+  requireFiniteAtLeast("temporal_verification.min_step_m", min_step_m, 0.0);
 }
 
 void GeometricVerificationOptions::validate() const {
@@ -155,12 +157,14 @@ LoopDetectorOptions LoopDetectorOptions::ablation(const std::string& row,
     o.temporal_score.enabled = all;
     o.distribution.enabled = all;
     o.similarity.normaliser_floor = 0.0;
+    o.similarity.normaliser_distance_m = 0.0;
     o.temporal_score.alignment_window = 0;
     o.temporal_score.max_missed_queries = 0;
     o.temporal_verification.max_missed_queries = 0;
     o.temporal_score.alignment_window_m = 0.0;
     o.temporal_verification.max_island_distance_m = 0.0;
     o.temporal_verification.hypotheses = 1;
+    o.temporal_verification.min_step_m = 0.0;
     o.geometric.candidates = 1;
     return o;
   }

@@ -133,6 +133,11 @@ std::vector<Row> makeRows() {
   rows.push_back(intRow("normaliser_window", det, "similarity.normaliser_window", 1, 100000,
                         false, BOWG_FIELD(int, detector.similarity.normaliser_window),
                         "Keyframes in the median of the normaliser floor"));
+  rows.push_back(doubleRow("normaliser_distance_m", det, "similarity.normaliser_distance_m", 0.0,
+                           100.0, false,
+                           BOWG_FIELD(double, detector.similarity.normaliser_distance_m),
+                           "With odometry: normalise by the score against the newest keyframe "
+                           "driven at least this far back instead of I_t-1 (0 = I_t-1 always)"));
   // --- Temporal score (eqs. 6-7).
   rows.push_back(boolRow("temporal_score", det, "temporal_score.enabled", true,
                          BOWG_FIELD(bool, detector.temporal_score.enabled),
@@ -199,6 +204,11 @@ std::vector<Row> makeRows() {
                         false, BOWG_FIELD(int, detector.temporal_verification.hypotheses),
                         "Islands per query followed with their own temporal chains "
                         "(1 = DLoopDetector: the chosen island only)"));
+  rows.push_back(doubleRow("temporal_min_step_m", det, "temporal_verification.min_step_m", 0.0,
+                           100.0, false,
+                           BOWG_FIELD(double, detector.temporal_verification.min_step_m),
+                           "With odometry: a query counts towards the temporal chain only after "
+                           "this many metres driven since the last one that did (0 = every query)"));
   // --- Geometric verification.
   rows.push_back(boolRow("geometric_verification", det, "geometric.enabled", true,
                          BOWG_FIELD(bool, detector.geometric.enabled),

@@ -390,6 +390,41 @@ TEST(TemporalConsistency, HypothesesAreForgottenWithTheChainAndRestored) {
   EXPECT_EQ(tc.chainLength(), 3);  // failed restores change nothing
 }
 
+TEST(TemporalConsistency, AStandingRobotsRepeatsCountOnce) {
+  // k = 2, min_step_m 0.05: queries at 0, 0.10 count (chain 2); 0.11 and
+  // 0.14 are the same view again (0.01 and 0.04 m after 0.10): they pass only
+  // if the chain passed, and change nothing; 0.20 counts (chain 3, passes);
+  // 0.22 repeats it (passes, chain stays 3). The same queries without the
+  // rule pass from the third one on.
+  TemporalVerificationOptions o = verification(2, 1);
+  o.min_step_m = 0.05;
+  TemporalConsistency tc, every;
+  const TemporalVerificationOptions plain = verification(2, 1);
+  const double at[] = {0.0, 0.10, 0.11, 0.14, 0.20, 0.22};
+  const bool expected[] = {false, false, false, false, true, true};
+  const int chain[] = {1, 2, 2, 2, 3, 3};
+  const bool expected_every[] = {false, false, true, true, true, true};
+  const EntryId place[] = {10, 11, 11, 11, 12, 12};  // the island stays while it stands
+  for (int i = 0; i < 6; ++i) {
+    SCOPED_TRACE(at[i]);
+    EXPECT_EQ(tc.update({island(place[i], place[i])}, 0, o, at[i]), expected[i]);
+    EXPECT_EQ(tc.chainLength(), chain[i]);
+    EXPECT_EQ(every.update({island(place[i], place[i])}, 0, plain, at[i]), expected_every[i]);
+  }
+  // The repeats left the last counted query in place.
+  EXPECT_EQ(tc.lastQueryOdometer(), 0.20);
+  EXPECT_EQ(tc.lastIsland().first, 12u);
+  // Without odometers every query counts; k = 0 passes whatever.
+  TemporalConsistency no_odometry;
+  for (int i = 0; i < 3; ++i) no_odometry.update({island(10, 10)}, 0, o);
+  EXPECT_EQ(no_odometry.chainLength(), 3);
+  TemporalVerificationOptions k0 = o;
+  k0.k = 0;
+  TemporalConsistency zero;
+  EXPECT_TRUE(zero.update({island(10, 10)}, 0, k0, 0.0));
+  EXPECT_TRUE(zero.update({island(500, 500)}, 0, k0, 0.01));
+}
+
 TEST(TemporalConsistency, InvalidOptionsThrow) {
   TemporalConsistency tc;
   EXPECT_THROW(tc.update(island(1, 1), verification(-1)), InvalidParameter);
@@ -399,6 +434,9 @@ TEST(TemporalConsistency, InvalidOptionsThrow) {
   EXPECT_THROW(tc.miss(o), InvalidParameter);
   o = verification(1);
   o.hypotheses = 0;
+  EXPECT_THROW(tc.update(island(1, 1), o), InvalidParameter);
+  o = verification(1);
+  o.min_step_m = -0.5;
   EXPECT_THROW(tc.update(island(1, 1), o), InvalidParameter);
 }
 

@@ -533,6 +533,46 @@ TEST(LoopDetector, WithTheFloorADissimilarPreviousKeyframeDoesNotSilenceTheQuery
   }
 }
 
+// normaliser_distance_m: a robot that stops sends the same view again; the
+// normaliser is then the score against the newest entry driven at least that
+// far back, not against the duplicate. Keyframes 1 m apart (x = odometer =
+// 0..9), then three more at x = 9 (stopped); the last one's normaliser with
+// 0.5 m is s(I_t, entry 8) (odometer 8 <= 9 - 0.5), with 0 it is
+// s(I_t, entry 11), the duplicate; without odometers, entry 11 too.
+TEST(LoopDetector, NormaliserDistanceSkipsTheKeyframesOfAStop) {
+  struct Case {
+    double distance;
+    bool odometry;
+    EntryId expected;
+  };
+  for (const Case c : {Case{0.5, true, 8}, Case{0.0, true, 11}, Case{0.5, false, 11},
+                       Case{2.5, true, 6}}) {
+    SCOPED_TRACE(std::to_string(c.distance) + (c.odometry ? " with odometry" : " without"));
+    LoopDetectorOptions o = defaultOptions();
+    o.similarity.normaliser_distance_m = c.distance;
+    LoopDetector det(vocabulary(), o);
+    const testing::Corridor corridor = testing::makeCorridor(20, 50, 5);
+    std::mt19937_64 rng(2);
+    LoopResult r;
+    for (int t = 0; t < 13; ++t) {
+      const double x = std::min(t, 9);
+      KeyframeInput kf = testing::observeCorridor(corridor, x, 1.0 + t, rng, 2, 0.5);
+      if (c.odometry) kf.odometer = x;
+      r = det.process(kf);
+    }
+    const DatabaseEntry& q = det.database().entry(r.query_id);
+    const DatabaseEntry& e = det.database().entry(c.expected);
+    EXPECT_NEAR(r.word_normaliser, scoreBowVectors(o.scoring, q.bow, e.bow), 1e-12);
+    const DatabaseEntry& duplicate = det.database().entry(11);
+    if (c.expected != 11) {
+      EXPECT_LT(r.word_normaliser, scoreBowVectors(o.scoring, q.bow, duplicate.bow));
+    }
+  }
+  LoopDetectorOptions bad = defaultOptions();
+  bad.similarity.normaliser_distance_m = -1.0;
+  EXPECT_THROW(LoopDetector(vocabulary(), bad), InvalidParameter);
+}
+
 TEST(LoopDetector, WithoutFloorTheDivisorIsTheNormaliser) {
   LoopDetector det(vocabulary(), defaultOptions());  // normaliser_floor 0
   const CorridorRun run = runCorridor(&det, true, 30);

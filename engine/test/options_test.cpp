@@ -206,6 +206,10 @@ TEST(Options, Geometric) {
                  "geometric.candidates");
   expectRejected([](LoopDetectorOptions& o) { o.temporal_verification.hypotheses = 0; },
                  "temporal_verification.hypotheses");
+  expectRejected([](LoopDetectorOptions& o) { o.similarity.normaliser_distance_m = -0.1; },
+                 "similarity.normaliser_distance_m");
+  expectRejected([](LoopDetectorOptions& o) { o.temporal_verification.min_step_m = -0.1; },
+                 "temporal_verification.min_step_m");
   expectAccepted([](LoopDetectorOptions& o) {
     o.geometric.candidates = 5;
     o.geometric.min_inliers = 8;
@@ -276,6 +280,8 @@ TEST(Ablation, PaperRowIsTheFullMethodWithoutTheExtensions) {
   base.temporal_verification.max_missed_queries = 1;
   base.geometric.candidates = 10;
   base.temporal_verification.hypotheses = 4;
+  base.similarity.normaliser_distance_m = 0.05;
+  base.temporal_verification.min_step_m = 0.02;
   base.geometric.min_inliers = 25;
   base.temporal_score.alignment_window_m = 0.05;
   base.temporal_verification.max_island_distance_m = 0.1;
@@ -293,6 +299,8 @@ TEST(Ablation, PaperRowIsTheFullMethodWithoutTheExtensions) {
   EXPECT_EQ(o.temporal_verification.max_missed_queries, 0);
   EXPECT_EQ(o.geometric.candidates, 1);
   EXPECT_EQ(o.temporal_verification.hypotheses, 1);
+  EXPECT_EQ(o.similarity.normaliser_distance_m, 0.0);
+  EXPECT_EQ(o.temporal_verification.min_step_m, 0.0);
   EXPECT_EQ(o.geometric.min_inliers, 25);  // thresholds are the preset's
   const LoopDetectorOptions pb = LoopDetectorOptions::ablation("paper_bow", base);
   EXPECT_FALSE(pb.word_groups.enabled);
@@ -302,6 +310,7 @@ TEST(Ablation, PaperRowIsTheFullMethodWithoutTheExtensions) {
   EXPECT_EQ(pb.temporal_score.alignment_window, 0);
   EXPECT_EQ(pb.geometric.candidates, 1);
   EXPECT_EQ(pb.temporal_verification.hypotheses, 1);
+  EXPECT_EQ(pb.similarity.normaliser_distance_m, 0.0);
   EXPECT_EQ(pb.geometric.min_inliers, 25);
   const LoopDetectorOptions as_is = LoopDetectorOptions::ablation("configured", base);
   EXPECT_FALSE(as_is.word_groups.enabled);

@@ -52,6 +52,15 @@ struct SimilarityOptions {
   double normaliser_floor = 0.0;
   /// Keyframes in that median, >= 1.
   int normaliser_window = 50;
+  /// The normalisers' I_{t-1} in metres driven (docs/method.md): the newest
+  /// entry driven at least this far before the query, when the query and
+  /// that entry have odometers (else the previous keyframe). The paper's
+  /// s(I_t, I_t-1) estimates the score of the same place seen one keyframe
+  /// spacing away; a robot that stands still or crawls makes I_t-1 the same
+  /// view, the estimate its self-similarity, and every eta of the query
+  /// vanishes. In metres it is one estimate whatever the speed and keyframe
+  /// spacing. 0 = the previous keyframe always (the paper). >= 0.
+  double normaliser_distance_m = 0.0;
   void validate() const;
 };
 
@@ -139,6 +148,13 @@ struct TemporalVerificationOptions {
   /// query: with one hypothesis either restarts the chain, with several the
   /// true place's chain survives. 1 = DLoopDetector (one chain). >= 1.
   int hypotheses = 1;
+  /// Queries count towards the chain only once the robot drove at least this
+  /// far since the last one that did (odometers known): a robot standing
+  /// still sends the same view again and again, and k repeats of one view
+  /// are one piece of evidence, not k. Such a query passes when the chain it
+  /// continues already passed, and changes nothing. 0 = every query counts
+  /// (DLoopDetector). >= 0.
+  double min_step_m = 0.0;
   void validate() const;
 };
 
