@@ -100,6 +100,19 @@ bool TemporalConsistency::consistent(const Island& previous, const Island& curre
   return islandsConsistent(previous, current, distance);
 }
 
+int TemporalConsistency::longestChainTo(const Island& island,
+                                        const TemporalVerificationOptions& options,
+                                        double query_m) const {
+  if (chain_length_ == 0) return 0;
+  int longest = consistent(last_, island, options, query_m) ? chain_length_ : 0;
+  for (const IslandHypothesis& h : others_) {
+    if (h.chain_length > longest && consistent(h.island, island, options, query_m)) {
+      longest = h.chain_length;
+    }
+  }
+  return longest;
+}
+
 bool TemporalConsistency::update(const Island& island, const TemporalVerificationOptions& options,
                                  double query_m) {
   return update(std::vector<Island>{island}, 0, options, query_m);
@@ -137,25 +150,11 @@ bool TemporalConsistency::update(const std::vector<Island>& islands, std::size_t
   // driven since.
   if (options.min_step_m > 0.0 && chain_length_ > 0 && std::isfinite(query_m) &&
       std::isfinite(last_query_m_) && query_m - last_query_m_ < options.min_step_m) {
-    int longest = consistent(last_, islands[chosen], options, query_m) ? chain_length_ : 0;
-    for (const IslandHypothesis& h : others_) {
-      if (h.chain_length > longest && consistent(h.island, islands[chosen], options, query_m)) {
-        longest = h.chain_length;
-      }
-    }
-    return options.k == 0 || longest > options.k;
+    return options.k == 0 || longestChainTo(islands[chosen], options, query_m) > options.k;
   }
   std::vector<IslandHypothesis> next(islands.size());
   for (std::size_t i = 0; i < islands.size(); ++i) {
-    int longest = 0;
-    if (chain_length_ > 0) {
-      if (consistent(last_, islands[i], options, query_m)) longest = chain_length_;
-      for (const IslandHypothesis& h : others_) {
-        if (h.chain_length > longest && consistent(h.island, islands[i], options, query_m)) {
-          longest = h.chain_length;
-        }
-      }
-    }
+    const int longest = longestChainTo(islands[i], options, query_m);
     next[i].island = islands[i];
     next[i].chain_length = longest < std::numeric_limits<int>::max() ? longest + 1 : longest;
   }

@@ -94,6 +94,10 @@ class TemporalConsistency {
   /// place seen by the moving robot.
   bool consistent(const Island& previous, const Island& current,
                   const TemporalVerificationOptions& options, double query_m) const;
+  /// The longest chain among the followed islands of the previous query
+  /// that `island` is consistent with (0 when none).
+  int longestChainTo(const Island& island, const TemporalVerificationOptions& options,
+                     double query_m) const;
 
   std::vector<IslandHypothesis> others_;
   Island last_;
