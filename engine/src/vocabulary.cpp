@@ -114,8 +114,14 @@ void Vocabulary::index() {
   std::size_t leaves = 0;
   for (std::size_t i = 0; i < n; ++i) {
     const Node& node = nodes_[i];
+    // Weights are IDF values (log N / N_i) or 1 (TF): never negative. A
+    // negative one would make eq. 1's vectors and every score meaningless.
     if (!std::isfinite(node.weight))
       throw FormatError("vocabulary: " + nodeName(i) + " has a non-finite weight");
+    if (node.weight < 0.0) {
+      throw FormatError("vocabulary: " + nodeName(i) + " has a negative weight (" +
+                        std::to_string(node.weight) + ")");
+    }
     if (node.level > static_cast<std::uint32_t>(L_)) {
       throw FormatError("vocabulary: " + nodeName(i) + " is at level " +
                         std::to_string(node.level) + ", deeper than L = " + std::to_string(L_));

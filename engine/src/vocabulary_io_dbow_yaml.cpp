@@ -11,14 +11,21 @@
 //   DBoW3 (DescManip::toString):   "dbw3 <cv type> <cols> b0 ... b31"
 //   early DBoW3 (e.g. slambook2):  "<cv type> <cols> b0 ... b31" (34 values)
 // Only 256-bit binary descriptors (CV_8U, 32 columns) are accepted.
+// Read with this project's tokenizer (yaml_tokens.h), not cv::FileStorage,
+// whose parser never returns on some malformed files; written with
+// cv::FileStorage.
+#include <zlib.h>
+
 #include <cstdlib>
 #include <opencv2/core.hpp>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "bowg/atomic_file.h"
 #include "bowg/errors.h"
 #include "vocabulary_io_internal.h"
+#include "yaml_tokens.h"
 
 namespace bowg {
 namespace vocabulary_io {
@@ -85,61 +92,216 @@ bool parseDescriptor(const std::string& s, Descriptor* d) {
   return false;
 }
 
-std::int64_t readInt(const cv::FileNode& node, const std::string& path, const std::string& what) {
-  if (node.empty() || !node.isInt()) fail(path, "missing or non-integer '" + what + "'");
-  return static_cast<int>(node);
+// The file's text, gunzipped when it is gzip (zlib reads plain files as
+// they are). Bounded: a k = 10, L = 6 DBoW2 vocabulary is ~200 MB of YAML.
+std::string readText(const std::string& path) {
+  const std::size_t kMaxBytes = std::size_t(1) << 31;
+  gzFile f = gzopen(path.c_str(), "rb");
+  if (f == nullptr) throw IoError("cannot open vocabulary file '" + path + "' for reading");
+  std::string text;
+  char buffer[1 << 16];
+  for (;;) {
+    const int got = gzread(f, buffer, sizeof(buffer));
+    if (got < 0) {
+      int code = 0;
+      const std::string why = gzerror(f, &code);
+      gzclose(f);
+      fail(path, "cannot decompress it (" + why + ")");
+    }
+    if (got == 0) break;
+    text.append(buffer, static_cast<std::size_t>(got));
+    if (text.size() > kMaxBytes) {
+      gzclose(f);
+      fail(path, "larger than 2 GiB of YAML: not a vocabulary this loader accepts");
+    }
+  }
+  gzclose(f);
+  return text;
 }
 
-double readReal(const cv::FileNode& node, const std::string& path, const std::string& what) {
-  if (node.isInt()) return static_cast<int>(node);
-  if (node.empty() || !node.isReal()) fail(path, "missing or non-numeric '" + what + "'");
-  return static_cast<double>(node);
-}
+// Reads the YAML layout of the header comment token by token (yaml_tokens.h):
+// no input can make it loop, and whatever does not fit the layout is a
+// FormatError naming the file, the line and what was expected.
+class DbowYamlReader {
+ public:
+  DbowYamlReader(const std::string& text, const std::string& path)
+      : path_(path), tokens_(text, path) {}
+
+  Vocabulary read() {
+    YamlTokens::Token t = tokens_.next();
+    if (t.kind != YamlTokens::Kind::kScalar || t.text != "vocabulary") {
+      fail(path_, "no 'vocabulary' map (not a DBoW2/DBoW3 vocabulary)");
+    }
+    expect(YamlTokens::Kind::kColon, "':' after 'vocabulary'");
+    std::int64_t header[4] = {-1, -1, -1, -1};
+    const char* header_keys[4] = {"k", "L", "scoringType", "weightingType"};
+    bool have_nodes = false, have_words = false;
+    std::vector<ForeignNode> nodes;
+    std::vector<ForeignWord> words;
+    while (tokens_.peek().kind != YamlTokens::Kind::kEnd) {
+      const YamlTokens::Token key = expect(YamlTokens::Kind::kScalar, "a key of 'vocabulary'");
+      expect(YamlTokens::Kind::kColon, "':' after '" + key.text + "'");
+      bool known = false;
+      for (int i = 0; i < 4; ++i) {
+        if (key.text != header_keys[i]) continue;
+        if (header[i] >= 0) failAt(key, "'" + key.text + "' appears twice");
+        header[i] = integer(expect(YamlTokens::Kind::kScalar, "the value of '" + key.text + "'"),
+                            key.text);
+        known = true;
+      }
+      if (key.text == "nodes" || key.text == "words") {
+        bool& seen = key.text == "nodes" ? have_nodes : have_words;
+        if (seen) failAt(key, "'" + key.text + "' appears twice");
+        seen = true;
+        known = true;
+        if (key.text == "nodes") {
+          records(key.text, [&](const Fields& f, const YamlTokens::Token& at) {
+            nodes.push_back(node(f, at, nodes.size()));
+          });
+        } else {
+          records(key.text, [&](const Fields& f, const YamlTokens::Token& at) {
+            words.push_back(word(f, at, words.size()));
+          });
+        }
+      }
+      if (!known) failAt(key, "unknown key '" + key.text + "' in 'vocabulary'");
+    }
+    for (int i = 0; i < 4; ++i) {
+      if (header[i] < 0) fail(path_, std::string("missing or non-integer '") + header_keys[i] + "'");
+    }
+    if (!have_nodes) fail(path_, "missing 'nodes' sequence");
+    if (!have_words) fail(path_, "missing 'words' sequence");
+    return buildFromForeign(path_, header[0], header[1], header[2], header[3], nodes, words);
+  }
+
+ private:
+  // The fields of one flow map: key -> (value token).
+  using Fields = std::vector<std::pair<std::string, YamlTokens::Token>>;
+
+  [[noreturn]] void failAt(const YamlTokens::Token& t, const std::string& why) const {
+    fail(path_, "line " + std::to_string(t.line) + ": " + why);
+  }
+
+  // The next token, which must be of `kind` (`what` describes it).
+  YamlTokens::Token expect(YamlTokens::Kind kind, const std::string& what) {
+    YamlTokens::Token t = tokens_.next();
+    if (t.kind != kind) {
+      failAt(t, "expected " + what + ", found " +
+                    (t.kind == YamlTokens::Kind::kScalar || t.kind == YamlTokens::Kind::kQuoted
+                         ? "'" + t.text.substr(0, 40) + "'"
+                         : std::string(toString(t.kind))));
+    }
+    return t;
+  }
+
+  std::int64_t integer(const YamlTokens::Token& t, const std::string& what) const {
+    const std::string& s = t.text;
+    std::size_t i = s.size() > 0 && (s[0] == '-' || s[0] == '+') ? 1 : 0;
+    if (i == s.size() || s.size() - i > 18 ||
+        s.find_first_not_of("0123456789", i) != std::string::npos) {
+      failAt(t, "'" + what + "' is not an integer ('" + s.substr(0, 40) + "')");
+    }
+    return std::strtoll(s.c_str(), nullptr, 10);
+  }
+
+  double real(const YamlTokens::Token& t, const std::string& what) const {
+    const char* begin = t.text.c_str();
+    char* end = nullptr;
+    const double v = t.text.empty() ? 0.0 : std::strtod(begin, &end);
+    if (t.text.empty() || end != begin + t.text.size()) {
+      failAt(t, "'" + what + "' is not a number ('" + t.text.substr(0, 40) + "')");
+    }
+    return v;
+  }
+
+  // A sequence of flow maps, block ("- { ... }" items) or flow ("[ {...}, ]").
+  template <typename OnRecord>
+  void records(const std::string& name, OnRecord on_record) {
+    if (tokens_.peek().kind == YamlTokens::Kind::kOpenSeq) {
+      tokens_.next();
+      while (tokens_.peek().kind != YamlTokens::Kind::kCloseSeq) {
+        const YamlTokens::Token at = tokens_.peek();
+        on_record(flowMap(name), at);
+        if (tokens_.peek().kind == YamlTokens::Kind::kComma) tokens_.next();
+        else if (tokens_.peek().kind != YamlTokens::Kind::kCloseSeq)
+          expect(YamlTokens::Kind::kCloseSeq, "',' or ']' in '" + name + "'");
+      }
+      tokens_.next();
+      return;
+    }
+    if (tokens_.peek().kind != YamlTokens::Kind::kDash) {
+      expect(YamlTokens::Kind::kDash, "'-' or '[' starting the '" + name + "' sequence");
+    }
+    while (tokens_.peek().kind == YamlTokens::Kind::kDash) {
+      tokens_.next();
+      const YamlTokens::Token at = tokens_.peek();
+      on_record(flowMap(name), at);
+    }
+  }
+
+  Fields flowMap(const std::string& name) {
+    expect(YamlTokens::Kind::kOpenMap, "'{' opening an item of '" + name + "'");
+    Fields fields;
+    while (tokens_.peek().kind != YamlTokens::Kind::kCloseMap) {
+      const YamlTokens::Token key = expect(YamlTokens::Kind::kScalar, "a key in '" + name + "'");
+      expect(YamlTokens::Kind::kColon, "':' after '" + key.text + "'");
+      YamlTokens::Token value = tokens_.next();
+      if (value.kind != YamlTokens::Kind::kScalar && value.kind != YamlTokens::Kind::kQuoted) {
+        failAt(value, "'" + key.text + "' has no value");
+      }
+      for (const auto& f : fields) {
+        if (f.first == key.text) failAt(key, "'" + key.text + "' appears twice in one item");
+      }
+      if (fields.size() >= 4) failAt(key, "an item of '" + name + "' has more than 4 fields");
+      fields.emplace_back(key.text, std::move(value));
+      if (tokens_.peek().kind == YamlTokens::Kind::kComma) tokens_.next();
+      else if (tokens_.peek().kind != YamlTokens::Kind::kCloseMap)
+        expect(YamlTokens::Kind::kCloseMap, "',' or '}' in an item of '" + name + "'");
+    }
+    tokens_.next();
+    return fields;
+  }
+
+  const YamlTokens::Token& field(const Fields& f, const char* key, const YamlTokens::Token& at,
+                                 const std::string& where) const {
+    for (const auto& kv : f) {
+      if (kv.first == key) return kv.second;
+    }
+    failAt(at, std::string("missing '") + where + "." + key + "'");
+  }
+
+  ForeignNode node(const Fields& f, const YamlTokens::Token& at, std::size_t index) const {
+    const std::string where = "nodes[" + std::to_string(index) + "]";
+    ForeignNode n;
+    n.id = integer(field(f, "nodeId", at, where), where + ".nodeId");
+    n.parent = integer(field(f, "parentId", at, where), where + ".parentId");
+    n.weight = real(field(f, "weight", at, where), where + ".weight");
+    const YamlTokens::Token& d = field(f, "descriptor", at, where);
+    if (!parseDescriptor(d.text, &n.descriptor)) {
+      failAt(d, where + ".descriptor (node " + std::to_string(n.id) +
+                    ") is not a 256-bit binary descriptor (32 bytes, 'dbw3 0 32 ...' or a "
+                    "256-character bit string)");
+    }
+    if (f.size() != 4) failAt(at, where + " has fields other than nodeId, parentId, weight, descriptor");
+    return n;
+  }
+
+  ForeignWord word(const Fields& f, const YamlTokens::Token& at, std::size_t index) const {
+    const std::string where = "words[" + std::to_string(index) + "]";
+    ForeignWord w;
+    w.word = integer(field(f, "wordId", at, where), where + ".wordId");
+    w.node = integer(field(f, "nodeId", at, where), where + ".nodeId");
+    if (f.size() != 2) failAt(at, where + " has fields other than wordId, nodeId");
+    return w;
+  }
+
+  const std::string& path_;
+  YamlTokens tokens_;
+};
 
 Vocabulary loadYaml(const std::string& path) {
-  cv::FileStorage fs(path, cv::FileStorage::READ);
-  if (!fs.isOpened()) fail(path, "OpenCV cannot parse it as YAML/XML");
-  const cv::FileNode voc = fs["vocabulary"];
-  if (voc.empty() || !voc.isMap()) fail(path, "no 'vocabulary' map (not a DBoW2/DBoW3 vocabulary)");
-  const std::int64_t k = readInt(voc["k"], path, "k");
-  const std::int64_t L = readInt(voc["L"], path, "L");
-  const std::int64_t scoring = readInt(voc["scoringType"], path, "scoringType");
-  const std::int64_t weighting = readInt(voc["weightingType"], path, "weightingType");
-  const cv::FileNode fn = voc["nodes"];
-  if (fn.empty() || !fn.isSeq()) fail(path, "missing 'nodes' sequence");
-  std::vector<ForeignNode> nodes;
-  nodes.reserve(fn.size());
-  for (cv::FileNodeIterator it = fn.begin(); it != fn.end(); ++it) {
-    const cv::FileNode n = *it;
-    const std::string where = "nodes[" + std::to_string(nodes.size()) + "]";
-    if (!n.isMap()) fail(path, where + " is not a map");
-    ForeignNode f;
-    f.id = readInt(n["nodeId"], path, where + ".nodeId");
-    f.parent = readInt(n["parentId"], path, where + ".parentId");
-    f.weight = readReal(n["weight"], path, where + ".weight");
-    const cv::FileNode dn = n["descriptor"];
-    if (dn.empty() || !dn.isString()) fail(path, where + ".descriptor is missing or not a string");
-    if (!parseDescriptor(static_cast<std::string>(dn), &f.descriptor)) {
-      fail(path, where + ".descriptor (node " + std::to_string(f.id) +
-                     ") is not a 256-bit binary descriptor (32 bytes, 'dbw3 0 32 ...' or a "
-                     "256-character bit string)");
-    }
-    nodes.push_back(f);
-  }
-  const cv::FileNode wn = voc["words"];
-  if (wn.empty() || !wn.isSeq()) fail(path, "missing 'words' sequence");
-  std::vector<ForeignWord> words;
-  words.reserve(wn.size());
-  for (cv::FileNodeIterator it = wn.begin(); it != wn.end(); ++it) {
-    const cv::FileNode w = *it;
-    const std::string where = "words[" + std::to_string(words.size()) + "]";
-    if (!w.isMap()) fail(path, where + " is not a map");
-    ForeignWord f;
-    f.word = readInt(w["wordId"], path, where + ".wordId");
-    f.node = readInt(w["nodeId"], path, where + ".nodeId");
-    words.push_back(f);
-  }
-  return buildFromForeign(path, k, L, scoring, weighting, nodes, words);
+  const std::string text = readText(path);
+  return DbowYamlReader(text, path).read();
 }
 
 std::string descriptorString(const Descriptor& d, YamlFlavour flavour) {
@@ -165,13 +327,8 @@ std::string descriptorString(const Descriptor& d, YamlFlavour flavour) {
 }  // namespace
 
 Vocabulary loadDbowYaml(const std::string& path) {
-  // FileStorage reports a missing file as a parse failure: tell them apart.
   checkReadable(path);
-  try {
-    return loadYaml(path);
-  } catch (const cv::Exception& e) {
-    fail(path, std::string("not a valid OpenCV YAML file: ") + e.what());
-  }
+  return loadYaml(path);
 }
 
 void saveDbowYaml(const Vocabulary& v, const std::string& path, YamlFlavour flavour) {

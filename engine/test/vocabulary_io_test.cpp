@@ -307,6 +307,98 @@ TEST(VocabularyIo, TruncatedAndCorruptedFilesFailCleanly) {
   }
 }
 
+// Files that cv::FileStorage could not read safely, as the project writes
+// them itself: the loader must refuse each with a FormatError naming the file
+// and the line, never hang (OpenCV's parser spun for ever on the first) and
+// never let another exception out (the second made OpenCV throw
+// std::length_error).
+void expectRefusedNaming(const std::string& name, const std::string& bytes,
+                         const std::string& why) {
+  const std::string path = outPath(name);
+  writeAll(path, bytes);
+  try {
+    loadVocabulary(path);
+    ADD_FAILURE() << name << " accepted";
+  } catch (const FormatError& e) {
+    EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find(why), std::string::npos) << e.what();
+  }
+}
+
+TEST(VocabularyIo, MalformedYamlIsRefusedWithTheFileAndLine) {
+  // 98 bytes found by fuzzing: OpenCV's parser never returned on them.
+  const char hang[] =
+      "%YAML:1.0\n weightingType:(0\ne\0   nodes:\n            - { nodeIdtIiptor:dbw3 0 32 33 7 "
+      ":01 2[ nodeI }\n";
+  expectRefusedNaming("hang.yml", std::string(hang, sizeof(hang) - 1), "no 'vocabulary' map");
+  // An inline map with an empty key.
+  expectRefusedNaming("empty_key.yml",
+                      "%YAML:1.0\n---\nvocabulary:\n   k: 3\n   L: 2\n   scoringType: 0\n"
+                      "   weightingType: 0\n   nodes:\n      - { :rdIdwo6, nodeId:10 }\n",
+                      "line 9: expected a key in 'nodes', found ':'");
+  const std::string head =
+      "%YAML:1.0\n---\nvocabulary:\n   k: 2\n   L: 1\n   scoringType: 0\n   weightingType: 0\n";
+  const std::string d = "\"dbw3 0 32" + std::string(32 * 2, ' ') + "\"";
+  expectRefusedNaming("unterminated.yml", head + "   nodes:\n      - { nodeId:1, descriptor:\"1 2",
+                      "line 9: unterminated quoted string");
+  expectRefusedNaming("unknown_key.yml", head + "   colour: 3\n", "line 8: unknown key 'colour'");
+  expectRefusedNaming("twice.yml", head + "   k: 2\n", "line 8: 'k' appears twice");
+  expectRefusedNaming("not_integer.yml",
+                      head + "   nodes:\n      - { nodeId:1x, parentId:0, weight:0., descriptor:" +
+                          d + " }\n   words: []\n",
+                      "'nodes[0].nodeId' is not an integer");
+  expectRefusedNaming("missing_field.yml",
+                      head + "   nodes:\n      - { nodeId:1, weight:0., descriptor:" + d +
+                          " }\n   words: []\n",
+                      "line 9: missing 'nodes[0].parentId'");
+  expectRefusedNaming("no_words.yml", head + "   nodes: []\n", "missing 'words' sequence");
+  expectRefusedNaming("deep.yml", head + "   nodes:\n      - { nodeId:{ a:1 } }\n",
+                      "'nodeId' has no value");
+  // Not a single byte of a vocabulary: still named, still a FormatError.
+  expectRefusedNaming("binary.yml", std::string("%YAML\0\1\2{{{[[[", 14), "no 'vocabulary' map");
+}
+
+TEST(VocabularyIo, FlowSequencesAndQuotedDescriptorsAreRead) {
+  // The same tree as a block sequence with unquoted descriptors (OpenCV's
+  // output) and as flow sequences with quoted ones: one vocabulary.
+  const Vocabulary v = testing::makeSyntheticVocabulary(2, 1);
+  saveVocabulary(v, outPath("block.yml"), VocabularyFormat::kDbow3Yaml);
+  std::string text = readAll(outPath("block.yml"));
+  // Rewrite "- { ... descriptor:dbw3 ... }" items into a flow sequence with
+  // quoted descriptors by hand.
+  std::istringstream in(text);
+  std::string line, out, items;
+  bool in_nodes = false;
+  while (std::getline(in, line)) {
+    if (line.find("nodes:") != std::string::npos) {
+      in_nodes = true;
+      out += "   nodes: [\n";
+      continue;
+    }
+    if (line.find("words:") != std::string::npos) {
+      in_nodes = false;
+      out += "   ]\n" + line + "\n";
+      continue;
+    }
+    if (in_nodes) {
+      const std::size_t at = line.find("descriptor:");
+      if (at != std::string::npos) {
+        const std::size_t close = line.rfind('}');
+        line = line.substr(0, at) + "descriptor:\"" + line.substr(at + 11, close - at - 11) +
+               "\" },";
+      }
+      const std::size_t dash = line.find("- {");
+      if (dash != std::string::npos) line.replace(dash, 1, " ");
+    }
+    out += line + "\n";
+  }
+  writeAll(outPath("flow.yml"), out);
+  const Vocabulary block = loadVocabulary(outPath("block.yml"));
+  const Vocabulary flowed = loadVocabulary(outPath("flow.yml"));
+  EXPECT_EQ(block.fingerprint(), v.fingerprint());
+  EXPECT_EQ(flowed.fingerprint(), v.fingerprint()) << out;
+}
+
 // --- Third-party vocabularies in /work/shared/data (skipped when absent) ---
 
 std::string sharedVocabulary(const std::string& name) {
@@ -366,6 +458,20 @@ TEST(VocabularyIoSharedData, Dbow2SmallVocabulary) {
 TEST(VocabularyIoSharedData, Dbow3Vocabulary) {
   // k = 10, L = 5, words 0..4982.
   checkForeign("dbow3_orb_k10L5_vocabulary.yml.gz", 10, 5, 4983);
+}
+
+TEST(VocabularyIoSharedData, BadInputsAreRefusedNamingTheFile) {
+  const std::string dir = std::string(BOWG_SHARED_DATA_DIR) + "/bad_inputs/";
+  if (!exists(dir + "hang_98.yml")) GTEST_SKIP() << dir << " is absent (shared data)";
+  for (const char* name : {"hang_98.yml", "empty_key.yml", "negative_idf_vins.bin"}) {
+    SCOPED_TRACE(name);
+    try {
+      loadVocabulary(dir + name);
+      ADD_FAILURE() << "accepted";
+    } catch (const FormatError& e) {
+      EXPECT_NE(std::string(e.what()).find(name), std::string::npos) << e.what();
+    }
+  }
 }
 
 }  // namespace

@@ -117,6 +117,9 @@ TEST(Vocabulary, RejectsEachInconsistency) {
   n = tinyNodes();
   n[3].weight = std::nan("");
   expectFormatError(n, "non-finite weight");
+  n = tinyNodes();
+  n[3].weight = -1e300;
+  expectFormatError(n, "negative weight");
   expectFormatError(std::vector<Node>(1), "no node below the root");
   // Three children under a k = 2 tree.
   n = tinyNodes();
