@@ -1,37 +1,83 @@
+// Read with the project's YAML-subset tokenizer (yaml_tokens.h), not
+// cv::FileStorage, whose parser spins for ever on some malformed files.
 #include "bowg/brief_pattern.h"
 
 #include <cstdlib>
 #include <fstream>
 
 #include "bowg/errors.h"
+#include "yaml_tokens.h"
 
 namespace bowg {
 namespace {
 
-std::vector<int> readSequence(const cv::FileStorage& fs, const char* key, const std::string& path) {
-  const cv::FileNode node = fs[key];
-  if (node.empty() || !node.isSeq()) {
-    throw FormatError("BRIEF pattern file " + path + ": missing integer sequence '" + key + "'");
+// VINS' file is ~6 KB; anything past this is not a pattern file.
+constexpr std::size_t kMaxPatternFileBytes = 1 << 20;
+
+std::string readPatternFile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw IoError("cannot open BRIEF pattern file " + path);
+  std::string text;
+  char buffer[4096];
+  while (in.read(buffer, sizeof(buffer)) || in.gcount() > 0) {
+    text.append(buffer, static_cast<std::size_t>(in.gcount()));
+    if (text.size() > kMaxPatternFileBytes) {
+      throw FormatError("BRIEF pattern file " + path + " is larger than 1 MiB");
+    }
   }
-  if (static_cast<int>(node.size()) != kBriefPatternPairs) {
-    throw FormatError("BRIEF pattern file " + path + ": sequence '" + key + "' has " +
-                      std::to_string(node.size()) + " entries, expected " +
-                      std::to_string(kBriefPatternPairs));
+  if (in.bad()) throw IoError("error while reading BRIEF pattern file " + path);
+  return text;
+}
+
+[[noreturn]] void failAt(const std::string& path, const YamlTokens::Token& t,
+                         const std::string& why) {
+  throw FormatError("BRIEF pattern file " + path + ": line " + std::to_string(t.line) + ": " +
+                    why);
+}
+
+int entry(const std::string& path, const std::string& key, const YamlTokens::Token& t) {
+  const std::string& s = t.text;
+  const std::size_t digits = !s.empty() && (s[0] == '-' || s[0] == '+') ? 1 : 0;
+  if (t.kind != YamlTokens::Kind::kScalar || digits == s.size() || s.size() > 12 ||
+      s.find_first_not_of("0123456789", digits) != std::string::npos) {
+    failAt(path, t, "sequence '" + key + "' holds a non-integer entry");
   }
+  const long v = std::strtol(s.c_str(), nullptr, 10);
+  if (std::labs(v) > kBriefPatternMaxOffset) {
+    failAt(path, t, "sequence '" + key + "' entry " + s + " exceeds +-" +
+                        std::to_string(kBriefPatternMaxOffset) + " px");
+  }
+  return static_cast<int>(v);
+}
+
+// The integers of one sequence, block ("- 3" lines) or flow ("[3, 4]").
+std::vector<int> readSequence(YamlTokens* tokens, const std::string& path, const std::string& key) {
   std::vector<int> values;
-  values.reserve(kBriefPatternPairs);
-  for (const cv::FileNode& item : node) {
-    if (!item.isInt()) {
-      throw FormatError("BRIEF pattern file " + path + ": sequence '" + key +
-                        "' holds a non-integer entry");
+  const auto add = [&](const YamlTokens::Token& t) {
+    if (values.size() == static_cast<std::size_t>(kBriefPatternPairs)) {
+      failAt(path, t, "sequence '" + key + "' has more than " +
+                          std::to_string(kBriefPatternPairs) + " entries");
     }
-    const int v = static_cast<int>(item);
-    if (std::abs(v) > kBriefPatternMaxOffset) {
-      throw FormatError("BRIEF pattern file " + path + ": sequence '" + key + "' entry " +
-                        std::to_string(v) + " exceeds +-" + std::to_string(kBriefPatternMaxOffset) +
-                        " px");
+    values.push_back(entry(path, key, t));
+  };
+  if (tokens->peek().kind == YamlTokens::Kind::kOpenSeq) {
+    tokens->next();
+    while (tokens->peek().kind != YamlTokens::Kind::kCloseSeq) {
+      add(tokens->next());
+      const YamlTokens::Token sep = tokens->peek();
+      if (sep.kind == YamlTokens::Kind::kComma) tokens->next();
+      else if (sep.kind != YamlTokens::Kind::kCloseSeq)
+        failAt(path, sep, "expected ',' or ']' in sequence '" + key + "'");
     }
-    values.push_back(v);
+    tokens->next();
+  } else {
+    if (tokens->peek().kind != YamlTokens::Kind::kDash) {
+      failAt(path, tokens->peek(), "missing integer sequence '" + key + "'");
+    }
+    while (tokens->peek().kind == YamlTokens::Kind::kDash) {
+      tokens->next();
+      add(tokens->next());
+    }
   }
   return values;
 }
@@ -39,25 +85,40 @@ std::vector<int> readSequence(const cv::FileStorage& fs, const char* key, const 
 }  // namespace
 
 std::vector<cv::Vec4i> loadBriefPattern(const std::string& path) {
-  // FileStorage does not tell a missing file from a corrupt one: check first.
-  if (!std::ifstream(path).good()) {
-    throw IoError("cannot open BRIEF pattern file " + path);
-  }
-  cv::FileStorage fs;
-  try {
-    if (!fs.open(path, cv::FileStorage::READ)) {
-      throw FormatError("BRIEF pattern file " + path + " is not an OpenCV YAML/XML file");
+  const std::string text = readPatternFile(path);
+  YamlTokens tokens(text, path);
+  const char* names[4] = {"x1", "y1", "x2", "y2"};
+  std::vector<int> seq[4];
+  bool seen[4] = {false, false, false, false};
+  while (tokens.peek().kind != YamlTokens::Kind::kEnd) {
+    const YamlTokens::Token key = tokens.next();
+    int which = -1;
+    for (int i = 0; i < 4; ++i) {
+      if (key.kind == YamlTokens::Kind::kScalar && key.text == names[i]) which = i;
     }
-    const std::vector<int> x1 = readSequence(fs, "x1", path);
-    const std::vector<int> y1 = readSequence(fs, "y1", path);
-    const std::vector<int> x2 = readSequence(fs, "x2", path);
-    const std::vector<int> y2 = readSequence(fs, "y2", path);
-    std::vector<cv::Vec4i> pattern(kBriefPatternPairs);
-    for (int i = 0; i < kBriefPatternPairs; ++i) pattern[i] = cv::Vec4i(x1[i], y1[i], x2[i], y2[i]);
-    return pattern;
-  } catch (const cv::Exception& e) {
-    throw FormatError("BRIEF pattern file " + path + " could not be parsed: " + e.what());
+    if (which < 0) failAt(path, key, "expected one of the keys x1, y1, x2, y2");
+    if (seen[which]) failAt(path, key, "'" + key.text + "' appears twice");
+    seen[which] = true;
+    const YamlTokens::Token colon = tokens.next();
+    if (colon.kind != YamlTokens::Kind::kColon) failAt(path, colon, "expected ':' after " + key.text);
+    seq[which] = readSequence(&tokens, path, key.text);
   }
+  for (int i = 0; i < 4; ++i) {
+    if (!seen[i]) {
+      throw FormatError("BRIEF pattern file " + path + ": missing integer sequence '" +
+                        names[i] + "'");
+    }
+    if (seq[i].size() != static_cast<std::size_t>(kBriefPatternPairs)) {
+      throw FormatError("BRIEF pattern file " + path + ": sequence '" + names[i] + "' has " +
+                        std::to_string(seq[i].size()) + " entries, expected " +
+                        std::to_string(kBriefPatternPairs));
+    }
+  }
+  std::vector<cv::Vec4i> pattern(kBriefPatternPairs);
+  for (int i = 0; i < kBriefPatternPairs; ++i) {
+    pattern[i] = cv::Vec4i(seq[0][i], seq[1][i], seq[2][i], seq[3][i]);
+  }
+  return pattern;
 }
 
 }  // namespace bowg

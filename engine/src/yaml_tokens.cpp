@@ -3,7 +3,6 @@
 #include "bowg/errors.h"
 
 namespace bowg {
-namespace vocabulary_io {
 namespace {
 
 bool isBlank(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n'; }
@@ -122,7 +121,7 @@ YamlTokens::Token YamlTokens::read() {
     std::size_t p = pos_ + 1;
     for (;;) {
       if (p >= n) {
-        throw FormatError("vocabulary file '" + path_ + "': line " + std::to_string(t.line) +
+        throw FormatError("file '" + path_ + "': line " + std::to_string(t.line) +
                           ": unterminated quoted string");
       }
       const char d = text_[p];
@@ -159,5 +158,4 @@ YamlTokens::Token YamlTokens::read() {
   return t;
 }
 
-}  // namespace vocabulary_io
 }  // namespace bowg

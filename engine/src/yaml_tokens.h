@@ -1,8 +1,9 @@
-// A tokenizer for the YAML subset OpenCV's FileStorage writes for DBoW2/DBoW3
-// vocabularies: block keys ("k: 10"), block sequences ("- { ... }"), flow maps
-// and sequences, plain and quoted scalars, comments, directives ("%YAML:1.0")
-// and document markers. Untrusted vocabulary files are read with it instead
-// of cv::FileStorage, whose parser spins for ever on some malformed input:
+// A tokenizer for the YAML subset OpenCV's FileStorage writes (DBoW2/DBoW3
+// vocabularies, BRIEF pattern files): block keys ("k: 10"), block sequences
+// ("- { ... }", "- 3"), flow maps and sequences, plain and quoted scalars,
+// comments, directives ("%YAML:1.0") and document markers. Untrusted files
+// are read with it instead of cv::FileStorage, whose parser spins for ever on
+// some malformed input:
 // every call to next() consumes at least one character or returns kEnd, so a
 // file of n bytes yields at most n tokens and no input can make it loop.
 #pragma once
@@ -11,7 +12,6 @@
 #include <string>
 
 namespace bowg {
-namespace vocabulary_io {
 
 class YamlTokens {
  public:
@@ -59,5 +59,4 @@ class YamlTokens {
 /// Human-readable name of a token kind, for error messages.
 const char* toString(YamlTokens::Kind kind);
 
-}  // namespace vocabulary_io
 }  // namespace bowg

@@ -53,6 +53,19 @@ TEST(BriefPattern, ReadsKeysByNameInAnyOrder) {
   EXPECT_EQ(p[255], cv::Vec4i(1, 2, -3, 4));
 }
 
+TEST(BriefPattern, FlowSequencesAreReadToo) {
+  std::string text = "%YAML:1.0\n---\n";
+  const char* keys[] = {"x1", "y1", "x2", "y2"};
+  for (int k = 0; k < 4; ++k) {
+    text += std::string(keys[k]) + ": [";
+    for (int i = 0; i < 256; ++i) text += std::to_string(k == 0 ? i % 25 : -k) + (i < 255 ? ", " : "");
+    text += "]\n";
+  }
+  const std::vector<cv::Vec4i> p = loadBriefPattern(writeFile("pattern_flow.yml", text));
+  ASSERT_EQ(p.size(), 256u);
+  EXPECT_EQ(p[30], cv::Vec4i(5, -1, -2, -3));
+}
+
 TEST(BriefPattern, MissingFileIsIoError) {
   expectThrowNamingPath<IoError>(std::string(BOWG_TEST_OUTPUT_DIR) + "/no_such_pattern.yml");
 }
@@ -68,6 +81,15 @@ TEST(BriefPattern, CorruptFilesAreFormatErrors) {
   expectThrowNamingPath<FormatError>(writeFile(
       "pattern_real.yml", "%YAML:1.0\n" + sequence("x1", 256, "1.5") + sequence("y1", 256, "1") +
                               sequence("x2", 256, "1") + sequence("y2", 256, "1")));
+  // Malformed YAML (an unterminated quote, a key without a sequence, a
+  // second x1) and a flow sequence that is too long.
+  expectThrowNamingPath<FormatError>(writeFile("pattern_quote.yml", "x1: [\"1, 2]\n"));
+  expectThrowNamingPath<FormatError>(writeFile("pattern_nokey.yml", "x1:\ny1: [1]\n"));
+  expectThrowNamingPath<FormatError>(
+      writeFile("pattern_twice.yml", sequence("x1", 256, "1") + sequence("x1", 256, "1")));
+  std::string long_flow = "x1: [";
+  for (int i = 0; i < 300; ++i) long_flow += "1, ";
+  expectThrowNamingPath<FormatError>(writeFile("pattern_long.yml", long_flow + "1]\n"));
   expectThrowNamingPath<FormatError>(writeFile(
       "pattern_huge.yml", "%YAML:1.0\n" + sequence("x1", 256, "1000") + sequence("y1", 256, "1") +
                               sequence("x2", 256, "1") + sequence("y2", 256, "1")));

@@ -12,7 +12,6 @@
 #include "bowg/errors.h"
 
 namespace bowg {
-namespace vocabulary_io {
 namespace {
 
 using Kind = YamlTokens::Kind;
@@ -121,5 +120,4 @@ TEST(YamlTokens, EveryByteStringEndsWithinItsLength) {
 }
 
 }  // namespace
-}  // namespace vocabulary_io
 }  // namespace bowg

@@ -1,6 +1,7 @@
 // The BRIEF test pattern file of VINS-Mono / VINS-Fusion (brief_pattern.yml,
 // the pattern their brief_k10L6.bin vocabulary was trained with): OpenCV
-// FileStorage YAML with four integer sequences x1, y1, x2, y2 of 256 entries,
+// FileStorage YAML (read with the project's own YAML-subset reader) with four
+// integer sequences x1, y1, x2, y2 of 256 entries,
 // pair i comparing pixel (x1[i], y1[i]) with (x2[i], y2[i]) relative to the
 // keypoint.
 #pragma once
