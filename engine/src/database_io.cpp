@@ -294,8 +294,15 @@ std::unique_ptr<Database> loadDetectorFile(const std::string& path,
       e.intrinsics.fy = p.f64("intrinsics");
       e.intrinsics.cx = p.f64("intrinsics");
       e.intrinsics.cy = p.f64("intrinsics");
+      const std::string entry = "entry " + std::to_string(i);
       if (!std::isfinite(e.stamp) || !std::isfinite(e.centre_x) || !std::isfinite(e.centre_y)) {
-        p.fail("entry " + std::to_string(i) + " has a non-finite stamp or centre");
+        p.fail(entry + " has a non-finite stamp or centre");
+      }
+      if (e.intrinsics.valid &&
+          !(e.intrinsics.fx > 0.0 && e.intrinsics.fy > 0.0 && std::isfinite(e.intrinsics.fx) &&
+            std::isfinite(e.intrinsics.fy) && std::isfinite(e.intrinsics.cx) &&
+            std::isfinite(e.intrinsics.cy))) {
+        p.fail(entry + " has invalid intrinsics (fx, fy must be finite > 0, cx, cy finite)");
       }
       const std::size_t nf = p.count(kFeatureBytes, "features");
       e.keypoints.resize(nf);
@@ -309,20 +316,46 @@ std::unique_ptr<Database> loadDetectorFile(const std::string& path,
         k.angle = p.f32("keypoint");
         k.response = p.f32("keypoint");
         k.octave = p.i32("keypoint");
+        if (!std::isfinite(k.x) || !std::isfinite(k.y) || !std::isfinite(k.angle) ||
+            !std::isfinite(k.response) || !(k.size >= 0.0f && std::isfinite(k.size))) {
+          p.fail(entry + " keypoint " + std::to_string(f) +
+                 " has a non-finite coordinate, angle or response, or an invalid size");
+        }
         for (auto& b : e.descriptors[f].bits) b = p.u64("descriptor");
         e.words[f] = p.u32("word");
       }
       e.bow = p.pairs("BoW vector");
       e.raw_groups = p.pairs("word groups");
+      // Stored weights are > 0 (words of weight 0 are never stored) and, for
+      // every scoring type but the dot product, normalised to at most 1.
+      const bool normalised =
+          static_cast<ScoringType>(stored_scoring) != ScoringType::kDotProduct;
+      for (const auto& b : e.bow) {
+        if (!(b.second > 0.0) || (normalised && b.second > 1.0 + 1e-9)) {
+          p.fail(entry + " has a BoW weight " + std::to_string(b.second) + " outside (0, " +
+                 (normalised ? "1]" : "inf)"));
+        }
+      }
+      for (const auto& g : e.raw_groups) {
+        if (!(g.second > 0.0)) p.fail(entry + " has a word-group weight <= 0");
+      }
       entries.push_back(std::move(e));
     }
     state->previous_etas = p.pairs("previous scores");
     if (!state->previous_etas.empty() && state->previous_etas.back().first >= n) {
       p.fail("previous scores refer to an entry beyond the database");
     }
+    for (const auto& e : state->previous_etas) {
+      if (e.second < 0.0) p.fail("a previous score is negative");
+    }
     Island last = readIsland(&p);
     const int chain = p.i32("chain length");
-    if (chain < 0) p.fail("negative temporal-consistency chain length");
+    // A chain counts queries, one per entry: it cannot be longer than the
+    // database (a forged one would pass the temporal check at once).
+    if (chain < 0 || static_cast<std::size_t>(chain) > n) {
+      p.fail("temporal-consistency chain length " + std::to_string(chain) +
+             " outside 0.." + std::to_string(n) + " (the number of entries)");
+    }
     if (version >= 2) {
       const std::size_t nn = p.count(kNormaliserBytes, "normalisers");
       std::vector<Normalisers> normalisers(nn);
@@ -342,7 +375,11 @@ std::unique_ptr<Database> loadDetectorFile(const std::string& path,
     if (version >= 3) {
       state->missed_queries = p.i32("missed queries");
       chain_missed = p.i32("missed queries");
-      if (state->missed_queries < 0 || chain_missed < 0) p.fail("negative missed-query count");
+      if (state->missed_queries < 0 || chain_missed < 0 ||
+          static_cast<std::size_t>(state->missed_queries) > n ||
+          static_cast<std::size_t>(chain_missed) > n) {
+        p.fail("missed-query count outside 0.." + std::to_string(n));
+      }
       if (state->missed_queries > 0 && state->previous_etas.empty()) {
         p.fail("missed queries counted without previous scores");
       }
@@ -372,7 +409,9 @@ std::unique_ptr<Database> loadDetectorFile(const std::string& path,
       for (IslandHypothesis& h : others) {
         h.island = readIsland(&p);
         h.chain_length = p.i32("chain length");
-        if (h.chain_length < 1) p.fail("a temporal hypothesis has a chain length < 1");
+        if (h.chain_length < 1 || static_cast<std::size_t>(h.chain_length) > n) {
+          p.fail("a temporal hypothesis has a chain length outside 1.." + std::to_string(n));
+        }
       }
     }
     for (DatabaseEntry& e : entries) {

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <memory>
 #include <random>
@@ -263,6 +264,75 @@ TEST(DatabaseIo, OdometersAndMissedQueryCountersRoundTrip) {
     expectSameResult(a.process(kfs[i]), b.process(kfs[i]));
     expectSameCandidates(a, b);
   }
+  std::remove(path.c_str());
+}
+
+// A file whose checksum is right but whose content no run can produce (a
+// forged or buggy writer): refused by name, the detector untouched. Offsets
+// from the layout (database_io.cpp): header 28 bytes, u32 scoring, u32 entry
+// count, then entry 0: stamp, centre x, y (f64), intrinsics valid (u8), fx,
+// fy, cx, cy (f64), u32 feature count, feature 0: x, y, size, angle,
+// response (f32), ...
+TEST(DatabaseIo, ForgedContentIsRefusedByName) {
+  const auto voc = vocabulary();
+  auto kfs = keyframes();
+  for (auto& kf : kfs) {
+    kf.intrinsics.valid = true;
+    kf.intrinsics.fx = kf.intrinsics.fy = 400.0;
+    kf.intrinsics.cx = 320.0;
+    kf.intrinsics.cy = 240.0;
+  }
+  LoopDetector a(voc, options());
+  for (int i = 0; i < 52; ++i) a.process(kfs[i]);
+  const std::string path = outPath("forged_source.bowgdb");
+  a.save(path);
+  const std::string good = readBytes(path);
+  ASSERT_EQ(good[60], 1) << "entry 0's intrinsics-valid byte";
+  const auto forge = [&](const std::string& name, std::size_t at, const void* value,
+                         std::size_t bytes, const std::string& why) {
+    SCOPED_TRACE(name);
+    std::string b = good;
+    std::memcpy(&b[at], value, bytes);
+    const std::uint64_t sum = checksum64(b.data(), b.size() - 8);
+    for (int i = 0; i < 8; ++i) b[b.size() - 8 + i] = static_cast<char>((sum >> (8 * i)) & 0xff);
+    const std::string forged = outPath(name);
+    writeBytes(forged, b);
+    LoopDetector c(voc, options());
+    try {
+      c.load(forged);
+      ADD_FAILURE() << "accepted";
+    } catch (const FormatError& e) {
+      EXPECT_NE(std::string(e.what()).find(forged), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find(why), std::string::npos) << e.what();
+    }
+    EXPECT_EQ(c.database().size(), 0u);
+    std::remove(forged.c_str());
+  };
+  const double nan = std::nan(""), negative = -5.0;
+  const float fnan = std::nanf("");
+  forge("fx.bowgdb", 61, &nan, 8, "entry 0 has invalid intrinsics");
+  forge("fy.bowgdb", 69, &negative, 8, "entry 0 has invalid intrinsics");
+  forge("x.bowgdb", 97, &fnan, 4, "entry 0 keypoint 0 has a non-finite");
+  const float minus_one = -1.0f;
+  forge("size.bowgdb", 105, &minus_one, 4, "invalid size");
+  forge("angle.bowgdb", 109, &fnan, 4, "entry 0 keypoint 0 has a non-finite");
+  // Entry 0's BoW vector follows its features: u32 count, then (u32 word,
+  // f64 weight) pairs.
+  std::uint32_t nf = 0;
+  std::memcpy(&nf, &good[93], 4);
+  const std::size_t bow = 97 + nf * (6 * 4 + 32 + 4);
+  std::uint32_t words = 0;
+  std::memcpy(&words, &good[bow], 4);
+  ASSERT_GT(words, 0u);
+  for (const double w : {-5.0, 1e300, 0.0}) {
+    forge("bow.bowgdb", bow + 4 + 4, &w, 8, "entry 0 has a BoW weight");
+  }
+  // The chain length: before the normaliser history (u32 + 50 x 24), the
+  // two missed-query counters (8), the odometers (u32 + 52 x 8), the two
+  // query odometers (16), the hypothesis count (4) and the checksum (8).
+  const std::size_t chain = good.size() - (8 + 4 + 16 + 4 + 52 * 8 + 8 + 4 + 50 * 24 + 4);
+  const std::int32_t forever = 0x7fffffff;
+  forge("chain.bowgdb", chain, &forever, 4, "chain length 2147483647 outside 0..52");
   std::remove(path.c_str());
 }
 
