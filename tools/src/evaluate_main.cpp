@@ -35,6 +35,7 @@
 #include "bowg/vocabulary_io.h"
 #include "bowg_evaluation/detector_run.h"
 #include "bowg_evaluation/ground_truth.h"
+#include "bowg_evaluation/image_file.h"
 #include "bowg_evaluation/metrics.h"
 #include "bowg_evaluation/odometry_file.h"
 #include "bowg_evaluation/parallel_runs.h"
@@ -273,7 +274,7 @@ std::vector<FrameInput> loadFrames(const Args& a, const FeatureExtractor& extrac
     f.stamp = frames.empty() ? stamp : std::max(stamp, frames.back().stamp + 1e-6);
     f.intrinsics = k;
     const auto t0 = std::chrono::steady_clock::now();
-    f.features = extractor.extract(grey);
+    f.features = grey.empty() ? ImageFeatures() : extractor.extract(grey);
     f.feature_ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     frames.push_back(std::move(f));
@@ -282,12 +283,25 @@ std::vector<FrameInput> loadFrames(const Args& a, const FeatureExtractor& extrac
   if (!a.images.empty()) {
     std::vector<std::string> files = listImages(a.images);
     if (a.max_frames > 0 && files.size() > static_cast<std::size_t>(a.max_frames)) files.resize(a.max_frames);
+    std::size_t skipped = 0;
     for (std::size_t i = 0; i < files.size(); ++i) {
-      const cv::Mat grey = cv::imread(files[i], cv::IMREAD_GRAYSCALE);
-      if (grey.empty()) throw IoError("cannot read the image " + files[i]);
+      std::string why;
+      const cv::Mat grey = eval::readGreyImage(files[i], &why);
+      if (grey.empty()) {
+        // Kept as a frame without features, so that frame i stays image i
+        // of the folder (the ground truth's numbering).
+        std::fprintf(stderr, "\nwarning: image %s skipped (%s): a frame without features\n",
+                     files[i].c_str(), why.c_str());
+        ++skipped;
+      }
       add(grey, i / a.rate, CameraIntrinsics());
       bar(i + 1, files.size());
     }
+    if (skipped > 0) {
+      std::fprintf(stderr, "warning: %zu of %zu images skipped (unreadable)\n", skipped,
+                   files.size());
+    }
+    if (skipped == files.size()) throw FormatError("no readable image in " + a.images);
     return frames;
   }
   rosbag::Bag bag;

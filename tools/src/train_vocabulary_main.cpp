@@ -27,6 +27,7 @@
 #include "bowg/feature_extractor.h"
 #include "bowg/vocabulary_io.h"
 #include "bowg/vocabulary_trainer.h"
+#include "bowg_evaluation/image_file.h"
 #include "bowg_ros/image_conversion.h"
 
 namespace {
@@ -325,10 +326,11 @@ int main(int argc, char** argv) {
     while (i < images.size()) {
       progressBar(0.2 * i / images.size(), "extracting features");
       if (images[i].bag < 0) {
-        const cv::Mat image = cv::imread(images[i].path, cv::IMREAD_GRAYSCALE);
+        std::string why;
+        const cv::Mat image = bowg::eval::readGreyImage(images[i].path, &why);
         if (image.empty()) {
-          std::fprintf(stderr, "\nwarning: cannot read image '%s', skipped\n",
-                       images[i].path.c_str());
+          std::fprintf(stderr, "\nwarning: image '%s' skipped (%s)\n", images[i].path.c_str(),
+                       why.c_str());
           ++unreadable;
         } else {
           add(image);

@@ -72,6 +72,32 @@ TEST_F(EvaluateCli, TheSweepDoesNotDependOnTheNumberOfThreads) {
   EXPECT_EQ(loops, readAll(kDir + "/two_threads/detections_bowg.csv"));
 }
 
+TEST_F(EvaluateCli, UnreadableImagesAreSkippedCountedAndKeepTheirFrameNumber) {
+  // A copy of the first 40 frames with frame 5 emptied and frame 9 replaced
+  // by garbage: the run goes on, says which images it skipped and why, and
+  // frame 10 is still frame 10 (a frame without features stands in).
+  const std::string dir = kDir + "/damaged";
+  ASSERT_EQ(run("(rm -rf " + dir + " && mkdir -p " + dir + " && for i in $(seq -f %06g 0 39); do "
+                "cp " + kDir + "/frames/frame_$i.png " + dir + "/; done && : > " + dir +
+                "/frame_000005.png && echo garbage > " + dir + "/frame_000009.png)"),
+            0);
+  const std::string out = kDir + "/damaged_out";
+  const std::string cmd = kEvaluate + " --quiet --images " + dir + " --vocabulary " +
+                          BOWG_DEFAULT_VOCABULARY + " --config " + kDir +
+                          "/config.yaml --thresholds 0.7 --output " + out;
+  ASSERT_EQ(run(cmd, kDir + "/damaged.log"), 0) << readAll(kDir + "/damaged.log");
+  const std::string log = readAll(kDir + "/damaged.log");
+  EXPECT_NE(log.find("frame_000005.png skipped (the file is empty)"), std::string::npos) << log;
+  EXPECT_NE(log.find("frame_000009.png skipped (not an image OpenCV can decode)"),
+            std::string::npos)
+      << log;
+  EXPECT_NE(log.find("2 of 40 images skipped"), std::string::npos) << log;
+  const std::string keyframes = readAll(out + "/keyframes_bowg.csv");
+  EXPECT_NE(keyframes.find("\n5,5.000000,no_features,"), std::string::npos) << keyframes;
+  EXPECT_NE(keyframes.find("\n9,9.000000,no_features,"), std::string::npos) << keyframes;
+  EXPECT_NE(keyframes.find("\n39,"), std::string::npos) << keyframes;
+}
+
 TEST_F(EvaluateCli, BadOptionsAreRefusedWithAMessage) {
   const std::string log = kDir + "/bad.log";
   EXPECT_NE(run(evaluate("--jobs -1", "bad"), log), 0);
