@@ -8,17 +8,18 @@ namespace {
 
 struct EncodingInfo {
   const char* name;
-  int type;  // the OpenCV type an image of this encoding has
-  int code;  // cvtColor code to grey, -1 = none
+  int type;   // the OpenCV type an image of this encoding has
+  int code;   // cvtColor code to grey, -1 = none
+  int bytes;  // bytes per pixel
 };
 
 const EncodingInfo kEncodings[] = {
-    {"mono8", CV_8UC1, -1},
-    {"mono16", CV_16UC1, -1},
-    {"bgr8", CV_8UC3, cv::COLOR_BGR2GRAY},
-    {"rgb8", CV_8UC3, cv::COLOR_RGB2GRAY},
-    {"bgra8", CV_8UC4, cv::COLOR_BGRA2GRAY},
-    {"rgba8", CV_8UC4, cv::COLOR_RGBA2GRAY},
+    {"mono8", CV_8UC1, -1, 1},
+    {"mono16", CV_16UC1, -1, 2},
+    {"bgr8", CV_8UC3, cv::COLOR_BGR2GRAY, 3},
+    {"rgb8", CV_8UC3, cv::COLOR_RGB2GRAY, 3},
+    {"bgra8", CV_8UC4, cv::COLOR_BGRA2GRAY, 4},
+    {"rgba8", CV_8UC4, cv::COLOR_RGBA2GRAY, 4},
 };
 
 const EncodingInfo* find(const std::string& encoding) {
@@ -31,6 +32,26 @@ const EncodingInfo* find(const std::string& encoding) {
 }  // namespace
 
 bool isSupportedEncoding(const std::string& encoding) { return find(encoding) != nullptr; }
+
+std::string imageLayoutProblem(std::uint32_t width, std::uint32_t height, std::uint32_t step,
+                               std::size_t data_size, const std::string& encoding) {
+  const EncodingInfo* e = find(encoding);
+  if (!e) return "unsupported encoding '" + encoding + "'";
+  if (width == 0 || height == 0) {
+    return "empty image (" + std::to_string(width) + " x " + std::to_string(height) + ")";
+  }
+  const std::uint64_t row = std::uint64_t(width) * std::uint64_t(e->bytes);
+  if (step < row) {
+    return "step " + std::to_string(step) + " is shorter than a row of " + std::to_string(width) +
+           " " + encoding + " pixels (" + std::to_string(row) + " bytes)";
+  }
+  const std::uint64_t needed = std::uint64_t(height) * std::uint64_t(step);
+  if (data_size < needed) {
+    return "data holds " + std::to_string(data_size) + " bytes, height x step needs " +
+           std::to_string(needed);
+  }
+  return "";
+}
 
 cv::Mat toMono8(const cv::Mat& image, const std::string& encoding) {
   const EncodingInfo* e = find(encoding);

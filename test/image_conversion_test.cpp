@@ -67,5 +67,22 @@ TEST(ImageConversion, DataThatDoesNotMatchItsEncodingIsRejected) {
   EXPECT_THROW(toMono8(cv::Mat(), "mono8"), UnsupportedEncoding);
 }
 
+// Hand-worked layouts: 4 x 3 bgr8 needs rows of 12 bytes and 3 rows.
+TEST(ImageConversion, LayoutsThatCannotBeReadSafelyAreNamed) {
+  EXPECT_EQ(imageLayoutProblem(4, 3, 12, 36, "bgr8"), "");
+  EXPECT_EQ(imageLayoutProblem(4, 3, 16, 48, "bgr8"), "");  // padded rows
+  EXPECT_EQ(imageLayoutProblem(4, 3, 11, 36, "bgr8"),
+            "step 11 is shorter than a row of 4 bgr8 pixels (12 bytes)");
+  EXPECT_EQ(imageLayoutProblem(4, 3, 12, 35, "bgr8"), "data holds 35 bytes, height x step needs 36");
+  EXPECT_EQ(imageLayoutProblem(4, 3, 0, 36, "bgr8"),
+            "step 0 is shorter than a row of 4 bgr8 pixels (12 bytes)");
+  EXPECT_EQ(imageLayoutProblem(0, 3, 12, 36, "bgr8"), "empty image (0 x 3)");
+  EXPECT_EQ(imageLayoutProblem(4, 3, 12, 36, "32FC1"), "unsupported encoding '32FC1'");
+  // mono16: 2 bytes a pixel; no overflow with the largest values.
+  EXPECT_EQ(imageLayoutProblem(5, 2, 9, 18, "mono16"),
+            "step 9 is shorter than a row of 5 mono16 pixels (10 bytes)");
+  EXPECT_NE(imageLayoutProblem(0xffffffffu, 0xffffffffu, 0xffffffffu, 100, "rgba8"), "");
+}
+
 }  // namespace
 }  // namespace bowg_ros

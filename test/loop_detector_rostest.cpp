@@ -88,6 +88,11 @@ class Detector {
 
   bool loaded() const { return loaded_; }
   bool connected() const { return image_pub_.getNumSubscribers() > 0; }
+  /// An image message as it comes, whatever its layout.
+  void publishRaw(const sensor_msgs::Image& msg) {
+    image_pub_.publish(msg);
+    ros::WallDuration(0.03).sleep();
+  }
   const std::string& name() const { return name_; }
 
   void publish(const cv::Mat& image, double stamp, const std::string& encoding = "mono8") {
@@ -300,6 +305,28 @@ class ErrorLog {
   std::mutex mutex_;
   std::vector<std::string> errors_;
 };
+
+TEST(LoopDetectorNodelet, MalformedImagesAreReportedAndTheNodeletKeepsRunning) {
+  ErrorLog log;
+  Detector d("/malformed", {});
+  ASSERT_TRUE(d.loaded());
+  ros::WallDuration(0.5).sleep();  // /rosout connection
+  // mono8, 64 x 48, step 64, but only 100 bytes of data: a reader of
+  // height x step bytes would run past the buffer.
+  sensor_msgs::Image bad;
+  bad.header.stamp = ros::Time(500.0);
+  bad.header.frame_id = kFrame;
+  bad.width = 64;
+  bad.height = 48;
+  bad.step = 64;
+  bad.encoding = "mono8";
+  bad.data.assign(100, 0);
+  d.publishRaw(bad);
+  EXPECT_TRUE(log.waitFor("malformed image at 500.000000", 10.0)) << "no error for the image";
+  const cv::Mat world = test::makeWorld(kViewWidth + 10 * kStep, kViewHeight, 3);
+  d.publish(test::viewAt(world, 0, kViewWidth), 501.0);
+  EXPECT_TRUE(d.waitForStatuses(1, 20.0)) << "the nodelet stopped after a malformed image";
+}
 
 TEST(LoopDetectorNodelet, UnsupportedEncodingIsReportedAndTheNodeletKeepsRunning) {
   ErrorLog log;

@@ -104,6 +104,7 @@ struct Stats {
   std::size_t loops = 0;
   std::size_t skipped_out_of_order = 0;
   std::size_t bad_encoding = 0;
+  std::size_t malformed = 0;  ///< image messages whose layout cannot be read
   std::size_t errors = 0;
   // Sums since the last diagnostics update (for means per window).
   std::size_t window_keyframes = 0;
@@ -415,11 +416,23 @@ void LoopDetectorNodelet::imageCallback(const sensor_msgs::ImageConstPtr& msg) {
   }
   Frame frame;
   frame.header = msg->header;
-  try {
-    frame.image = cv_bridge::toCvShare(msg);  // shares the message's buffer
-  } catch (const cv_bridge::Exception& e) {
-    NODELET_ERROR_THROTTLE(5.0, "cannot wrap image (encoding '%s'): %s", msg->encoding.c_str(),
-                           e.what());
+  std::string problem =
+      imageLayoutProblem(msg->width, msg->height, msg->step, msg->data.size(), msg->encoding);
+  if (problem.empty()) {
+    try {
+      frame.image = cv_bridge::toCvShare(msg);  // shares the message's buffer
+    } catch (const cv_bridge::Exception& e) {
+      problem = e.what();
+    }
+  }
+  if (!problem.empty()) {
+    // Counted in the diagnostics whatever the throttled log shows.
+    {
+      std::lock_guard<std::mutex> lock(stats_mutex_);
+      ++stats_.malformed;
+    }
+    NODELET_ERROR_THROTTLE(5.0, "malformed image at %.6f (encoding '%s'): %s: frame dropped",
+                           msg->header.stamp.toSec(), msg->encoding.c_str(), problem.c_str());
     return;
   }
   offer(std::move(frame));
@@ -701,6 +714,7 @@ void LoopDetectorNodelet::diagnose(diagnostic_updater::DiagnosticStatusWrapper& 
   status.add("dropped frames (queue full)", dropped);
   status.add("skipped frames (stamp order)", s.skipped_out_of_order);
   status.add("dropped frames (unsupported encoding)", s.bad_encoding);
+  status.add("dropped frames (malformed image)", s.malformed);
   status.add("keyframe errors", s.errors);
   status.add("camera intrinsics known", has_intrinsics);
   status.add("ms convert", s.window_convert_ms / n);
@@ -713,9 +727,10 @@ void LoopDetectorNodelet::diagnose(diagnostic_updater::DiagnosticStatusWrapper& 
   status.add("ms total", s.window_total_ms / n);
   if (!initialised_) {
     status.summary(diagnostic_msgs::DiagnosticStatus::ERROR, "not started (see the log)");
-  } else if (s.bad_encoding > 0 || s.errors > 0) {
+  } else if (s.bad_encoding > 0 || s.malformed > 0 || s.errors > 0) {
     status.summary(diagnostic_msgs::DiagnosticStatus::WARN,
-                   "frames rejected (unsupported encoding or processing errors)");
+                   "frames rejected (unsupported encoding, malformed images or processing "
+                   "errors)");
   } else if (dropped > 0) {
     status.summary(diagnostic_msgs::DiagnosticStatus::WARN,
                    "keyframes dropped: the detector is slower than the keyframe rate");
