@@ -1,12 +1,15 @@
 #include "bowg/atomic_file.h"
 
+#include <dirent.h>
 #include <fcntl.h>
+#include <signal.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include <atomic>
 #include <cerrno>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 
 #include "bowg/errors.h"
@@ -44,6 +47,37 @@ void fsyncPath(const std::string& path, int flags, const std::string& what) {
   if (rc != 0) throw IoError("cannot sync " + what + " '" + path + "': " + err);
 }
 
+// Temporary files of `base` left in `dir` by writers that died before their
+// commit (kill -9, power loss): ".tmp-<pid>-<n>-<base>" whose process no
+// longer exists. Removed so that a crashed save does not leave a copy of a
+// database behind for ever; a live writer's file (its pid exists) is kept.
+void removeStaleTemporaries(const std::string& dir, const std::string& base) {
+  DIR* d = ::opendir(dir.c_str());
+  if (d == nullptr) return;  // the write itself will report the directory
+  const std::string suffix = "-" + base;
+  while (const dirent* e = ::readdir(d)) {
+    const std::string name = e->d_name;
+    if (name.compare(0, 5, ".tmp-") != 0 || name.size() <= 5 + suffix.size() ||
+        name.compare(name.size() - suffix.size(), suffix.size(), suffix) != 0) {
+      continue;
+    }
+    // "<pid>-<n>" between the prefix and the suffix.
+    const std::string tag = name.substr(5, name.size() - 5 - suffix.size());
+    const std::size_t dash = tag.find('-');
+    if (dash == 0 || dash == std::string::npos || dash > 9 ||
+        tag.find_first_not_of("0123456789", 0) != dash ||
+        tag.find_first_not_of("0123456789", dash + 1) != std::string::npos ||
+        dash + 1 == tag.size()) {
+      continue;
+    }
+    const long pid = std::strtol(tag.substr(0, dash).c_str(), nullptr, 10);
+    if (pid <= 0 || (::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH)) {
+      ::unlink((dir + "/" + name).c_str());
+    }
+  }
+  ::closedir(d);
+}
+
 }  // namespace
 
 AtomicFileWriter::AtomicFileWriter(const std::string& path) : path_(path) {
@@ -53,6 +87,7 @@ AtomicFileWriter::AtomicFileWriter(const std::string& path) : path_(path) {
     throw IoError("cannot write '" + path + "': the path names a directory");
   }
   std::string dir = directoryOf(path);
+  removeStaleTemporaries(dir, base);
   temp_path_ = (dir == "/" ? std::string("/") : dir + "/") + ".tmp-" + uniqueTag() + "-" + base;
 }
 

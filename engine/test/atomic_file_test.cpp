@@ -4,6 +4,7 @@
 
 #include <dirent.h>
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cstdlib>
 #include <fstream>
@@ -83,6 +84,29 @@ TEST(AtomicFile, CommitPublishesWhatWasWrittenToTheTemporaryPath) {
   w.commit();
   EXPECT_EQ(readAll(d + "/committed.txt"), "payload");
   EXPECT_EQ(countTemporaries(d), 0);
+}
+
+TEST(AtomicFile, TemporariesOfDeadWritersAreRemovedOthersKept) {
+  const std::string d = dir() + "/stale";
+  ASSERT_EQ(std::system(("rm -rf '" + d + "' && mkdir -p '" + d + "'").c_str()), 0);
+  const auto touch = [&](const std::string& name) { std::ofstream(d + "/" + name) << "x"; };
+  const std::string alive = std::to_string(static_cast<long>(::getpid()));
+  // 999999999 is above any pid_max (2^22): no such process.
+  touch(".tmp-999999999-0-db.bowgdb");  // a writer killed mid-save: removed
+  touch(".tmp-" + alive + "-999999-db.bowgdb");  // this process writing it: kept
+  touch(".tmp-999999999-0-other.bowgdb");   // another destination: kept
+  touch(".tmp-x-0-db.bowgdb");              // not our naming: kept
+  {
+    AtomicFileWriter w(d + "/db.bowgdb");
+    std::ofstream(w.tempPath()) << "new";
+    w.commit();
+  }
+  EXPECT_EQ(readAll(d + "/db.bowgdb"), "new");
+  EXPECT_FALSE(std::ifstream(d + "/.tmp-999999999-0-db.bowgdb").good());
+  EXPECT_TRUE(std::ifstream(d + "/.tmp-" + alive + "-999999-db.bowgdb").good());
+  EXPECT_TRUE(std::ifstream(d + "/.tmp-999999999-0-other.bowgdb").good());
+  EXPECT_TRUE(std::ifstream(d + "/.tmp-x-0-db.bowgdb").good());
+  EXPECT_EQ(countTemporaries(d), 3);
 }
 
 TEST(AtomicFile, FailuresNameThePath) {
