@@ -42,6 +42,10 @@ for t in "${asan_tests[@]}"; do
   fi
 done
 
+echo "== libFuzzer: every file loader, ${BOWG_FUZZ_SECONDS:-30} s each (scripts/fuzz.sh)"
+fuzz_failed=0
+BOWG_SKIP_DEPS=1 BOWG_FUZZ_DIR="$ws/fuzz" bash "$repo/scripts/fuzz.sh" "${BOWG_FUZZ_SECONDS:-30}" \
+  || fuzz_failed=1
 echo "== results"
 set +e
 summary=$(catkin_test_results --verbose "$ws/build/test_results" 2>&1)
@@ -58,7 +62,8 @@ if [ -z "$tests" ] || [ "$tests" -eq 0 ]; then
   echo "FAIL: no test ran" >&2
   exit 1
 fi
-bad=$(( ${errors:-0} + ${failures:-0} + asan_failed ))
-echo "$(( tests + ${#asan_tests[@]} - bad - ${skipped:-0} )) passed, $bad failed, ${skipped:-0} skipped"
+bad=$(( ${errors:-0} + ${failures:-0} + asan_failed + fuzz_failed ))
+echo "$(( tests + ${#asan_tests[@]} + 1 - bad - ${skipped:-0} )) passed, $bad failed, ${skipped:-0} skipped"
 [ "$asan_failed" -eq 0 ] || exit 1
+[ "$fuzz_failed" -eq 0 ] || exit 1
 exit $status
