@@ -2,7 +2,6 @@
 // cv::FileStorage, whose parser spins for ever on some malformed files.
 #include "bowg/brief_pattern.h"
 
-#include <cstdlib>
 #include <fstream>
 
 #include "bowg/errors.h"
@@ -36,15 +35,12 @@ std::string readPatternFile(const std::string& path) {
 }
 
 int entry(const std::string& path, const std::string& key, const YamlTokens::Token& t) {
-  const std::string& s = t.text;
-  const std::size_t digits = !s.empty() && (s[0] == '-' || s[0] == '+') ? 1 : 0;
-  if (t.kind != YamlTokens::Kind::kScalar || digits == s.size() || s.size() > 12 ||
-      s.find_first_not_of("0123456789", digits) != std::string::npos) {
+  std::int64_t v = 0;
+  if (t.kind != YamlTokens::Kind::kScalar || !parseInteger(t.text, &v)) {
     failAt(path, t, "sequence '" + key + "' holds a non-integer entry");
   }
-  const long v = std::strtol(s.c_str(), nullptr, 10);
-  if (std::labs(v) > kBriefPatternMaxOffset) {
-    failAt(path, t, "sequence '" + key + "' entry " + s + " exceeds +-" +
+  if (v > kBriefPatternMaxOffset || v < -kBriefPatternMaxOffset) {
+    failAt(path, t, "sequence '" + key + "' entry " + t.text + " exceeds +-" +
                         std::to_string(kBriefPatternMaxOffset) + " px");
   }
   return static_cast<int>(v);

@@ -69,6 +69,15 @@ void recordUnscoredQuery(const LoopDetectorOptions& options, DetectorState* stat
   state->consistency.miss(options.temporal_verification);
 }
 
+// The number of entries driven up to `odometer`: those whose odometer (an
+// entry without one carries the one before it, Database::odometers) is at
+// most it. One binary search over the non-decreasing odometers.
+std::size_t entriesDrivenUpTo(const Database& database, double odometer) {
+  const std::vector<double>& odometers = database.odometers();
+  return static_cast<std::size_t>(
+      std::upper_bound(odometers.begin(), odometers.end(), odometer) - odometers.begin());
+}
+
 // Entries with id < the returned limit may be candidates. In keyframes: all
 // but the `recent_exclusion` newest. In metres (the query has an odometer and
 // recent_exclusion_m > 0): the entries before the newest one driven at least
@@ -83,10 +92,7 @@ EntryId candidateLimit(const Database& database, const IslandOptions& options, d
   // The non-decreasing odometers find the entries driven far enough back;
   // those at the end of that range without an odometer of their own carry
   // the one before them and are dropped.
-  const std::vector<double>& odometers = database.odometers();
-  std::size_t limit = static_cast<std::size_t>(
-      std::upper_bound(odometers.begin(), odometers.end(), odometer - options.recent_exclusion_m) -
-      odometers.begin());
+  std::size_t limit = entriesDrivenUpTo(database, odometer - options.recent_exclusion_m);
   while (limit > 0 && std::isnan(database.entries()[limit - 1].odometer)) --limit;
   return static_cast<EntryId>(limit);
 }
@@ -98,11 +104,7 @@ EntryId normaliserEntry(const Database& database, const SimilarityOptions& optio
                         double odometer) {
   const EntryId previous = static_cast<EntryId>(database.size() - 1);
   if (std::isnan(odometer) || !(options.normaliser_distance_m > 0.0)) return previous;
-  const std::vector<double>& odometers = database.odometers();
-  const std::size_t behind = static_cast<std::size_t>(
-      std::upper_bound(odometers.begin(), odometers.end(),
-                       odometer - options.normaliser_distance_m) -
-      odometers.begin());
+  const std::size_t behind = entriesDrivenUpTo(database, odometer - options.normaliser_distance_m);
   if (behind == 0 || std::isnan(database.entries()[behind - 1].odometer)) return previous;
   return static_cast<EntryId>(behind - 1);
 }

@@ -195,13 +195,11 @@ class DbowYamlReader {
   }
 
   std::int64_t integer(const YamlTokens::Token& t, const std::string& what) const {
-    const std::string& s = t.text;
-    std::size_t i = s.size() > 0 && (s[0] == '-' || s[0] == '+') ? 1 : 0;
-    if (i == s.size() || s.size() - i > 18 ||
-        s.find_first_not_of("0123456789", i) != std::string::npos) {
-      failAt(t, "'" + what + "' is not an integer ('" + s.substr(0, 40) + "')");
+    std::int64_t v = 0;
+    if (!parseInteger(t.text, &v)) {
+      failAt(t, "'" + what + "' is not an integer ('" + t.text.substr(0, 40) + "')");
     }
-    return std::strtoll(s.c_str(), nullptr, 10);
+    return v;
   }
 
   double real(const YamlTokens::Token& t, const std::string& what) const {

@@ -1,5 +1,7 @@
 #include "yaml_tokens.h"
 
+#include <cstdlib>
+
 #include "bowg/errors.h"
 
 namespace bowg {
@@ -40,6 +42,16 @@ const char* toString(YamlTokens::Kind kind) {
       return "'-'";
   }
   return "?";
+}
+
+bool parseInteger(const std::string& text, std::int64_t* value) {
+  const std::size_t digits = !text.empty() && (text[0] == '-' || text[0] == '+') ? 1 : 0;
+  if (digits == text.size() || text.size() - digits > 18 ||
+      text.find_first_not_of("0123456789", digits) != std::string::npos) {
+    return false;
+  }
+  *value = std::strtoll(text.c_str(), nullptr, 10);
+  return true;
 }
 
 YamlTokens::YamlTokens(const std::string& text, const std::string& path)

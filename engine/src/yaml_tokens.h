@@ -9,6 +9,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <string>
 
 namespace bowg {
@@ -58,5 +59,9 @@ class YamlTokens {
 
 /// Human-readable name of a token kind, for error messages.
 const char* toString(YamlTokens::Kind kind);
+
+/// A scalar's text as a decimal integer: an optional sign and 1 to 18 digits
+/// (so that it fits in 64 bits), nothing else. False otherwise.
+bool parseInteger(const std::string& text, std::int64_t* value);
 
 }  // namespace bowg

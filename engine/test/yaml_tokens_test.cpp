@@ -96,6 +96,21 @@ TEST(YamlTokens, UnterminatedQuoteIsAFormatErrorNamingFileAndLine) {
   }
 }
 
+TEST(YamlTokens, IntegersAreASignAndUpTo18Digits) {
+  std::int64_t v = 0;
+  EXPECT_TRUE(parseInteger("42", &v));
+  EXPECT_EQ(v, 42);
+  EXPECT_TRUE(parseInteger("-128", &v));
+  EXPECT_EQ(v, -128);
+  EXPECT_TRUE(parseInteger("+7", &v));
+  EXPECT_EQ(v, 7);
+  EXPECT_TRUE(parseInteger("999999999999999999", &v));  // 18 digits
+  EXPECT_EQ(v, 999999999999999999LL);
+  for (const char* bad : {"", "-", "1.5", "1e3", " 1", "0x10", "1000000000000000000", "12a"}) {
+    EXPECT_FALSE(parseInteger(bad, &v)) << "'" << bad << "'";
+  }
+}
+
 TEST(YamlTokens, EveryByteStringEndsWithinItsLength) {
   // Random bytes biased towards the characters the tokenizer acts on: at
   // most one token per byte, then kEnd (or a FormatError).
