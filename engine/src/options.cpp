@@ -168,6 +168,38 @@ LoopDetectorOptions LoopDetectorOptions::ablation(const std::string& row,
     o.geometric.candidates = 1;
     return o;
   }
+  // One extension back to the paper's version, every other field as configured.
+  if (row == "without_floor") {
+    o.similarity.normaliser_floor = 0.0;
+    return o;
+  }
+  if (row == "without_normaliser_distance") {
+    o.similarity.normaliser_distance_m = 0.0;
+    return o;
+  }
+  if (row == "without_alignment") {
+    o.temporal_score.alignment_window = 0;
+    o.temporal_score.alignment_window_m = 0.0;
+    o.temporal_verification.max_island_distance_m = 0.0;
+    return o;
+  }
+  if (row == "without_missed_queries") {
+    o.temporal_score.max_missed_queries = 0;
+    o.temporal_verification.max_missed_queries = 0;
+    return o;
+  }
+  if (row == "without_hypotheses") {
+    o.temporal_verification.hypotheses = 1;
+    return o;
+  }
+  if (row == "without_min_step") {
+    o.temporal_verification.min_step_m = 0.0;
+    return o;
+  }
+  if (row == "without_reranking") {
+    o.geometric.candidates = 1;
+    return o;
+  }
   if (row == "bow") {
     o.word_groups.enabled = false;
     o.temporal_score.enabled = false;
@@ -187,7 +219,10 @@ LoopDetectorOptions LoopDetectorOptions::ablation(const std::string& row,
   } else {
     throw InvalidParameter("ablation row '" + row +
                            "' is unknown; valid rows: bow, word_groups, temporal, distribution, "
-                           "paper_bow, paper, configured");
+                           "paper_bow, paper, configured, without_floor, "
+                           "without_normaliser_distance, without_alignment, "
+                           "without_missed_queries, without_hypotheses, without_min_step, "
+                           "without_reranking");
   }
   return o;
 }

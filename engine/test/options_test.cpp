@@ -7,6 +7,7 @@
 #include <functional>
 #include <limits>
 #include <string>
+#include <vector>
 
 #include "bowg/errors.h"
 
@@ -321,6 +322,48 @@ TEST(Ablation, PaperRowIsTheFullMethodWithoutTheExtensions) {
   const LoopDetectorOptions full = LoopDetectorOptions::ablation("distribution", base);
   EXPECT_EQ(full.geometric.candidates, 10);
   EXPECT_EQ(full.temporal_score.alignment_window, 2);
+}
+
+// Each "without_<x>" row switches exactly one extension back to the paper's
+// version: its own fields change, the other extensions stay as configured.
+TEST(Ablation, WithoutRowsSwitchOffOneExtensionEach) {
+  LoopDetectorOptions base;
+  base.similarity.normaliser_floor = 1.0;
+  base.similarity.normaliser_distance_m = 0.03;
+  base.temporal_score.alignment_window = 1;
+  base.temporal_score.alignment_window_m = 0.05;
+  base.temporal_verification.max_island_distance_m = 0.1;
+  base.temporal_score.max_missed_queries = 1;
+  base.temporal_verification.max_missed_queries = 1;
+  base.temporal_verification.hypotheses = 3;
+  base.temporal_verification.min_step_m = 0.02;
+  base.geometric.candidates = 10;
+  // Which extensions are on, in the order of the rows below.
+  auto on = [](const LoopDetectorOptions& o) {
+    return std::vector<bool>{
+        o.similarity.normaliser_floor > 0,
+        o.similarity.normaliser_distance_m > 0,
+        o.temporal_score.alignment_window > 0 || o.temporal_score.alignment_window_m > 0 ||
+            o.temporal_verification.max_island_distance_m > 0,
+        o.temporal_score.max_missed_queries > 0 || o.temporal_verification.max_missed_queries > 0,
+        o.temporal_verification.hypotheses > 1,
+        o.temporal_verification.min_step_m > 0,
+        o.geometric.candidates > 1};
+  };
+  const char* rows[] = {"without_floor",          "without_normaliser_distance",
+                        "without_alignment",      "without_missed_queries",
+                        "without_hypotheses",     "without_min_step",
+                        "without_reranking"};
+  ASSERT_EQ(on(base), std::vector<bool>(7, true));
+  for (int r = 0; r < 7; ++r) {
+    std::vector<bool> expected(7, true);
+    expected[r] = false;
+    const LoopDetectorOptions o = LoopDetectorOptions::ablation(rows[r], base);
+    EXPECT_EQ(on(o), expected) << rows[r];
+    EXPECT_NO_THROW(o.validate()) << rows[r];
+  }
+  // Every "without" row switches off something the paper row also switches off.
+  EXPECT_EQ(on(LoopDetectorOptions::ablation("paper", base)), std::vector<bool>(7, false));
 }
 
 TEST(Ablation, KeepsTheOtherFields) {

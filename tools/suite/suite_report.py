@@ -60,11 +60,14 @@ def main():
         table.append((name, half, revisits, result))
 
     header = "%-24s %-6s %8s " % ("sequence", "half", "revisits")
-    header += " ".join("%14s" % ("%s R@100P" % r[:6]) for r in rows)
+    # Columns as wide as their row names (the "without_<x>" rows are long).
+    widths = [max(8, len(r)) for r in rows]
+    header += " ".join("%*s" % (w, r) for w, r in zip(widths, rows)) + "   (R@100%P)"
     header += "   loops (" + ", ".join(rows) + ")"
     lines = [header]
     for name, half, revisits, result in table:
-        cells = " ".join("%14s" % ("-" if revisits == 0 else "%.3f" % result[r][0]) for r in rows)
+        cells = " ".join("%*s" % (w, "-" if revisits == 0 else "%.3f" % result[r][0])
+                         for w, r in zip(widths, rows))
         loops = ", ".join(str(result[r][1]) for r in rows)
         lines.append("%-24s %-6s %8d %s   %s" % (name, half, revisits, cells, loops))
     lines.append("")
@@ -77,12 +80,12 @@ def main():
             values = [t[3][r][0] for t in with_revisits]
             false_loops = sum(t[3][r][1] for t in without)
             if values:
-                lines.append("%-6s %-14s R@100%%P min %.3f median %.3f over %d sequences; "
+                lines.append("%-6s %-27s R@100%%P min %.3f median %.3f over %d sequences; "
                              "%d loops on %d sequences without revisits"
                              % (half, r, min(values), statistics.median(values), len(values),
                                 false_loops, len(without)))
             else:
-                lines.append("%-6s %-14s %d loops on %d sequences without revisits"
+                lines.append("%-6s %-27s %d loops on %d sequences without revisits"
                              % (half, r, false_loops, len(without)))
     print("\n".join(lines))
 

@@ -207,7 +207,11 @@ struct LoopDetectorOptions {
   /// keeps every other field of base. "paper": the full method as the paper
   /// writes it, with this implementation's extensions switched off;
   /// "paper_bow": the same pipeline with pure bag-of-words scores (DBoW2 with
-  /// DLoopDetector's checks); "configured": base unchanged.
+  /// DLoopDetector's checks); "configured": base unchanged. "without_<x>":
+  /// base with one extension of this implementation switched back to the
+  /// paper (x = floor, normaliser_distance, alignment, missed_queries,
+  /// hypotheses, min_step, reranking), so that the suite shows what each
+  /// extension adds to the configuration.
   static LoopDetectorOptions ablation(const std::string& row,
                                       const LoopDetectorOptions& base);
 };
