@@ -20,10 +20,15 @@ endif()
 include(CheckCXXCompilerFlag)
 check_cxx_compiler_flag(-mpopcnt BOWG_HAS_MPOPCNT)
 
-file(GLOB BOWG_ENGINE_SOURCES ${BOWG_ENGINE_DIR}/src/*.cpp)
+# One folder per pipeline stage (core, features, vocabulary with its file
+# formats, database, scoring, detection, parameters); headers and tests mirror
+# it. src/ is also an include root for the stage-internal headers
+# (e.g. core/yaml_tokens.h), which are not installed.
+file(GLOB_RECURSE BOWG_ENGINE_SOURCES ${BOWG_ENGINE_DIR}/src/*.cpp)
 add_library(bowg_engine ${BOWG_ENGINE_SOURCES})
 target_include_directories(bowg_engine PUBLIC
   $<BUILD_INTERFACE:${BOWG_ENGINE_DIR}/include>)
+target_include_directories(bowg_engine PRIVATE ${BOWG_ENGINE_DIR}/src)
 # OpenCV's imported targets carry their include directories.
 target_link_libraries(bowg_engine PUBLIC ${OpenCV_LIBS} ZLIB::ZLIB)
 target_compile_options(bowg_engine PRIVATE -Wall -Wextra)
@@ -74,7 +79,7 @@ function(bowg_engine_test name source)
     target_compile_definitions(${name} PRIVATE
       BOWG_SHARED_DATA_DIR="${BOWG_SHARED_DATA_DIR}"
       BOWG_TEST_OUTPUT_DIR="${CMAKE_CURRENT_BINARY_DIR}")
-    target_include_directories(${name} PRIVATE ${BOWG_ENGINE_DIR}/test)
+    target_include_directories(${name} PRIVATE ${BOWG_ENGINE_DIR}/test ${BOWG_ENGINE_DIR}/src)
   endif()
 endfunction()
 
@@ -82,7 +87,7 @@ if(BOWG_ENGINE_TESTS)
   if(NOT COMMAND catkin_add_gtest)
     enable_testing()
   endif()
-  file(GLOB BOWG_ENGINE_TEST_SOURCES ${BOWG_ENGINE_DIR}/test/*_test.cpp)
+  file(GLOB_RECURSE BOWG_ENGINE_TEST_SOURCES ${BOWG_ENGINE_DIR}/test/*_test.cpp)
   foreach(test_source ${BOWG_ENGINE_TEST_SOURCES})
     get_filename_component(test_name ${test_source} NAME_WE)
     bowg_engine_test(bowg_${test_name} ${test_source})

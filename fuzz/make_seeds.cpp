@@ -12,9 +12,9 @@
 #include <iterator>
 #include <string>
 
-#include "bowg/errors.h"
-#include "bowg/loop_detector.h"
-#include "bowg/vocabulary_io.h"
+#include "bowg/core/errors.h"
+#include "bowg/detection/loop_detector.h"
+#include "bowg/vocabulary/vocabulary_io.h"
 #include "seed_world.h"
 
 namespace {

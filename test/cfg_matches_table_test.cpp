@@ -7,7 +7,7 @@
 #include <set>
 #include <string>
 
-#include "bowg/parameter_table.h"
+#include "bowg/parameters/parameter_table.h"
 #include "bowg_ros/BoWGConfig.h"
 
 namespace bowg_ros {

@@ -29,7 +29,7 @@
 #include <string>
 #include <vector>
 
-#include "bowg/feature_extractor.h"
+#include "bowg/features/feature_extractor.h"
 #include "bowg_ros/BoWGConfig.h"
 #include "bowg_ros/KeyframeFeatures.h"
 #include "bowg_ros/KeyframeStatus.h"

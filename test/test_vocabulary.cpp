@@ -4,9 +4,9 @@
 
 #include <vector>
 
-#include "bowg/feature_extractor.h"
-#include "bowg/vocabulary_io.h"
-#include "bowg/vocabulary_trainer.h"
+#include "bowg/features/feature_extractor.h"
+#include "bowg/vocabulary/vocabulary_io.h"
+#include "bowg/vocabulary/vocabulary_trainer.h"
 #include "synthetic_world.h"
 
 namespace bowg_ros {

@@ -9,7 +9,7 @@
 #include <string>
 
 #include "feature_test_images.h"
-#include "bowg/feature_extractor.h"
+#include "bowg/features/feature_extractor.h"
 
 namespace {
 

@@ -6,7 +6,7 @@
 
 #include <cstdint>
 
-#include "bowg/normaliser_history.h"
+#include "bowg/scoring/normaliser_history.h"
 
 namespace bowg {
 namespace {

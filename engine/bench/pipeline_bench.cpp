@@ -19,9 +19,9 @@
 
 #include "synthetic_corridor.h"
 #include "synthetic_vocabulary.h"
-#include "bowg/database.h"
-#include "bowg/loop_detector.h"
-#include "bowg/vocabulary.h"
+#include "bowg/database/database.h"
+#include "bowg/detection/loop_detector.h"
+#include "bowg/vocabulary/vocabulary.h"
 
 namespace bowg {
 namespace {

@@ -6,8 +6,8 @@
 #include <string>
 
 #include "synthetic_vocabulary.h"
-#include "bowg/vocabulary_io.h"
-#include "bowg/vocabulary_trainer.h"
+#include "bowg/vocabulary/vocabulary_io.h"
+#include "bowg/vocabulary/vocabulary_trainer.h"
 
 namespace bowg {
 namespace {

@@ -13,8 +13,8 @@
 #include <random>
 #include <vector>
 
-#include "bowg/loop_detector.h"
-#include "bowg/types.h"
+#include "bowg/core/types.h"
+#include "bowg/detection/loop_detector.h"
 
 namespace bowg {
 namespace testing {

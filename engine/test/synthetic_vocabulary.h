@@ -8,7 +8,7 @@
 #include <random>
 #include <vector>
 
-#include "bowg/vocabulary.h"
+#include "bowg/vocabulary/vocabulary.h"
 
 namespace bowg {
 namespace testing {

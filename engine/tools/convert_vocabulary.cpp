@@ -1,11 +1,11 @@
 // bowg_convert_vocabulary: converts a vocabulary between our .bowgvoc and the
-// formats of DBoW2, DBoW3, ORB-SLAM and VINS (see bowg/vocabulary_io.h).
+// formats of DBoW2, DBoW3, ORB-SLAM and VINS (see bowg/vocabulary/vocabulary_io.h).
 #include <cstdio>
 #include <iostream>
 #include <string>
 
-#include "bowg/errors.h"
-#include "bowg/vocabulary_io.h"
+#include "bowg/core/errors.h"
+#include "bowg/vocabulary/vocabulary_io.h"
 
 namespace {
 

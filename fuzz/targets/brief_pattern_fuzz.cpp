@@ -3,8 +3,8 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "bowg/brief_pattern.h"
-#include "bowg/errors.h"
+#include "bowg/core/errors.h"
+#include "bowg/features/brief_pattern.h"
 #include "fuzz_file.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

@@ -4,8 +4,8 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "bowg/errors.h"
-#include "bowg/parameter_table.h"
+#include "bowg/core/errors.h"
+#include "bowg/parameters/parameter_table.h"
 #include "fuzz_file.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

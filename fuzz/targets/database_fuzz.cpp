@@ -9,10 +9,10 @@
 #include <random>
 #include <vector>
 
-#include "bowg/errors.h"
-#include "bowg/checksum.h"
-#include "bowg/database.h"
-#include "bowg/loop_detector.h"
+#include "bowg/core/checksum.h"
+#include "bowg/core/errors.h"
+#include "bowg/database/database.h"
+#include "bowg/detection/loop_detector.h"
 #include "fuzz_file.h"
 #include "seed_world.h"
 

@@ -4,7 +4,7 @@
 #include <cstdint>
 #include <string>
 
-#include "bowg/errors.h"
+#include "bowg/core/errors.h"
 #include "bowg_evaluation/ground_truth.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

@@ -6,8 +6,8 @@
 #include <memory>
 #include <random>
 
-#include "bowg/loop_detector.h"
-#include "bowg/vocabulary.h"
+#include "bowg/detection/loop_detector.h"
+#include "bowg/vocabulary/vocabulary.h"
 #include "synthetic_corridor.h"
 #include "synthetic_vocabulary.h"
 

@@ -6,9 +6,9 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "bowg/errors.h"
-#include "bowg/vocabulary.h"
-#include "bowg/vocabulary_io.h"
+#include "bowg/core/errors.h"
+#include "bowg/vocabulary/vocabulary.h"
+#include "bowg/vocabulary/vocabulary_io.h"
 #include "fuzz_file.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "bowg/loop_detector.h"
+#include "bowg/detection/loop_detector.h"
 
 namespace bowg_ros {
 

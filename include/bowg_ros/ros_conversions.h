@@ -6,8 +6,8 @@
 #include <sensor_msgs/CameraInfo.h>
 #include <std_msgs/Header.h>
 
-#include "bowg/loop_detector.h"
-#include "bowg/types.h"
+#include "bowg/core/types.h"
+#include "bowg/detection/loop_detector.h"
 #include "bowg_ros/KeyframeFeatures.h"
 #include "bowg_ros/KeyframeStatus.h"
 #include "bowg_ros/LoopClosure.h"

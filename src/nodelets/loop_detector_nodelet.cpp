@@ -38,13 +38,13 @@
 #include <string>
 #include <thread>
 
-#include "bowg/database.h"
-#include "bowg/errors.h"
-#include "bowg/feature_extractor.h"
-#include "bowg/loop_detector.h"
-#include "bowg/parameter_table.h"
-#include "bowg/vocabulary.h"
-#include "bowg/vocabulary_io.h"
+#include "bowg/core/errors.h"
+#include "bowg/database/database.h"
+#include "bowg/detection/loop_detector.h"
+#include "bowg/features/feature_extractor.h"
+#include "bowg/parameters/parameter_table.h"
+#include "bowg/vocabulary/vocabulary.h"
+#include "bowg/vocabulary/vocabulary_io.h"
 #include "bowg_ros/BoWGConfig.h"
 #include "bowg_ros/KeyframeFeatures.h"
 #include "bowg_ros/KeyframeStatus.h"

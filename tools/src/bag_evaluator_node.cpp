@@ -27,8 +27,8 @@
 #include <string>
 #include <vector>
 
-#include "bowg/atomic_file.h"
-#include "bowg/errors.h"
+#include "bowg/core/atomic_file.h"
+#include "bowg/core/errors.h"
 #include "bowg_evaluation/ground_truth.h"
 #include "bowg_evaluation/metrics.h"
 #include "bowg_evaluation/online_run.h"

@@ -28,11 +28,11 @@
 #include <sensor_msgs/Image.h>
 #include <sensor_msgs/image_encodings.h>
 
-#include "bowg/atomic_file.h"
-#include "bowg/errors.h"
-#include "bowg/feature_extractor.h"
-#include "bowg/parameter_table.h"
-#include "bowg/vocabulary_io.h"
+#include "bowg/core/atomic_file.h"
+#include "bowg/core/errors.h"
+#include "bowg/features/feature_extractor.h"
+#include "bowg/parameters/parameter_table.h"
+#include "bowg/vocabulary/vocabulary_io.h"
 #include "bowg_evaluation/detector_run.h"
 #include "bowg_evaluation/ground_truth.h"
 #include "bowg_evaluation/image_file.h"

@@ -33,7 +33,7 @@
 #include <sensor_msgs/Image.h>
 #include <sensor_msgs/image_encodings.h>
 
-#include "bowg/atomic_file.h"
+#include "bowg/core/atomic_file.h"
 #include "bowg_evaluation/ground_truth.h"
 #include "bowg_pipe_sim/pipe_network.h"
 #include "bowg_pipe_sim/pipe_renderer.h"

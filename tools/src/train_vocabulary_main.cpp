@@ -23,10 +23,10 @@
 #include <sensor_msgs/CompressedImage.h>
 #include <sensor_msgs/Image.h>
 
-#include "bowg/errors.h"
-#include "bowg/feature_extractor.h"
-#include "bowg/vocabulary_io.h"
-#include "bowg/vocabulary_trainer.h"
+#include "bowg/core/errors.h"
+#include "bowg/features/feature_extractor.h"
+#include "bowg/vocabulary/vocabulary_io.h"
+#include "bowg/vocabulary/vocabulary_trainer.h"
 #include "bowg_evaluation/image_file.h"
 #include "bowg_ros/image_conversion.h"
 

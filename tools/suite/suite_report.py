@@ -71,6 +71,7 @@ def main():
         loops = ", ".join(str(result[r][1]) for r in rows)
         lines.append("%-24s %-6s %8d %s   %s" % (name, half, revisits, cells, loops))
     lines.append("")
+    name_width = max([14] + [len(r) for r in rows])
     for half in ("tuning", "test"):
         with_revisits = [t for t in table if t[1] == half and t[2] > 0]
         without = [t for t in table if t[1] == half and t[2] == 0]
@@ -80,13 +81,13 @@ def main():
             values = [t[3][r][0] for t in with_revisits]
             false_loops = sum(t[3][r][1] for t in without)
             if values:
-                lines.append("%-6s %-27s R@100%%P min %.3f median %.3f over %d sequences; "
+                lines.append("%-6s %-*s R@100%%P min %.3f median %.3f over %d sequences; "
                              "%d loops on %d sequences without revisits"
-                             % (half, r, min(values), statistics.median(values), len(values),
+                             % (half, name_width, r, min(values), statistics.median(values), len(values),
                                 false_loops, len(without)))
             else:
-                lines.append("%-6s %-27s %d loops on %d sequences without revisits"
-                             % (half, r, false_loops, len(without)))
+                lines.append("%-6s %-*s %d loops on %d sequences without revisits"
+                             % (half, name_width, r, false_loops, len(without)))
     print("\n".join(lines))
 
     tmp = a.csv + ".tmp"

@@ -16,8 +16,8 @@
 #include <sensor_msgs/Image.h>
 #include <std_msgs/String.h>
 
-#include "bowg/vocabulary.h"
-#include "bowg/vocabulary_io.h"
+#include "bowg/vocabulary/vocabulary.h"
+#include "bowg/vocabulary/vocabulary_io.h"
 #include "feature_test_images.h"
 #include "shell_command.h"
 

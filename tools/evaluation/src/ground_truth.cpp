@@ -9,8 +9,8 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "bowg/errors.h"
-#include "bowg/atomic_file.h"
+#include "bowg/core/atomic_file.h"
+#include "bowg/core/errors.h"
 
 namespace bowg {
 namespace eval {

@@ -7,7 +7,7 @@
 #include <map>
 #include <sstream>
 
-#include "bowg/errors.h"
+#include "bowg/core/errors.h"
 
 namespace bowg {
 namespace eval {

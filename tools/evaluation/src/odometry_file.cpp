@@ -6,7 +6,7 @@
 #include <limits>
 #include <sstream>
 
-#include "bowg/errors.h"
+#include "bowg/core/errors.h"
 
 namespace bowg {
 namespace eval {

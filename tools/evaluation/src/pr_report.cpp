@@ -10,8 +10,8 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "bowg/errors.h"
-#include "bowg/atomic_file.h"
+#include "bowg/core/atomic_file.h"
+#include "bowg/core/errors.h"
 
 namespace bowg {
 namespace eval {

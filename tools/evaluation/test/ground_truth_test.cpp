@@ -6,7 +6,7 @@
 
 #include <gtest/gtest.h>
 
-#include "bowg/errors.h"
+#include "bowg/core/errors.h"
 
 namespace bowg {
 namespace eval {

@@ -8,7 +8,7 @@
 #include <limits>
 #include <memory>
 
-#include "bowg/errors.h"
+#include "bowg/core/errors.h"
 #include "synthetic_sequence.h"
 
 namespace bowg {

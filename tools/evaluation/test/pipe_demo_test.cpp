@@ -21,9 +21,9 @@
 #include <string>
 #include <vector>
 
-#include "bowg/feature_extractor.h"
-#include "bowg/parameter_table.h"
-#include "bowg/vocabulary_io.h"
+#include "bowg/features/feature_extractor.h"
+#include "bowg/parameters/parameter_table.h"
+#include "bowg/vocabulary/vocabulary_io.h"
 #include "bowg_evaluation/detector_run.h"
 #include "bowg_evaluation/ground_truth.h"
 #include "bowg_evaluation/metrics.h"

@@ -11,9 +11,9 @@
 #include <string>
 #include <vector>
 
-#include "bowg/loop_detector.h"
-#include "bowg/types.h"
-#include "bowg/vocabulary.h"
+#include "bowg/core/types.h"
+#include "bowg/detection/loop_detector.h"
+#include "bowg/vocabulary/vocabulary.h"
 #include "bowg_evaluation/ground_truth.h"
 #include "bowg_evaluation/metrics.h"
 #include "bowg_evaluation/timing_stats.h"

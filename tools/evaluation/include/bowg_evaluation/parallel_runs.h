@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "bowg/loop_detector.h"
-#include "bowg/vocabulary.h"
+#include "bowg/detection/loop_detector.h"
+#include "bowg/vocabulary/vocabulary.h"
 #include "bowg_evaluation/detector_run.h"
 
 namespace bowg {

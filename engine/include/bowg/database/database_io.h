@@ -1,0 +1,38 @@
+// Saving and loading a database with the detector's memory: one file, checked
+// on load so that nothing invalid is restored.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "bowg/database/database.h"
+#include "bowg/detection/detector_state.h"
+#include "bowg/vocabulary/bow_vector.h"
+
+namespace bowg {
+
+class Vocabulary;
+
+/// Persistence. One versioned little-endian binary file:
+///   magic "BOWGDB\0\0" | u32 version | u64 vocabulary fingerprint |
+///   u64 payload size | payload (u32 scoring type of the stored BoW
+///   vectors, entries, then the detector state; version 2 adds the
+///   normaliser history, version 3 the missed-query counters and the
+///   odometers, version 4 the temporal verification's other hypotheses;
+///   older files load without them) |
+///   u64 Checksum64 of every preceding byte.
+/// Entries carry everything the indexes, the group table and the caches are
+/// rebuilt from; the options-dependent parts (scoring, level, m) follow the
+/// loading detector's options. Written atomically (atomic_file.h).
+void saveDetectorFile(const std::string& path, const Database& database,
+                      const DetectorState& state);
+/// Reads and checks a file written by saveDetectorFile() into a NEW database
+/// (nothing shared with any existing one). Throws IoError (unreadable) or
+/// FormatError (bad magic/version, truncated, checksum mismatch, sizes
+/// inconsistent with the file length, other vocabulary, invalid content).
+std::unique_ptr<Database> loadDetectorFile(const std::string& path,
+                                           std::shared_ptr<const Vocabulary> vocabulary,
+                                           ScoringType scoring, int direct_index_level,
+                                           int fan_bins, DetectorState* state);
+
+}  // namespace bowg

@@ -1,0 +1,134 @@
+// Options of the detection stage (paper Sec. III-D: islands, temporal and
+// geometric verification) and LoopDetectorOptions, which gathers every
+// stage's options of one keyframe's query; it may be swapped between
+// keyframes (the nodelet tunes it live).
+#pragma once
+
+#include <string>
+
+#include "bowg/scoring/scoring_options.h"
+#include "bowg/vocabulary/bow_vector.h"
+
+namespace bowg {
+
+/// Candidate selection and islands (paper Sec. III-D "Islands Matching",
+/// after DLoopDetector).
+struct IslandOptions {
+  /// Acceptance threshold on eta (the paper's second "alpha"), >= 0.
+  double min_score = 0.3;
+  /// The most recent keyframes are never candidates (the robot just saw
+  /// them). >= 0.
+  int recent_exclusion = 20;
+  /// The same window in metres driven, used instead of recent_exclusion when
+  /// the query has an odometer (KeyframeInput::odometer): entries driven less
+  /// than this before the query, or without an odometer, are never
+  /// candidates. A window in metres holds whatever the keyframe spacing; in
+  /// keyframes it is a distance only for one spacing. 0 = keyframes always.
+  /// >= 0.
+  double recent_exclusion_m = 0.0;
+  /// Entries whose ids differ by at most this belong to one island. >= 0.
+  int max_intra_island_gap = 3;
+  /// Islands with fewer members are ignored. >= 1.
+  int min_island_size = 1;
+  void validate() const;
+};
+
+/// Temporal verification (paper Sec. III-D, DLoopDetector's k).
+struct TemporalVerificationOptions {
+  /// k: number of previous consecutive queries whose best islands must be
+  /// consistent with the current one. 0 disables the check.
+  int k = 3;
+  /// Two islands are consistent when the gap between their id intervals is
+  /// at most this (0 = they must overlap). >= 0.
+  int max_island_distance = 3;
+  /// A query without an island (nothing above min_score) does not break the
+  /// chain for up to this many consecutive queries; it does not count towards
+  /// k either, and the allowed island distance grows to
+  /// max_island_distance * (1 + missed) (the place moved on meanwhile).
+  /// 0 = the first such query breaks the chain (DLoopDetector). >= 0.
+  int max_missed_queries = 0;
+  /// Consistency in metres driven, used instead of max_island_distance when
+  /// both queries and the islands' entries have odometers: the previous
+  /// island shifted by the metres driven between the two queries must come
+  /// within this of the current island (the same place seen from a moving
+  /// robot, whatever the keyframe spacing of either pass). 0 = ids always.
+  /// >= 0.
+  double max_island_distance_m = 0.0;
+  /// Hypotheses followed per query: the query's island (the best-scored one,
+  /// or the geometric re-ranking's choice) and the next best-scored islands,
+  /// up to this many in all, each with its own chain. A new island extends
+  /// the longest chain of any previous hypothesis it is consistent with. In
+  /// pipes the chosen island often alternates between equally true places
+  /// (the same stretch on two earlier laps) or one look-alike wins a single
+  /// query: with one hypothesis either restarts the chain, with several the
+  /// true place's chain survives. 1 = DLoopDetector (one chain). >= 1.
+  int hypotheses = 1;
+  /// Queries count towards the chain only once the robot drove at least this
+  /// far since the last one that did (odometers known): a robot standing
+  /// still sends the same view again and again, and k repeats of one view
+  /// are one piece of evidence, not k. Such a query passes when the chain it
+  /// continues already passed, and changes nothing. 0 = every query counts
+  /// (DLoopDetector). >= 0.
+  double min_step_m = 0.0;
+  void validate() const;
+};
+
+/// Geometric verification (paper Sec. III-D): fundamental matrix by RANSAC on
+/// correspondences found through the direct index.
+struct GeometricVerificationOptions {
+  bool enabled = true;
+  /// Depth of the vocabulary level the direct index is built at (1..L); the
+  /// paper's Table III uses levels 3-5 of an L=6 tree, 4 is its sweet spot.
+  int direct_index_level = 4;
+  /// Match every feature against every feature instead (slower, ~same recall).
+  bool exhaustive = false;
+  /// Correspondences: Hamming distance at most max_hamming and best/second
+  /// best ratio below max_neighbour_ratio.
+  int max_hamming = 64;
+  double max_neighbour_ratio = 0.8;
+  /// RANSAC: reprojection threshold (px) and confidence.
+  double ransac_threshold_px = 2.0;
+  double ransac_confidence = 0.99;
+  /// Accept with at least this many inliers. >= 8.
+  int min_inliers = 15;
+  /// Geometric re-ranking: the best entries of the top `candidates` islands
+  /// are verified and the one with the most inliers is the query's island
+  /// (for the temporal verification and the loop). Under aliasing the
+  /// best-scored island is often a look-alike while the true place is among
+  /// the next few; geometry separates them better than the word scores.
+  /// 1 = the paper (only the best island is verified). >= 1.
+  int candidates = 1;
+  void validate() const;
+};
+
+/// Everything the loop detector needs per keyframe.
+struct LoopDetectorOptions {
+  ScoringType scoring = ScoringType::kL1;
+  WordGroupOptions word_groups;
+  DistributionOptions distribution;
+  SimilarityOptions similarity;
+  TemporalScoreOptions temporal_score;
+  IslandOptions islands;
+  TemporalVerificationOptions temporal_verification;
+  GeometricVerificationOptions geometric;
+
+  /// Throws InvalidParameter("<stage>.<field>: <why>") on the first invalid
+  /// value, e.g. "similarity.lambda_1 + similarity.lambda_2 must be <= 1".
+  void validate() const;
+
+  /// The ablation presets: "bow" (pure bag of words), "word_groups",
+  /// "temporal" (+ temporal score), "distribution" (+ distribution score).
+  /// Each row switches on one more module on top of the previous one and
+  /// keeps every other field of base. "paper": the full method as the paper
+  /// writes it, with this implementation's extensions switched off;
+  /// "paper_bow": the same pipeline with pure bag-of-words scores (DBoW2 with
+  /// DLoopDetector's checks); "configured": base unchanged. "without_<x>":
+  /// base with one extension of this implementation switched back to the
+  /// paper (x = floor, normaliser_distance, alignment, missed_queries,
+  /// hypotheses, min_step, reranking), so that the suite shows what each
+  /// extension adds to the configuration.
+  static LoopDetectorOptions ablation(const std::string& row,
+                                      const LoopDetectorOptions& base);
+};
+
+}  // namespace bowg

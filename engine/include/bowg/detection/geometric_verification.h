@@ -1,0 +1,83 @@
+// Geometric verification of a loop candidate (paper Sec. III-D, after
+// DLoopDetector): point correspondences between the query and the candidate
+// found through the direct index (features that descend through the same
+// vocabulary node at the chosen level), then a fundamental matrix by RANSAC.
+//
+// Relative pose convention (when intrinsics are known): R and t describe the
+// pose of the MATCH camera in the QUERY camera frame, T_Q_M: a point X_M in
+// match-camera coordinates is X_Q = R * X_M + t in query-camera coordinates;
+// t (unit length) is the direction from the query camera centre to the match
+// camera centre, expressed in the query frame (scale unobservable).
+#pragma once
+
+#include <cstdint>
+#include <utility>
+#include <vector>
+
+#include "bowg/core/types.h"
+#include "bowg/detection/detection_options.h"
+#include "bowg/detection/loop_status.h"
+#include "bowg/vocabulary/bow_vector.h"
+
+namespace bowg {
+
+/// One point correspondence that survived geometric verification.
+struct Correspondence {
+  std::uint32_t query_index = 0;  ///< feature index in the query keyframe
+  std::uint32_t match_index = 0;  ///< feature index in the matched keyframe
+  float query_x = 0, query_y = 0, match_x = 0, match_y = 0;
+};
+
+/// The features of one side of the verification.
+struct VerificationView {
+  const std::vector<Keypoint>* keypoints = nullptr;
+  const std::vector<Descriptor>* descriptors = nullptr;
+  const DirectIndex* direct = nullptr;  ///< unused when matching exhaustively
+};
+
+/// (query feature, match feature) index pairs. Only features sharing a
+/// direct-index node are compared (all pairs when options.exhaustive); a pair
+/// is kept when its Hamming distance is <= max_hamming, it passes the ratio
+/// test (best < max_neighbour_ratio * second best among the query feature's
+/// candidates, when there is a second) and it is mutual: the query feature is
+/// also the closest of the candidates of the match feature (which makes every
+/// match feature used at most once). Sorted by query index.
+std::vector<std::pair<std::uint32_t, std::uint32_t>> findCorrespondences(
+    const VerificationView& query, const VerificationView& match,
+    const GeometricVerificationOptions& options);
+
+struct GeometricVerificationResult {
+  /// kLoopDetected, kTooFewCorrespondences (< 8) or kTooFewInliers.
+  LoopStatus status = LoopStatus::kTooFewCorrespondences;
+  int correspondences = 0;
+  int inliers = 0;
+  std::vector<Correspondence> inlier_correspondences;
+  bool has_relative_pose = false;
+  double rotation[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};  ///< row-major, T_Q_M
+  double translation_direction[3] = {0, 0, 0};       ///< unit, T_Q_M
+};
+
+/// Correspondences, then cv::findFundamentalMat(FM_RANSAC,
+/// ransac_threshold_px, ransac_confidence); a loop when inliers >=
+/// min_inliers. With valid `intrinsics` (assumed shared by both images),
+/// cv::findEssentialMat + cv::recoverPose on the F inliers give the pose.
+GeometricVerificationResult verifyGeometry(const VerificationView& query,
+                                           const VerificationView& match,
+                                           const CameraIntrinsics& intrinsics,
+                                           const GeometricVerificationOptions& options);
+
+/// The same on correspondences already found by findCorrespondences(query,
+/// match, options) (the re-ranking counts them before it runs RANSAC).
+GeometricVerificationResult verifyCorrespondences(
+    const std::vector<std::pair<std::uint32_t, std::uint32_t>>& pairs,
+    const VerificationView& query, const VerificationView& match,
+    const CameraIntrinsics& intrinsics, const GeometricVerificationOptions& options);
+
+/// Relative pose T_Q_M from point pairs (query pixel, match pixel) with the
+/// essential matrix; false when it cannot be estimated.
+bool relativePoseFromCorrespondences(const std::vector<Correspondence>& pairs,
+                                     const CameraIntrinsics& intrinsics, double ransac_threshold_px,
+                                     double confidence, double rotation[9],
+                                     double translation_direction[3]);
+
+}  // namespace bowg

@@ -1,0 +1,134 @@
+// The BoWG loop detector: one call per keyframe runs the whole method of the
+// paper (Fig. 2): words -> word groups -> scores (word, group, distribution)
+// -> normalisation -> temporal score -> islands -> temporal verification ->
+// geometric verification, then adds the keyframe to the database.
+//
+// Not thread-safe: one thread calls process(); setOptions() may be called
+// between keyframes (the nodelet serialises both with a mutex).
+#pragma once
+
+#include <limits>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "bowg/core/types.h"
+#include "bowg/detection/detection_options.h"
+#include "bowg/detection/geometric_verification.h"
+#include "bowg/detection/loop_status.h"
+
+namespace bowg {
+
+class Vocabulary;
+class Database;
+
+/// Wall-clock milliseconds spent per stage for one keyframe.
+struct StageTimings {
+  double transform_ms = 0;     ///< descriptors -> words (+ direct index)
+  double word_groups_ms = 0;   ///< word groups and refined weights
+  double query_ms = 0;         ///< inverse-index scoring, normalisation, temporal
+  double islands_ms = 0;       ///< islands and temporal verification
+  double verification_ms = 0;  ///< geometric verification
+  double total_ms = 0;
+};
+
+/// The scores of one candidate against the query (paper notation).
+struct CandidateScores {
+  EntryId entry = 0;
+  double eta_w = 0;     ///< normalised word score (eq. 2)
+  double eta_g = 0;     ///< normalised word-group score (eq. 4)
+  double eta_d = 0;     ///< normalised distribution score
+  double eta_sim = 0;   ///< combined similarity (eq. 5 or 9)
+  double eta = 0;       ///< final score: eta_temp (eq. 7) or eta_sim
+};
+
+struct KeyframeInput {
+  double stamp = 0;  ///< seconds; must increase from keyframe to keyframe
+  ImageFeatures features;
+  /// Optional: enables the relative pose from the essential matrix and sets
+  /// the centre of the distribution fan (else the image centre).
+  CameraIntrinsics intrinsics;
+  /// Optional: metres driven since the first keyframe (path length of the
+  /// odometry, whatever its drift: only differences of a few metres are
+  /// used), never decreasing; NaN = unknown. With it the recent-exclusion
+  /// window is measured in metres (IslandOptions::recent_exclusion_m).
+  double odometer = std::numeric_limits<double>::quiet_NaN();
+};
+
+struct LoopResult {
+  EntryId query_id = 0;
+  double stamp = 0;
+  LoopStatus status = LoopStatus::kNoFeatures;
+
+  /// Best candidate before verification (valid when has_candidate).
+  bool has_candidate = false;
+  CandidateScores best;
+  /// Best island (valid when has_candidate).
+  EntryId island_first = 0, island_last = 0;
+  double island_score = 0;
+
+  /// The loop (valid when status == kLoopDetected).
+  EntryId match_id = 0;
+  double match_stamp = 0;
+  int correspondences = 0;
+  int inliers = 0;
+  std::vector<Correspondence> inlier_correspondences;
+  /// Relative pose of the match camera in the query camera frame, from the
+  /// essential matrix, when intrinsics are known: R (row-major 3x3) and the
+  /// unit translation direction (scale is unobservable from two views).
+  bool has_relative_pose = false;
+  double rotation[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+  double translation_direction[3] = {0, 0, 0};
+
+  /// Normaliser scores against the previous keyframe (s(I_t, I_t-1)).
+  double word_normaliser = 0, group_normaliser = 0, distribution_normaliser = 0;
+  /// What the scores were divided by: the normalisers above, raised to the
+  /// normaliser floor where they were unusually small (0 when not queried).
+  double word_divisor = 0, group_divisor = 0, distribution_divisor = 0;
+  std::size_t candidates_scored = 0;
+  StageTimings timings;
+};
+
+class LoopDetector {
+ public:
+  /// Throws InvalidParameter when options are invalid.
+  LoopDetector(std::shared_ptr<const Vocabulary> vocabulary, const LoopDetectorOptions& options);
+  ~LoopDetector();
+  LoopDetector(const LoopDetector&) = delete;
+  LoopDetector& operator=(const LoopDetector&) = delete;
+
+  /// Validates, then applies from the next keyframe (database kept).
+  void setOptions(const LoopDetectorOptions& options);
+  const LoopDetectorOptions& options() const { return options_; }
+
+  /// Runs the method for one keyframe and adds it to the database.
+  /// Throws std::invalid_argument when the stamp does not increase or the
+  /// keypoints and descriptors differ in number (the keyframe is not added).
+  LoopResult process(const KeyframeInput& keyframe);
+
+  /// The scores of every candidate of the last process() call (for
+  /// evaluation and debugging), sorted by entry id.
+  const std::vector<CandidateScores>& lastCandidates() const { return last_candidates_; }
+
+  const Database& database() const { return *database_; }
+  const Vocabulary& vocabulary() const { return *vocabulary_; }
+
+  /// Atomic save (temporary file + rename) of the database and the detector
+  /// state; throws IoError.
+  void save(const std::string& path) const;
+  /// Loads a saved file. Throws FormatError/IoError and leaves the current
+  /// state untouched on any error (other vocabulary, corrupt, truncated).
+  void load(const std::string& path);
+  /// Forgets every keyframe.
+  void reset();
+
+ private:
+  struct State;
+  std::shared_ptr<const Vocabulary> vocabulary_;
+  LoopDetectorOptions options_;
+  std::unique_ptr<Database> database_;
+  std::unique_ptr<State> state_;
+  std::vector<CandidateScores> last_candidates_;
+};
+
+}  // namespace bowg

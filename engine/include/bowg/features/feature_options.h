@@ -1,0 +1,47 @@
+// Options of the feature stage (paper Sec. III-A): detector, descriptor and
+// their parameters; validate() throws InvalidParameter naming the field as
+// "features.<field>".
+#pragma once
+
+#include <string>
+
+namespace bowg {
+
+struct FeatureOptions {
+  enum class Detector { kGftt, kOrb };
+  enum class DescriptorType { kOrb, kBrief };
+
+  Detector detector = Detector::kGftt;
+  DescriptorType descriptor = DescriptorType::kOrb;
+
+  // GFTT (Shi-Tomasi) corners.
+  int gftt_max_corners = 500;
+  double gftt_quality_level = 0.01;
+  double gftt_min_distance = 10.0;  ///< px
+  int gftt_block_size = 3;          ///< px
+  bool gftt_use_harris = false;
+  /// Keypoint size given to GFTT corners (px). GFTT has no scale; this is
+  /// the word-group radius. (Descriptor patches are fixed: ORB's 31x31,
+  /// BRIEF's pattern extent.)
+  double gftt_keypoint_size = 31.0;
+
+  // Multi-scale ORB/FAST.
+  int orb_max_features = 500;
+  double orb_scale_factor = 1.2;
+  int orb_levels = 8;
+  int orb_fast_threshold = 20;
+
+  /// rBRIEF: steer the descriptor by the intensity-centroid orientation
+  /// (pipe robots roll). Off = unoriented (upright) descriptors.
+  bool compute_orientation = true;
+  /// Plain BRIEF: path of a pattern file in the layout of VINS'
+  /// brief_pattern.yml (256 pairs x1 y1 x2 y2), needed for brief_k10L6.bin.
+  std::string brief_pattern_path;
+  /// Optional 8-bit mask image (non-zero = usable), e.g. to blank burned-in
+  /// text overlays; must match the image size.
+  std::string mask_path;
+
+  void validate() const;  ///< throws InvalidParameter naming the field
+};
+
+}  // namespace bowg

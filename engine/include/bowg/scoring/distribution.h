@@ -1,0 +1,28 @@
+// Feature-distribution score (paper Sec. III-C, eqs. 8-9; reading fixed in
+// docs/method-notes.md: best alignment over cyclic shifts, not the largest
+// distance).
+#pragma once
+
+#include <vector>
+
+#include "bowg/core/types.h"
+
+namespace bowg {
+
+/// Fan bin of a point: the angle of (x - cx, y - cy), measured with atan2 in
+/// image coordinates and wrapped to [0, 2*pi), falls in bin
+/// k = floor(angle / (2*pi/m)), bin k starting at phi_k = 2*pi*k/m.
+/// A point exactly at the centre goes to bin 0. Requires m >= 1.
+int fanBin(float x, float y, double cx, double cy, int m);
+
+/// v = [n_0 .. n_{m-1}] counts of keypoints per fan bin, L2-normalised
+/// (all zeros when there are no keypoints).
+std::vector<double> distributionVector(const std::vector<Keypoint>& keypoints, double cx,
+                                       double cy, int m);
+
+/// s_d = max over i of <M_i^query, v_db>, M_i the query vector cyclically
+/// shifted by i (m_ij = v_((i+j) mod m)). Sizes must match (throws
+/// std::invalid_argument otherwise). In [0, 1] for non-negative unit vectors.
+double distributionScore(const std::vector<double>& query, const std::vector<double>& db);
+
+}  // namespace bowg

@@ -1,0 +1,147 @@
+#include "bowg/core/atomic_file.h"
+
+#include <dirent.h>
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cerrno>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+
+#include "bowg/core/errors.h"
+
+namespace bowg {
+namespace {
+
+std::string systemError() { return std::strerror(errno); }
+
+std::string directoryOf(const std::string& path) {
+  const std::size_t slash = path.find_last_of('/');
+  if (slash == std::string::npos) return ".";
+  if (slash == 0) return "/";
+  return path.substr(0, slash);
+}
+
+std::string baseNameOf(const std::string& path) {
+  const std::size_t slash = path.find_last_of('/');
+  return slash == std::string::npos ? path : path.substr(slash + 1);
+}
+
+// Unique per process and call, so that concurrent writers (threads or
+// processes) of the same destination never share a temporary file.
+std::string uniqueTag() {
+  static std::atomic<unsigned> counter{0};
+  return std::to_string(static_cast<long>(::getpid())) + "-" + std::to_string(counter++);
+}
+
+void fsyncPath(const std::string& path, int flags, const std::string& what) {
+  const int fd = ::open(path.c_str(), flags);
+  if (fd < 0) throw IoError("cannot open " + what + " '" + path + "' to sync it: " + systemError());
+  const int rc = ::fsync(fd);
+  const std::string err = rc != 0 ? systemError() : std::string();
+  ::close(fd);
+  if (rc != 0) throw IoError("cannot sync " + what + " '" + path + "': " + err);
+}
+
+// Temporary files of `base` left in `dir` by writers that died before their
+// commit (kill -9, power loss): ".tmp-<pid>-<n>-<base>" whose process no
+// longer exists. Removed so that a crashed save does not leave a copy of a
+// database behind for ever; a live writer's file (its pid exists) is kept.
+void removeStaleTemporaries(const std::string& dir, const std::string& base) {
+  DIR* d = ::opendir(dir.c_str());
+  if (d == nullptr) return;  // the write itself will report the directory
+  const std::string suffix = "-" + base;
+  while (const dirent* e = ::readdir(d)) {
+    const std::string name = e->d_name;
+    if (name.compare(0, 5, ".tmp-") != 0 || name.size() <= 5 + suffix.size() ||
+        name.compare(name.size() - suffix.size(), suffix.size(), suffix) != 0) {
+      continue;
+    }
+    // "<pid>-<n>" between the prefix and the suffix.
+    const std::string tag = name.substr(5, name.size() - 5 - suffix.size());
+    const std::size_t dash = tag.find('-');
+    if (dash == 0 || dash == std::string::npos || dash > 9 ||
+        tag.find_first_not_of("0123456789", 0) != dash ||
+        tag.find_first_not_of("0123456789", dash + 1) != std::string::npos ||
+        dash + 1 == tag.size()) {
+      continue;
+    }
+    const long pid = std::strtol(tag.substr(0, dash).c_str(), nullptr, 10);
+    if (pid <= 0 || (::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH)) {
+      ::unlink((dir + "/" + name).c_str());
+    }
+  }
+  ::closedir(d);
+}
+
+}  // namespace
+
+AtomicFileWriter::AtomicFileWriter(const std::string& path) : path_(path) {
+  if (path.empty()) throw IoError("cannot write a file with an empty path");
+  const std::string base = baseNameOf(path);
+  if (base.empty() || base == "." || base == "..") {
+    throw IoError("cannot write '" + path + "': the path names a directory");
+  }
+  std::string dir = directoryOf(path);
+  removeStaleTemporaries(dir, base);
+  temp_path_ = (dir == "/" ? std::string("/") : dir + "/") + ".tmp-" + uniqueTag() + "-" + base;
+}
+
+AtomicFileWriter::~AtomicFileWriter() {
+  if (!committed_) std::remove(temp_path_.c_str());
+}
+
+void AtomicFileWriter::commit() {
+  if (committed_) return;
+  try {
+    fsyncPath(temp_path_, O_RDONLY, "temporary file");
+    if (std::rename(temp_path_.c_str(), path_.c_str()) != 0) {
+      throw IoError("cannot rename '" + temp_path_ + "' to '" + path_ + "': " + systemError());
+    }
+  } catch (...) {
+    std::remove(temp_path_.c_str());
+    throw;
+  }
+  committed_ = true;
+  // The rename is durable only once the directory entry is on disk. Some
+  // file systems refuse to fsync a directory: the data is safe either way.
+  try {
+    fsyncPath(directoryOf(path_), O_RDONLY | O_DIRECTORY, "directory");
+  } catch (const IoError&) {
+  }
+}
+
+void writeFileAtomically(const std::string& path, const void* data, std::size_t size) {
+  AtomicFileWriter writer(path);
+  const int fd = ::open(writer.tempPath().c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd < 0) {
+    throw IoError("cannot create '" + writer.tempPath() + "' (to write '" + path +
+                  "'): " + systemError());
+  }
+  const char* p = static_cast<const char*>(data);
+  std::size_t left = size;
+  while (left > 0) {
+    const ssize_t n = ::write(fd, p, left);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      const std::string err = systemError();
+      ::close(fd);
+      throw IoError("cannot write '" + path + "': " + err);
+    }
+    p += n;
+    left -= static_cast<std::size_t>(n);
+  }
+  if (::fsync(fd) != 0) {
+    const std::string err = systemError();
+    ::close(fd);
+    throw IoError("cannot sync '" + path + "': " + err);
+  }
+  if (::close(fd) != 0) throw IoError("cannot close '" + path + "': " + systemError());
+  writer.commit();
+}
+
+}  // namespace bowg

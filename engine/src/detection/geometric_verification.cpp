@@ -1,0 +1,193 @@
+#include "bowg/detection/geometric_verification.h"
+
+#include <algorithm>
+#include <limits>
+#include <opencv2/calib3d.hpp>
+#include <opencv2/core.hpp>
+#include <stdexcept>
+
+namespace bowg {
+namespace {
+
+using Pair = std::pair<std::uint32_t, std::uint32_t>;
+
+// Matches the query features `qs` against the match features `ms` (one node of
+// the direct index, or everything when exhaustive) and appends the pairs that
+// pass the distance, ratio and mutual tests.
+void matchGroup(const std::vector<Descriptor>& qd, const std::vector<std::uint32_t>& qs,
+                const std::vector<Descriptor>& md, const std::vector<std::uint32_t>& ms,
+                const GeometricVerificationOptions& options, std::vector<Pair>* out) {
+  if (qs.empty() || ms.empty()) return;
+  const int kInf = std::numeric_limits<int>::max();
+  // Best query feature (and its distance) for every match feature of the group.
+  std::vector<int> best_q_dist(ms.size(), kInf);
+  std::vector<std::uint32_t> best_q(ms.size(), 0);
+  std::vector<int> best_m_dist(qs.size(), kInf), second_m_dist(qs.size(), kInf);
+  std::vector<std::size_t> best_m(qs.size(), 0);
+  for (std::size_t a = 0; a < qs.size(); ++a) {
+    const Descriptor& d = qd[qs[a]];
+    for (std::size_t b = 0; b < ms.size(); ++b) {
+      const int dist = hammingDistance(d, md[ms[b]]);
+      if (dist < best_m_dist[a]) {
+        second_m_dist[a] = best_m_dist[a];
+        best_m_dist[a] = dist;
+        best_m[a] = b;
+      } else if (dist < second_m_dist[a]) {
+        second_m_dist[a] = dist;
+      }
+      if (dist < best_q_dist[b]) {
+        best_q_dist[b] = dist;
+        best_q[b] = qs[a];
+      }
+    }
+  }
+  for (std::size_t a = 0; a < qs.size(); ++a) {
+    if (best_m_dist[a] > options.max_hamming) continue;
+    if (second_m_dist[a] != kInf &&
+        !(best_m_dist[a] < options.max_neighbour_ratio * second_m_dist[a])) {
+      continue;
+    }
+    const std::size_t b = best_m[a];
+    if (best_q[b] != qs[a]) continue;  // not mutual
+    out->emplace_back(qs[a], ms[b]);
+  }
+}
+
+void checkView(const VerificationView& v, const char* name, bool need_direct) {
+  if (!v.keypoints || !v.descriptors || (need_direct && !v.direct)) {
+    throw std::invalid_argument(std::string("verifyGeometry: ") + name + " view is incomplete");
+  }
+  if (v.keypoints->size() != v.descriptors->size()) {
+    throw std::invalid_argument(std::string("verifyGeometry: ") + name +
+                                " keypoints and descriptors differ in number");
+  }
+}
+
+}  // namespace
+
+std::vector<Pair> findCorrespondences(const VerificationView& query, const VerificationView& match,
+                                      const GeometricVerificationOptions& options) {
+  checkView(query, "query", !options.exhaustive);
+  checkView(match, "match", !options.exhaustive);
+  std::vector<Pair> out;
+  if (options.exhaustive) {
+    std::vector<std::uint32_t> qs(query.descriptors->size()), ms(match.descriptors->size());
+    for (std::uint32_t i = 0; i < qs.size(); ++i) qs[i] = i;
+    for (std::uint32_t i = 0; i < ms.size(); ++i) ms[i] = i;
+    matchGroup(*query.descriptors, qs, *match.descriptors, ms, options, &out);
+  } else {
+    // Both direct indexes are sorted by node id: walk them together.
+    auto qi = query.direct->begin();
+    auto mi = match.direct->begin();
+    while (qi != query.direct->end() && mi != match.direct->end()) {
+      if (qi->first < mi->first) {
+        ++qi;
+      } else if (mi->first < qi->first) {
+        ++mi;
+      } else {
+        matchGroup(*query.descriptors, qi->second, *match.descriptors, mi->second, options, &out);
+        ++qi;
+        ++mi;
+      }
+    }
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+bool relativePoseFromCorrespondences(const std::vector<Correspondence>& pairs,
+                                     const CameraIntrinsics& intrinsics, double ransac_threshold_px,
+                                     double confidence, double rotation[9],
+                                     double translation_direction[3]) {
+  if (!intrinsics.valid || pairs.size() < 5) return false;
+  std::vector<cv::Point2d> pq, pm;
+  pq.reserve(pairs.size());
+  pm.reserve(pairs.size());
+  for (const auto& c : pairs) {
+    pq.emplace_back(c.query_x, c.query_y);
+    pm.emplace_back(c.match_x, c.match_y);
+  }
+  const cv::Mat K = (cv::Mat_<double>(3, 3) << intrinsics.fx, 0, intrinsics.cx, 0, intrinsics.fy,
+                     intrinsics.cy, 0, 0, 1);
+  // recoverPose(E, points1, points2) returns R, t with X2 = R * X1 + t for a
+  // point X1 in camera 1. With camera 1 = match and camera 2 = query this is
+  // X_Q = R * X_M + t, i.e. the pose of the match camera in the query frame.
+  cv::Mat mask, R, t;
+  try {
+    const cv::Mat E =
+        cv::findEssentialMat(pm, pq, K, cv::RANSAC, confidence, ransac_threshold_px, mask);
+    if (E.rows != 3 || E.cols != 3) return false;  // none, or several stacked solutions
+    if (cv::recoverPose(E, pm, pq, K, R, t, mask) <= 0) return false;
+  } catch (const cv::Exception&) {
+    return false;  // degenerate configuration
+  }
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) rotation[3 * r + c] = R.at<double>(r, c);
+    translation_direction[r] = t.at<double>(r, 0);
+  }
+  return true;
+}
+
+GeometricVerificationResult verifyGeometry(const VerificationView& query,
+                                           const VerificationView& match,
+                                           const CameraIntrinsics& intrinsics,
+                                           const GeometricVerificationOptions& options) {
+  return verifyCorrespondences(findCorrespondences(query, match, options), query, match,
+                               intrinsics, options);
+}
+
+GeometricVerificationResult verifyCorrespondences(
+    const std::vector<std::pair<std::uint32_t, std::uint32_t>>& pairs,
+    const VerificationView& query, const VerificationView& match,
+    const CameraIntrinsics& intrinsics, const GeometricVerificationOptions& options) {
+  GeometricVerificationResult result;
+  result.correspondences = static_cast<int>(pairs.size());
+  // 8 points: the minimum of the 8-point algorithm findFundamentalMat runs.
+  if (pairs.size() < 8) {
+    result.status = LoopStatus::kTooFewCorrespondences;
+    return result;
+  }
+  std::vector<cv::Point2f> pq, pm;
+  pq.reserve(pairs.size());
+  pm.reserve(pairs.size());
+  for (const auto& p : pairs) {
+    const Keypoint& a = (*query.keypoints)[p.first];
+    const Keypoint& b = (*match.keypoints)[p.second];
+    pq.emplace_back(a.x, a.y);
+    pm.emplace_back(b.x, b.y);
+  }
+  std::vector<unsigned char> mask;
+  cv::Mat F;
+  try {
+    F = cv::findFundamentalMat(pq, pm, cv::FM_RANSAC, options.ransac_threshold_px,
+                               options.ransac_confidence, mask);
+  } catch (const cv::Exception&) {
+    F.release();  // degenerate configuration: no model, no inliers
+  }
+  if (!F.empty() && mask.size() == pairs.size()) {
+    for (std::size_t i = 0; i < pairs.size(); ++i) {
+      if (!mask[i]) continue;
+      Correspondence c;
+      c.query_index = pairs[i].first;
+      c.match_index = pairs[i].second;
+      c.query_x = pq[i].x;
+      c.query_y = pq[i].y;
+      c.match_x = pm[i].x;
+      c.match_y = pm[i].y;
+      result.inlier_correspondences.push_back(c);
+    }
+  }
+  result.inliers = static_cast<int>(result.inlier_correspondences.size());
+  if (result.inliers < options.min_inliers) {
+    result.status = LoopStatus::kTooFewInliers;
+    result.inlier_correspondences.clear();
+    return result;
+  }
+  result.status = LoopStatus::kLoopDetected;
+  result.has_relative_pose = relativePoseFromCorrespondences(
+      result.inlier_correspondences, intrinsics, options.ransac_threshold_px,
+      options.ransac_confidence, result.rotation, result.translation_direction);
+  return result;
+}
+
+}  // namespace bowg

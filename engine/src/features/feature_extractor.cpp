@@ -1,0 +1,183 @@
+// Feature extraction (paper Sec. III-A): GFTT corners for the pipe setting or
+// multi-scale ORB/FAST for the public datasets, described by 256-bit ORB
+// rBRIEF or VINS-compatible plain BRIEF. The keypoint size is kept: it is the
+// word-group radius s_t^(i).
+#include "bowg/features/feature_extractor.h"
+
+#include <fstream>
+#include <opencv2/features2d.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+#include <stdexcept>
+#include <string>
+
+#include "bowg/core/errors.h"
+#include "bowg/features/brief_descriptor.h"
+#include "bowg/features/brief_pattern.h"
+#include "bowg/features/descriptor_conversion.h"
+#include "bowg/features/orb_descriptor.h"
+#include "bowg/features/orientation.h"
+
+namespace bowg {
+namespace {
+
+// Derivative aperture of GFTT (Sobel 3x3, OpenCV's default) and the Harris
+// free parameter k (OpenCV's default).
+const int kGfttGradientSize = 3;
+const double kHarrisK = 0.04;
+
+// Usable pixels = non-zero in any channel, as 0/255 CV_8UC1.
+cv::Mat loadMask(const std::string& path) {
+  if (!std::ifstream(path).good()) throw IoError("cannot open feature mask image " + path);
+  const cv::Mat raw = cv::imread(path, cv::IMREAD_UNCHANGED);
+  if (raw.empty()) {
+    throw FormatError("feature mask " + path + " is not an image OpenCV can decode");
+  }
+  if (raw.depth() != CV_8U) {
+    throw FormatError("feature mask " + path + " must be an 8-bit image");
+  }
+  cv::Mat mask = raw;
+  if (raw.channels() > 1) {
+    std::vector<cv::Mat> planes;
+    cv::split(raw, planes);
+    mask = planes[0].clone();
+    for (std::size_t i = 1; i < planes.size(); ++i) cv::max(mask, planes[i], mask);
+  }
+  cv::Mat binary;
+  cv::compare(mask, 0, binary, cv::CMP_NE);
+  return binary;
+}
+
+void checkImage(const cv::Mat& image) {
+  if (image.empty()) throw std::invalid_argument("FeatureExtractor::extract: image is empty");
+  if (image.channels() != 1) {
+    throw std::invalid_argument(
+        "FeatureExtractor::extract: image must be single-channel (grey), got " +
+        std::to_string(image.channels()) + " channels");
+  }
+  if (image.depth() != CV_8U) {
+    throw std::invalid_argument(
+        "FeatureExtractor::extract: image must be 8-bit (CV_8U), got depth " +
+        std::to_string(image.depth()));
+  }
+}
+
+Keypoint toKeypoint(const cv::KeyPoint& kp, bool oriented) {
+  Keypoint out;
+  out.x = kp.pt.x;
+  out.y = kp.pt.y;
+  out.size = kp.size;
+  out.angle = oriented ? kp.angle : -1.f;
+  out.response = kp.response;
+  out.octave = kp.octave;
+  return out;
+}
+
+}  // namespace
+
+FeatureExtractor::FeatureExtractor(const FeatureOptions& options) : options_(options) {
+  options_.validate();
+  if (options_.descriptor == FeatureOptions::DescriptorType::kBrief) {
+    brief_pattern_ = loadBriefPattern(options_.brief_pattern_path);
+  }
+  if (!options_.mask_path.empty()) mask_ = loadMask(options_.mask_path);
+}
+
+ImageFeatures FeatureExtractor::extract(const cv::Mat& image) const {
+  checkImage(image);
+  if (!mask_.empty() && mask_.size() != image.size()) {
+    throw std::invalid_argument("FeatureExtractor::extract: mask " + options_.mask_path + " is " +
+                                std::to_string(mask_.cols) + "x" + std::to_string(mask_.rows) +
+                                " but the image is " + std::to_string(image.cols) + "x" +
+                                std::to_string(image.rows));
+  }
+  ImageFeatures features;
+  features.image_width = image.cols;
+  features.image_height = image.rows;
+
+  const bool oriented = options_.compute_orientation;
+  const bool brief = options_.descriptor == FeatureOptions::DescriptorType::kBrief;
+  const bool gftt = options_.detector == FeatureOptions::Detector::kGftt;
+  // The pyramid the keypoints' octaves refer to (a single level for GFTT).
+  OrbPyramid pyramid;
+  pyramid.scale_factor = options_.orb_scale_factor;
+  pyramid.levels = gftt ? 1 : options_.orb_levels;
+
+  // Border each keypoint must keep so that its whole descriptor patch (and
+  // orientation disc) lies in the image; BRIEF always samples level 0.
+  const int radius = brief ? briefPatternRadius(brief_pattern_, oriented)
+                           : (oriented ? kOrbSteeredRadius : kOrbUprightRadius);
+  // Intensity-centroid disc for GFTT corners: ORB's for ORB descriptors,
+  // the pattern's upright extent for BRIEF (within `radius` either way).
+  const int orientation_radius = brief ? briefPatternRadius(brief_pattern_, false) : kOrbHalfPatch;
+  if (image.cols <= 2 * radius || image.rows <= 2 * radius) return features;
+
+  // 1. Detect.
+  std::vector<cv::KeyPoint> detected;
+  if (gftt) {
+    std::vector<cv::Point2f> corners;
+    std::vector<float> quality;
+    cv::goodFeaturesToTrack(image, corners, options_.gftt_max_corners, options_.gftt_quality_level,
+                            options_.gftt_min_distance, mask_, quality, options_.gftt_block_size,
+                            kGfttGradientSize, options_.gftt_use_harris, kHarrisK);
+    detected.reserve(corners.size());
+    for (std::size_t i = 0; i < corners.size(); ++i) {
+      detected.emplace_back(corners[i], static_cast<float>(options_.gftt_keypoint_size), -1.f,
+                            i < quality.size() ? quality[i] : 0.f, 0);
+    }
+  } else {
+    cv::Ptr<cv::ORB> orb =
+        cv::ORB::create(options_.orb_max_features, static_cast<float>(options_.orb_scale_factor),
+                        options_.orb_levels, 2 * kOrbHalfPatch + 1, 0, 2, cv::ORB::HARRIS_SCORE,
+                        2 * kOrbHalfPatch + 1, options_.orb_fast_threshold);
+    if (oriented && !brief) {
+      // ORB's own orientation and descriptors: one pass over one pyramid
+      // (detect + compute would build it twice). ORB keeps its keypoints
+      // edgeThreshold = 31 level pixels inside, beyond the 22 needed, so the
+      // border check below drops nothing; it still runs to keep the promise.
+      cv::Mat mat;
+      orb->detectAndCompute(image, mask_, detected, mat);
+      const std::vector<Descriptor> described = descriptorsFromMat(mat);
+      for (std::size_t i = 0; i < detected.size(); ++i) {
+        if (!insideOrbLevel(detected[i], image.size(), pyramid, radius)) continue;
+        features.keypoints.push_back(toKeypoint(detected[i], true));
+        features.descriptors.push_back(described[i]);
+      }
+      return features;
+    }
+    orb->detect(image, detected, mask_);
+  }
+
+  // 2. Drop keypoints whose descriptor patch leaves the image.
+  std::vector<cv::KeyPoint> kept;
+  kept.reserve(detected.size());
+  for (const cv::KeyPoint& kp : detected) {
+    const bool inside = brief ? insideOrbLevel(kp, image.size(), OrbPyramid{1.0, 1}, radius)
+                              : insideOrbLevel(kp, image.size(), pyramid, radius);
+    if (inside) kept.push_back(kp);
+  }
+
+  // 3. Orientation: ORB's detector already measured it (intensity centroid at
+  // the keypoint's level); GFTT corners get it here on the unsmoothed image,
+  // as ORB does. Upright descriptors use angle 0.
+  for (cv::KeyPoint& kp : kept) {
+    if (!oriented) {
+      kp.angle = 0.f;
+    } else if (gftt) {
+      kp.angle = intensityCentroidAngle(image, kp.pt, orientation_radius);
+    }
+  }
+
+  // 4. Describe.
+  if (brief) {
+    features.descriptors =
+        computeBriefDescriptors(smoothForBrief(image), brief_pattern_, kept, oriented);
+  } else {
+    features.descriptors = computeOrbDescriptors(image, kept, pyramid);
+  }
+  features.keypoints.reserve(kept.size());
+  for (const cv::KeyPoint& kp : kept) features.keypoints.push_back(toKeypoint(kp, oriented));
+  return features;
+}
+
+}  // namespace bowg

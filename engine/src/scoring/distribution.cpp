@@ -1,0 +1,83 @@
+// Feature-distribution score (paper Sec. III-C). The paper's formula takes the
+// largest *distance* over cyclic shifts; docs/method-notes.md fixes the reading
+// to the best *alignment* (largest inner product), which is what makes the
+// score roll invariant.
+#include "bowg/scoring/distribution.h"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace bowg {
+namespace {
+
+const double kTwoPi = 6.283185307179586476925286766559;
+
+void checkBins(const char* function, int m) {
+  if (m < 1) {
+    throw std::invalid_argument(std::string(function) +
+                                ": the number of fan bins m must be >= 1 (got " +
+                                std::to_string(m) + ")");
+  }
+}
+
+}  // namespace
+
+int fanBin(float x, float y, double cx, double cy, int m) {
+  checkBins("fanBin", m);
+  if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(cx) || !std::isfinite(cy)) {
+    throw std::invalid_argument("fanBin: point and centre must be finite");
+  }
+  const double dx = static_cast<double>(x) - cx;
+  const double dy = static_cast<double>(y) - cy;
+  if (dx == 0.0 && dy == 0.0) return 0;
+  // Image coordinates (y down): the angle grows clockwise on screen.
+  double angle = std::atan2(dy, dx);
+  if (angle < 0.0) angle += kTwoPi;
+  // Bin k covers [2*pi*k/m, 2*pi*(k+1)/m). Rounding can put an angle a hair
+  // below 2*pi at exactly m: that point belongs to the last bin.
+  const int k = static_cast<int>(std::floor(angle / (kTwoPi / m)));
+  return k >= m ? m - 1 : k;
+}
+
+std::vector<double> distributionVector(const std::vector<Keypoint>& keypoints, double cx, double cy,
+                                       int m) {
+  checkBins("distributionVector", m);
+  std::vector<double> v(static_cast<std::size_t>(m), 0.0);
+  for (const Keypoint& k : keypoints) v[fanBin(k.x, k.y, cx, cy, m)] += 1.0;
+  // L2 normalisation (v-hat in the paper).
+  double norm = 0.0;
+  for (const double n : v) norm += n * n;
+  if (norm > 0.0) {
+    norm = std::sqrt(norm);
+    for (double& n : v) n /= norm;
+  }
+  return v;
+}
+
+double distributionScore(const std::vector<double>& query, const std::vector<double>& db) {
+  if (query.size() != db.size()) {
+    throw std::invalid_argument("distributionScore: vector sizes differ (" +
+                                std::to_string(query.size()) + " vs " + std::to_string(db.size()) +
+                                "); were they built with the same "
+                                "number of fan bins?");
+  }
+  const std::size_t m = query.size();
+  // A roll of the camera by 2*pi*i/m shifts the bins cyclically by i: the
+  // score is the best alignment over the m columns M_i of the distribution
+  // matrix, m_ij = v_((i+j) mod m).
+  // The index (i + j) mod m is split into its two runs so the inner loops
+  // carry no division (this runs once per candidate per keyframe).
+  double best = 0.0;
+  for (std::size_t i = 0; i < m; ++i) {
+    double dot = 0.0;
+    const std::size_t wrap = m - i;  // j < wrap: i + j < m
+    for (std::size_t j = 0; j < wrap; ++j) dot += query[i + j] * db[j];
+    for (std::size_t j = wrap; j < m; ++j) dot += query[i + j - m] * db[j];
+    if (dot > best) best = dot;
+  }
+  // Rounding can exceed 1 by an ulp for identical unit vectors.
+  return best > 1.0 ? 1.0 : best;
+}
+
+}  // namespace bowg

@@ -1,0 +1,245 @@
+// Word groups (paper Sec. III-A "Word Group Definition"), the online word-group
+// table, refined weights (eq. 1) and the word-group score (eq. 3).
+#include "bowg/scoring/word_groups.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+namespace bowg {
+namespace {
+
+// The grid has at most about 3 * (kCellsPerPoint * n + kMinCells) cells.
+const double kCellsPerPoint = 4.0;
+const double kMinCells = 16.0;
+
+void checkWeight(const char* function, const GroupEntry& e) {
+  if (!std::isfinite(e.second) || !(e.second > 0.0)) {
+    throw std::invalid_argument(std::string(function) + ": weight of group " +
+                                std::to_string(e.first) + " must be finite and > 0 (got " +
+                                std::to_string(e.second) + ")");
+  }
+}
+
+// Uniform grid over the keypoints in compressed-row form: the points of cell c
+// are order_[start_[c] .. start_[c+1]), their coordinates copied alongside so
+// that a neighbour scan reads contiguous memory.
+class PointGrid {
+ public:
+  /// `cell` must be > 0; the points lie in [min_x, min_x + nx*cell) x ...
+  PointGrid(const std::vector<Keypoint>& kps, double min_x, double min_y, double cell,
+            std::int64_t nx, std::int64_t ny)
+      : min_x_(min_x), min_y_(min_y), cell_(cell), nx_(nx), ny_(ny) {
+    const std::size_t n = kps.size();
+    std::vector<std::int64_t> cell_of(n);
+    start_.assign(static_cast<std::size_t>(nx * ny + 1), 0);
+    for (std::size_t i = 0; i < n; ++i) {
+      cell_of[i] = index(coord(kps[i].x, min_x_, nx_), coord(kps[i].y, min_y_, ny_));
+      ++start_[cell_of[i] + 1];
+    }
+    for (std::size_t c = 1; c < start_.size(); ++c) start_[c] += start_[c - 1];
+    std::vector<std::uint32_t> fill(start_.begin(), start_.end() - 1);
+    order_.resize(n);
+    xs_.resize(n);
+    ys_.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::uint32_t slot = fill[cell_of[i]]++;
+      order_[slot] = static_cast<std::uint32_t>(i);
+      xs_[slot] = kps[i].x;
+      ys_[slot] = kps[i].y;
+    }
+  }
+
+  /// Number of points other than point `self` (at x, y) at distance < radius.
+  /// Scans the cells that the disc's bounding box touches: the 3x3 block
+  /// around the point when radius == cell, often fewer for smaller radii.
+  int countNeighbours(std::uint32_t self, double x, double y, double radius) const {
+    // The margin covers rounding in x -/+ reach (see also the cell margin).
+    const double reach = radius * (1.0 + 1e-9);
+    const std::int64_t x0 = coord(x - reach, min_x_, nx_), x1 = coord(x + reach, min_x_, nx_);
+    const std::int64_t y0 = coord(y - reach, min_y_, ny_), y1 = coord(y + reach, min_y_, ny_);
+    const double r2 = radius * radius;
+    int n = 0;
+    for (std::int64_t gy = y0; gy <= y1; ++gy) {
+      // Cells x0..x1 of one row are contiguous in the compressed rows.
+      const std::uint32_t begin = start_[index(x0, gy)];
+      const std::uint32_t end = start_[index(x1, gy) + 1];
+      for (std::uint32_t s = begin; s < end; ++s) {
+        const double dx = xs_[s] - x;
+        const double dy = ys_[s] - y;
+        // Strictly closer than the radius; the point itself is not its own
+        // neighbour (a coincident *other* point is).
+        if (dx * dx + dy * dy < r2 && order_[s] != self) ++n;
+      }
+    }
+    return n;
+  }
+
+ private:
+  std::int64_t coord(double v, double origin, std::int64_t count) const {
+    const std::int64_t c = static_cast<std::int64_t>(std::floor((v - origin) / cell_));
+    return std::min(std::max<std::int64_t>(c, 0), count - 1);  // clamp to the grid
+  }
+  std::int64_t index(std::int64_t gx, std::int64_t gy) const { return gy * nx_ + gx; }
+
+  double min_x_, min_y_, cell_;
+  std::int64_t nx_, ny_;
+  std::vector<std::uint32_t> start_, order_;
+  std::vector<double> xs_, ys_;
+};
+
+}  // namespace
+
+GroupVector buildWordGroups(const std::vector<Keypoint>& keypoints,
+                            const std::vector<WordId>& words, const WordGroupOptions& options) {
+  if (keypoints.size() != words.size()) {
+    throw std::invalid_argument("buildWordGroups: " + std::to_string(keypoints.size()) +
+                                " keypoints but " + std::to_string(words.size()) + " words");
+  }
+  options.validate();
+  if (keypoints.size() < 2) return {};
+
+  // The grid cell is the largest radius, so every neighbour of a point lies in
+  // the 3x3 block of cells around it (no all-pairs search).
+  double max_radius = 0.0;
+  double min_x = std::numeric_limits<double>::infinity(), min_y = min_x;
+  double max_x = -min_x, max_y = -min_x;
+  for (std::size_t i = 0; i < keypoints.size(); ++i) {
+    const Keypoint& k = keypoints[i];
+    if (!std::isfinite(k.x) || !std::isfinite(k.y)) {
+      throw std::invalid_argument("buildWordGroups: keypoint " + std::to_string(i) +
+                                  " has a non-finite position");
+    }
+    if (!std::isfinite(k.size) || !(k.size >= 0.f)) {
+      throw std::invalid_argument("buildWordGroups: keypoint " + std::to_string(i) +
+                                  " has an invalid size (must be finite and >= 0, got " +
+                                  std::to_string(k.size) + ")");
+    }
+    max_radius = std::max(max_radius, options.radius_scale * k.size);
+    min_x = std::min(min_x, static_cast<double>(k.x));
+    min_y = std::min(min_y, static_cast<double>(k.y));
+    max_x = std::max(max_x, static_cast<double>(k.x));
+    max_y = std::max(max_y, static_cast<double>(k.y));
+  }
+  if (!std::isfinite(max_radius)) {
+    throw std::invalid_argument("buildWordGroups: radius_scale * size overflows");
+  }
+  if (!(max_radius > 0.0)) return {};  // all sizes 0: nothing is closer than 0
+
+  // A larger cell stays correct (radius <= cell): it bounds the number of
+  // cells by O(n) when the radii are small against the spacing of the points.
+  const double ex = max_x - min_x, ey = max_y - min_y;
+  const double budget = kCellsPerPoint * static_cast<double>(keypoints.size()) + kMinCells;
+  // The 1e-9 margin keeps pairs at a distance just below the radius within
+  // adjacent cells whatever the rounding of (v - origin) / cell.
+  const double cell =
+      std::max({max_radius * (1.0 + 1e-9), ex / budget, ey / budget, std::sqrt(ex * ey / budget)});
+  const std::int64_t nx = static_cast<std::int64_t>(std::floor(ex / cell)) + 1;
+  const std::int64_t ny = static_cast<std::int64_t>(std::floor(ey / cell)) + 1;
+  const PointGrid grid(keypoints, min_x, min_y, cell, nx, ny);
+
+  GroupVector found;
+  found.reserve(keypoints.size());
+  for (std::size_t i = 0; i < keypoints.size(); ++i) {
+    const double radius = options.radius_scale * keypoints[i].size;
+    if (!(radius > 0.0)) continue;
+    const int n =
+        grid.countNeighbours(static_cast<std::uint32_t>(i), keypoints[i].x, keypoints[i].y, radius);
+    if (n > 0) found.emplace_back(words[i], n);  // weight = words in the group - 1
+  }
+  // Several features with the same word add into the one group i.
+  std::sort(found.begin(), found.end(),
+            [](const GroupEntry& a, const GroupEntry& b) { return a.first < b.first; });
+  GroupVector groups;
+  groups.reserve(found.size());
+  for (const GroupEntry& e : found) {
+    if (!groups.empty() && groups.back().first == e.first) {
+      groups.back().second += e.second;
+    } else {
+      groups.push_back(e);
+    }
+  }
+  return groups;
+}
+
+void WordGroupTable::add(const GroupVector& raw) {
+  for (const GroupEntry& e : raw) checkWeight("WordGroupTable::add", e);
+  for (const GroupEntry& e : raw) {
+    cumulative_[e.first] += e.second;
+    total_ += e.second;
+  }
+}
+
+void WordGroupTable::clear() {
+  cumulative_.clear();
+  total_ = 0.0;
+}
+
+double WordGroupTable::cumulative(WordId group) const {
+  const auto it = cumulative_.find(group);
+  return it == cumulative_.end() ? 0.0 : it->second;
+}
+
+double WordGroupTable::idf(WordId group) const {
+  const double c = cumulative(group);
+  if (c <= 0.0) return 0.0;
+  // IDF part of eq. 1: log(sum_t sum_i w / sum_t w^(i)); >= 0 since c <= total.
+  return std::log(total_ / c);
+}
+
+GroupVector groupTermFrequencies(const GroupVector& raw) {
+  double sum = 0.0;
+  for (const GroupEntry& e : raw) {
+    checkWeight("groupTermFrequencies", e);
+    sum += e.second;
+  }
+  GroupVector tf;
+  tf.reserve(raw.size());
+  // TF part of eq. 1: w^(i) / sum_i w^(i).
+  for (const GroupEntry& e : raw) tf.emplace_back(e.first, e.second / sum);
+  return tf;
+}
+
+GroupVector refineGroupWeights(const GroupVector& raw, const WordGroupTable& table) {
+  GroupVector refined;
+  refined.reserve(raw.size());
+  for (const GroupEntry& e : groupTermFrequencies(raw)) {
+    // Eq. 1. A group present in every database weight (idf 0) or unknown to
+    // the table carries no information: dropped (GroupVector holds no zeros).
+    const double w = e.second * table.idf(e.first);
+    if (w > 0.0) refined.emplace_back(e.first, w);
+  }
+  return refined;
+}
+
+double groupScoreFromDot(double dot) {
+  if (std::isnan(dot)) throw std::invalid_argument("groupScoreFromDot: dot product is NaN");
+  // Eq. 3. The refined weights are not unit vectors (TF sums to 1, IDF can
+  // exceed 1), so the dot product can exceed 1: the score saturates at 1.
+  if (dot > 1.0) return 1.0;
+  return 1.0 - std::sqrt(1.0 - dot);
+}
+
+double groupScore(const GroupVector& a_refined, const GroupVector& b_refined) {
+  // Merge of two id-sorted sparse vectors: only shared groups contribute.
+  double dot = 0.0;
+  auto ia = a_refined.begin();
+  auto ib = b_refined.begin();
+  while (ia != a_refined.end() && ib != b_refined.end()) {
+    if (ia->first < ib->first) {
+      ++ia;
+    } else if (ib->first < ia->first) {
+      ++ib;
+    } else {
+      dot += ia->second * ib->second;
+      ++ia;
+      ++ib;
+    }
+  }
+  return groupScoreFromDot(dot);
+}
+
+}  // namespace bowg

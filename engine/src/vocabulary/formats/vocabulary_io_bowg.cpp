@@ -1,0 +1,164 @@
+// Our binary vocabulary format ".bowgvoc", built to load with one read
+// (fbow's lesson, see vocabulary.h). Layout, all little-endian:
+//
+//   offset  size  field
+//        0     8  magic "BOWGVOC\0"
+//        8     4  format version (1)
+//       12     4  k
+//       16     4  L
+//       20     4  weighting (WeightingType, DBoW2 numbering)
+//       24     4  scoring (ScoringType, DBoW2 numbering)
+//       28     4  node record size (64)
+//       32     8  node count N (root included)
+//       40     8  word count W
+//       48  64*N  node records, node i at 48 + 64 i:
+//                   u32 parent, u32 first_child, u32 num_children, u32 level,
+//                   u32 word (0xffffffff = none), u32 reserved (0),
+//                   f64 weight, u64 descriptor blocks 0..3
+//  48+64N     8  checksum64() of bytes [0, 48 + 64 N)
+//
+// The record is the in-memory Vocabulary::Node on little-endian hosts, so
+// the node block is read straight into the node array.
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstddef>
+#include <cstring>
+
+#include "bowg/core/atomic_file.h"
+#include "bowg/core/checksum.h"
+#include "bowg/core/errors.h"
+#include "vocabulary/formats/vocabulary_io_internal.h"
+
+#if !defined(__BYTE_ORDER__) || __BYTE_ORDER__ != __ORDER_LITTLE_ENDIAN__
+#error "vocabulary_io_bowg.cpp reads node records in place and needs a little-endian host"
+#endif
+
+namespace bowg {
+namespace vocabulary_io {
+namespace {
+
+const std::uint32_t kVersion = 1;
+const std::size_t kHeaderSize = 48;
+const std::size_t kRecordSize = 64;
+using Node = Vocabulary::Node;
+static_assert(sizeof(Node) == kRecordSize, "Node must match the 64-byte record");
+static_assert(offsetof(Node, parent) == 0 && offsetof(Node, first_child) == 4 &&
+                  offsetof(Node, num_children) == 8 && offsetof(Node, level) == 12 &&
+                  offsetof(Node, word) == 16 && offsetof(Node, weight) == 24 &&
+                  offsetof(Node, descriptor) == 32,
+              "Node layout must match the record layout");
+
+void readFully(int fd, void* out, std::size_t size, std::uint64_t offset, const std::string& path) {
+  char* p = static_cast<char*>(out);
+  while (size > 0) {
+    const ssize_t n = ::pread(fd, p, size, static_cast<off_t>(offset));
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) throw IoError("cannot read '" + path + "': " + std::strerror(errno));
+    if (n == 0) fail(path, "truncated while reading");
+    p += n;
+    size -= static_cast<std::size_t>(n);
+    offset += static_cast<std::uint64_t>(n);
+  }
+}
+
+}  // namespace
+
+Vocabulary loadBowg(const std::string& path) {
+  std::uint64_t file_size = 0;
+  const Fd fd = openRegularFile(path, &file_size);
+  if (file_size < kHeaderSize + 8) {
+    fail(path, "truncated: " + std::to_string(file_size) + " bytes, shorter than the header");
+  }
+  char header[kHeaderSize];
+  readFully(fd.get(), header, kHeaderSize, 0, path);
+  if (std::memcmp(header, kBowgMagic, 8) != 0) fail(path, "not a .bowgvoc file (bad magic)");
+  ByteReader r(path, header, kHeaderSize);
+  r.u64("magic");
+  const std::uint32_t version = r.u32("version");
+  const std::uint32_t k = r.u32("k");
+  const std::uint32_t L = r.u32("L");
+  const std::uint32_t weighting = r.u32("weighting");
+  const std::uint32_t scoring = r.u32("scoring");
+  const std::uint32_t record_size = r.u32("record size");
+  const std::uint64_t node_count = r.u64("node count");
+  const std::uint64_t word_count = r.u64("word count");
+  if (version != kVersion) {
+    fail(path, "unsupported .bowgvoc version " + std::to_string(version) + " (this build reads " +
+                   std::to_string(kVersion) + ")");
+  }
+  if (record_size != kRecordSize)
+    fail(path, "node record size " + std::to_string(record_size) + " != 64");
+  // Sizes against the file length before any allocation.
+  if (node_count < 2 || node_count > (file_size - kHeaderSize - 8) / kRecordSize ||
+      kHeaderSize + node_count * kRecordSize + 8 != file_size) {
+    fail(path, "node count " + std::to_string(node_count) + " does not match the file size " +
+                   std::to_string(file_size) + " (truncated or corrupt)");
+  }
+  if (word_count >= node_count)
+    fail(path, "word count " + std::to_string(word_count) + " >= node count");
+
+  std::vector<Node> nodes(static_cast<std::size_t>(node_count));
+  const std::size_t block = static_cast<std::size_t>(node_count) * kRecordSize;
+  readFully(fd.get(), nodes.data(), block, kHeaderSize, path);
+  unsigned char stored_bytes[8];
+  readFully(fd.get(), stored_bytes, 8, kHeaderSize + block, path);
+  std::uint64_t stored = 0;
+  for (int i = 7; i >= 0; --i) stored = (stored << 8) | stored_bytes[i];
+  Checksum64 sum;
+  sum.update(header, kHeaderSize);
+  sum.update(nodes.data(), block);
+  if (sum.value() != stored) fail(path, "checksum mismatch (the file is corrupt)");
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    // The reserved word sits in Node's padding; it must be zero in files.
+    std::uint32_t reserved;
+    std::memcpy(&reserved, reinterpret_cast<const char*>(&nodes[i]) + 20, 4);
+    if (reserved != 0) fail(path, "node " + std::to_string(i) + ": reserved field is not zero");
+  }
+  try {
+    Vocabulary v(static_cast<int>(k), static_cast<int>(L), static_cast<WeightingType>(weighting),
+                 static_cast<ScoringType>(scoring), std::move(nodes));
+    if (v.wordCount() != word_count) {
+      fail(path, "header says " + std::to_string(word_count) + " words, the tree has " +
+                     std::to_string(v.wordCount()));
+    }
+    return v;
+  } catch (const FormatError& e) {
+    const std::string what = e.what();
+    if (what.compare(0, path.size(), path) == 0) throw;
+    fail(path, what);
+  }
+}
+
+void saveBowg(const Vocabulary& v, const std::string& path) {
+  const auto& nodes = v.nodes();
+  std::string out;
+  out.reserve(kHeaderSize + nodes.size() * kRecordSize + 8);
+  out.append(kBowgMagic, 8);
+  putU(&out, kVersion, 4);
+  putU(&out, static_cast<std::uint32_t>(v.branching()), 4);
+  putU(&out, static_cast<std::uint32_t>(v.depth()), 4);
+  putU(&out, static_cast<std::uint32_t>(v.weighting()), 4);
+  putU(&out, static_cast<std::uint32_t>(v.scoring()), 4);
+  putU(&out, kRecordSize, 4);
+  putU(&out, nodes.size(), 8);
+  putU(&out, v.wordCount(), 8);
+  for (const Node& n : nodes) {
+    // Field by field: Node's padding bytes are indeterminate in memory.
+    putU(&out, n.parent, 4);
+    putU(&out, n.first_child, 4);
+    putU(&out, n.num_children, 4);
+    putU(&out, n.level, 4);
+    putU(&out, n.word, 4);
+    putU(&out, 0, 4);
+    putF64(&out, n.weight);
+    for (std::uint64_t b : n.descriptor.bits) putU(&out, b, 8);
+  }
+  putU(&out, checksum64(out.data(), out.size()), 8);
+  writeFileAtomically(path, out);
+}
+
+}  // namespace vocabulary_io
+}  // namespace bowg

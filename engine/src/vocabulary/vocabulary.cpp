@@ -1,0 +1,329 @@
+// The vocabulary tree: validation of the node layout, the descent and the
+// image transform (paper Sec. III-A; weighting as DBoW2's
+// TemplatedVocabulary::transform).
+#include "bowg/vocabulary/vocabulary.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+#include "bowg/core/checksum.h"
+#include "bowg/core/errors.h"
+
+namespace bowg {
+
+// C++14 needs an out-of-class definition for odr-used static constexpr members.
+constexpr WordId Vocabulary::kNoWord;
+
+namespace {
+
+std::string nodeName(std::size_t i) { return "node " + std::to_string(i); }
+
+inline void putLe(unsigned char* out, std::uint64_t v, int bytes) {
+  for (int i = 0; i < bytes; ++i) out[i] = static_cast<unsigned char>(v >> (8 * i));
+}
+
+void encodeRecord(const Vocabulary::Node& n, unsigned char out[64]) {
+  putLe(out + 0, n.parent, 4);
+  putLe(out + 4, n.first_child, 4);
+  putLe(out + 8, n.num_children, 4);
+  putLe(out + 12, n.level, 4);
+  putLe(out + 16, n.word, 4);
+  putLe(out + 20, 0, 4);
+  std::uint64_t weight_bits;
+  std::memcpy(&weight_bits, &n.weight, sizeof(weight_bits));
+  putLe(out + 24, weight_bits, 8);
+  for (int b = 0; b < 4; ++b) putLe(out + 32 + 8 * b, n.descriptor.bits[b], 8);
+}
+
+// Descends `count` (<= kBatch) descriptors in lockstep, prefetching the
+// child block of each before it is needed: the deep levels of a k=10 L=6
+// tree (70 MB) miss the cache, and interleaving several descents overlaps
+// those misses instead of paying them one after another.
+const std::size_t kBatch = 8;
+
+void descendBatch(const Vocabulary::Node* nodes, const Descriptor* d, std::size_t count, int level,
+                  WordId* words, NodeId* at_level) {
+  std::uint32_t current[kBatch];
+  for (std::size_t g = 0; g < count; ++g) {
+    current[g] = 0;
+    at_level[g] = 0;
+  }
+  for (bool moved = true; moved;) {
+    moved = false;
+    for (std::size_t g = 0; g < count; ++g) {
+      const Vocabulary::Node& node = nodes[current[g]];
+      if (node.num_children == 0) continue;
+      const Vocabulary::Node* child = nodes + node.first_child;
+      std::uint32_t best = node.first_child;
+      int best_distance = hammingDistance(d[g], child->descriptor);
+      for (std::uint32_t c = 1; c < node.num_children; ++c) {
+        const int distance = hammingDistance(d[g], child[c].descriptor);
+        if (distance < best_distance) {
+          best_distance = distance;
+          best = node.first_child + c;
+        }
+      }
+      current[g] = best;
+      if (static_cast<int>(nodes[best].level) <= level) at_level[g] = best;
+      const Vocabulary::Node& next = nodes[best];
+      for (std::uint32_t c = 0; c < next.num_children; ++c) {
+        __builtin_prefetch(nodes + next.first_child + c);
+      }
+      moved = true;
+    }
+  }
+  for (std::size_t g = 0; g < count; ++g) words[g] = nodes[current[g]].word;
+}
+
+}  // namespace
+
+Vocabulary::Vocabulary(int branching, int depth, WeightingType weighting, ScoringType scoring,
+                       std::vector<Node> nodes)
+    : k_(branching), L_(depth), weighting_(weighting), scoring_(scoring), nodes_(std::move(nodes)) {
+  index();
+}
+
+void Vocabulary::index() {
+  if (k_ < 2) throw FormatError("vocabulary: branching factor k = " + std::to_string(k_) + " < 2");
+  if (L_ < 1) throw FormatError("vocabulary: depth L = " + std::to_string(L_) + " < 1");
+  const int w = static_cast<int>(weighting_);
+  const int s = static_cast<int>(scoring_);
+  if (w < 0 || w > 3) throw FormatError("vocabulary: unknown weighting type " + std::to_string(w));
+  if (s < 0 || s > 5) throw FormatError("vocabulary: unknown scoring type " + std::to_string(s));
+  const std::size_t n = nodes_.size();
+  if (n < 2) throw FormatError("vocabulary: no node below the root");
+  if (n >= kNoWord) throw FormatError("vocabulary: too many nodes (" + std::to_string(n) + ")");
+
+  const Node& root = nodes_[0];
+  if (root.level != 0)
+    throw FormatError("vocabulary: root has level " + std::to_string(root.level));
+  if (root.word != kNoWord)
+    throw FormatError("vocabulary: root carries word " + std::to_string(root.word));
+  if (root.num_children == 0) throw FormatError("vocabulary: root has no children");
+
+  // Every non-root node must be claimed by exactly one child range: its
+  // parent's. Because a child must name the range's owner as its parent,
+  // two ranges can never claim the same node; `claimed` catches orphans.
+  // Child ranges start after their owner, so the parent relation is acyclic
+  // and a descent always ends.
+  std::vector<char> claimed(n, 0);
+  std::size_t leaves = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const Node& node = nodes_[i];
+    // Weights are IDF values (log N / N_i) or 1 (TF): never negative. A
+    // negative one would make eq. 1's vectors and every score meaningless.
+    if (!std::isfinite(node.weight))
+      throw FormatError("vocabulary: " + nodeName(i) + " has a non-finite weight");
+    if (node.weight < 0.0) {
+      throw FormatError("vocabulary: " + nodeName(i) + " has a negative weight (" +
+                        std::to_string(node.weight) + ")");
+    }
+    if (node.level > static_cast<std::uint32_t>(L_)) {
+      throw FormatError("vocabulary: " + nodeName(i) + " is at level " +
+                        std::to_string(node.level) + ", deeper than L = " + std::to_string(L_));
+    }
+    if (node.num_children == 0) {
+      if (i != 0) ++leaves;
+      continue;
+    }
+    if (node.num_children > static_cast<std::uint32_t>(k_)) {
+      throw FormatError("vocabulary: " + nodeName(i) + " has " + std::to_string(node.num_children) +
+                        " children, more than k = " + std::to_string(k_));
+    }
+    if (node.first_child <= i) {
+      throw FormatError("vocabulary: " + nodeName(i) + " has its children at " +
+                        std::to_string(node.first_child) + ", not after itself (cycle)");
+    }
+    if (static_cast<std::uint64_t>(node.first_child) + node.num_children > n) {
+      throw FormatError(
+          "vocabulary: child range [" + std::to_string(node.first_child) + ", " +
+          std::to_string(static_cast<std::uint64_t>(node.first_child) + node.num_children) +
+          ") of " + nodeName(i) + " is out of bounds (" + std::to_string(n) + " nodes)");
+    }
+    if (node.word != kNoWord) {
+      throw FormatError("vocabulary: inner " + nodeName(i) + " carries word " +
+                        std::to_string(node.word));
+    }
+    for (std::uint32_t c = node.first_child; c < node.first_child + node.num_children; ++c) {
+      const Node& child = nodes_[c];
+      if (child.parent != i) {
+        throw FormatError("vocabulary: " + nodeName(c) + " lies in the child range of " +
+                          nodeName(i) + " but names " + std::to_string(child.parent) +
+                          " as its parent");
+      }
+      if (child.level != node.level + 1) {
+        throw FormatError("vocabulary: " + nodeName(c) + " has level " +
+                          std::to_string(child.level) + " but its parent " + std::to_string(i) +
+                          " has level " + std::to_string(node.level));
+      }
+      claimed[c] = 1;
+    }
+  }
+  for (std::size_t i = 1; i < n; ++i) {
+    if (!claimed[i]) {
+      throw FormatError("vocabulary: " + nodeName(i) + " is in no child range (bad parent " +
+                        std::to_string(nodes_[i].parent) + ")");
+    }
+  }
+
+  // Words: 0..W-1, each on exactly one leaf, W = number of leaves.
+  word_to_node_.assign(leaves, kNoWord);
+  for (std::size_t i = 1; i < n; ++i) {
+    const Node& node = nodes_[i];
+    if (node.num_children != 0) continue;
+    if (node.word == kNoWord) throw FormatError("vocabulary: leaf " + nodeName(i) + " has no word");
+    if (node.word >= leaves) {
+      throw FormatError("vocabulary: leaf " + nodeName(i) + " has word id " +
+                        std::to_string(node.word) + " but there are only " +
+                        std::to_string(leaves) + " leaves (ids must be 0..W-1)");
+    }
+    if (word_to_node_[node.word] != kNoWord) {
+      throw FormatError("vocabulary: word " + std::to_string(node.word) + " is on both " +
+                        nodeName(word_to_node_[node.word]) + " and " + nodeName(i));
+    }
+    word_to_node_[node.word] = static_cast<NodeId>(i);
+  }
+
+  // Fingerprint: every field that changes what transform() returns, plus
+  // the weighting; not the scoring type (a run-time choice, setScoring()).
+  Checksum64 h;
+  // 40 header bytes (a multiple of 8, so the records stay word-aligned).
+  h.update("BOWGFP01", 8);
+  h.updateU64(static_cast<std::uint64_t>(k_));
+  h.updateU64(static_cast<std::uint64_t>(L_));
+  h.updateU64(static_cast<std::uint64_t>(w));
+  h.updateU64(n);
+  // Each node is hashed as one 64-byte little-endian record (the .bowgvoc
+  // record layout), which keeps the checksum on its word-wise fast path.
+  unsigned char record[64];
+  for (const Node& node : nodes_) {
+    encodeRecord(node, record);
+    h.update(record, sizeof(record));
+  }
+  fingerprint_ = h.value();
+}
+
+WordId Vocabulary::transform(const Descriptor& d, NodeId* node_at_level, int level) const {
+  if (nodes_.size() < 2) throw std::logic_error("Vocabulary::transform: the vocabulary is empty");
+  if (node_at_level != nullptr && level < 1) {
+    throw std::invalid_argument("Vocabulary::transform: level must be >= 1, got " +
+                                std::to_string(level));
+  }
+  const Node* nodes = nodes_.data();
+  std::uint32_t current = 0;
+  NodeId at_level = 0;
+  // Children are consecutive in the node array: the inner loop reads k
+  // adjacent 64-byte records (one cache line each).
+  while (nodes[current].num_children != 0) {
+    const Node* child = nodes + nodes[current].first_child;
+    const Node* end = child + nodes[current].num_children;
+    std::uint32_t best = nodes[current].first_child;
+    int best_distance = hammingDistance(d, child->descriptor);
+    std::uint32_t index = best;
+    for (++child, ++index; child != end; ++child, ++index) {
+      const int distance = hammingDistance(d, child->descriptor);
+      if (distance < best_distance) {
+        best_distance = distance;
+        best = index;
+      }
+    }
+    current = best;
+    if (static_cast<int>(nodes[current].level) <= level) at_level = current;
+  }
+  if (node_at_level != nullptr) *node_at_level = at_level;
+  return nodes[current].word;
+}
+
+void Vocabulary::transform(const std::vector<Descriptor>& descriptors, BowVector* bow,
+                           DirectIndex* direct, int direct_level,
+                           std::vector<WordId>* words) const {
+  if (bow == nullptr) throw std::invalid_argument("Vocabulary::transform: bow must not be null");
+  if (direct != nullptr && direct_level < 1) {
+    throw std::invalid_argument("Vocabulary::transform: direct_level must be >= 1, got " +
+                                std::to_string(direct_level));
+  }
+  bow->clear();
+  if (direct != nullptr) direct->clear();
+  if (words != nullptr) words->clear();
+  if (descriptors.empty()) return;
+  const std::size_t n = descriptors.size();
+
+  // Word of each descriptor (and node at the direct-index level), then one
+  // sort: no allocation per descriptor, O(n log n) overall.
+  std::vector<std::pair<WordId, std::uint32_t>> word_of(n);
+  std::vector<std::pair<NodeId, std::uint32_t>> node_of;
+  if (direct != nullptr) node_of.resize(n);
+  if (nodes_.size() < 2) throw std::logic_error("Vocabulary::transform: the vocabulary is empty");
+  for (std::size_t i = 0; i < n; i += kBatch) {
+    const std::size_t count = std::min(kBatch, n - i);
+    WordId w[kBatch];
+    NodeId node[kBatch];
+    descendBatch(nodes_.data(), descriptors.data() + i, count, direct != nullptr ? direct_level : 0,
+                 w, node);
+    for (std::size_t g = 0; g < count; ++g) {
+      word_of[i + g] = {w[g], static_cast<std::uint32_t>(i + g)};
+      if (direct != nullptr) node_of[i + g] = {node[g], static_cast<std::uint32_t>(i + g)};
+    }
+  }
+  if (words != nullptr) {
+    words->resize(n);
+    for (std::size_t i = 0; i < n; ++i) (*words)[i] = word_of[i].first;
+  }
+  std::sort(word_of.begin(), word_of.end());
+
+  // Weighting as DBoW2 (T-RO 2012, Sec. IV): with n_id occurrences of word
+  // i in image d of n_d features and idf_i the word's weight,
+  //   TF-IDF: (n_id / n_d) * idf_i,  TF: n_id / n_d,
+  //   IDF:    idf_i (DBoW2 adds it once per present word, addIfNotExist),
+  //   BINARY: 1.
+  // Words of weight 0 are "stopped" (DBoW2's `if (w > 0)`). n_d counts all
+  // features of the image.
+  const double inv_n = 1.0 / static_cast<double>(n);
+  bow->reserve(n);
+  for (std::size_t i = 0; i < n;) {
+    const WordId w = word_of[i].first;
+    std::size_t j = i;
+    while (j < n && word_of[j].first == w) ++j;
+    const double count = static_cast<double>(j - i);
+    const double idf = nodes_[word_to_node_[w]].weight;
+    double value = 0.0;
+    switch (weighting_) {
+      case WeightingType::kTfIdf:
+        value = count * inv_n * idf;
+        break;
+      case WeightingType::kTf:
+        value = count * inv_n;
+        break;
+      case WeightingType::kIdf:
+        value = idf;
+        break;
+      case WeightingType::kBinary:
+        value = 1.0;
+        break;
+    }
+    if (value > 0.0) bow->emplace_back(w, value);
+    i = j;
+  }
+  normaliseBowVector(scoring_, bow);
+
+  if (direct != nullptr) {
+    std::sort(node_of.begin(), node_of.end());
+    for (std::size_t i = 0; i < n;) {
+      const NodeId node = node_of[i].first;
+      std::size_t j = i;
+      while (j < n && node_of[j].first == node) ++j;
+      DirectIndexEntry entry;
+      entry.first = node;
+      entry.second.reserve(j - i);
+      for (std::size_t m = i; m < j; ++m) entry.second.push_back(node_of[m].second);
+      direct->push_back(std::move(entry));
+      i = j;
+    }
+  }
+}
+
+}  // namespace bowg

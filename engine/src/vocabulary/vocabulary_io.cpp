@@ -1,0 +1,322 @@
+// Format names, detection and dispatch of the vocabulary files, and the
+// helpers every foreign loader shares (vocabulary_io_internal.h).
+#include "bowg/vocabulary/vocabulary_io.h"
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstring>
+#include <stdexcept>
+
+#include "bowg/core/errors.h"
+#include "vocabulary/formats/vocabulary_io_internal.h"
+
+namespace bowg {
+
+namespace vocabulary_io {
+
+const char kBowgMagic[8] = {'B', 'O', 'W', 'G', 'V', 'O', 'C', '\0'};
+
+void fail(const std::string& path, const std::string& what) {
+  throw FormatError(path + ": " + what);
+}
+
+Fd::~Fd() {
+  if (fd_ >= 0) ::close(fd_);
+}
+
+Fd openRegularFile(const std::string& path, std::uint64_t* size) {
+  Fd fd(::open(path.c_str(), O_RDONLY | O_CLOEXEC));
+  if (fd.get() < 0) throw IoError("cannot open '" + path + "': " + std::strerror(errno));
+  struct stat st;
+  if (::fstat(fd.get(), &st) != 0 || !S_ISREG(st.st_mode)) {
+    throw IoError("cannot read '" + path + "': not a regular file");
+  }
+  if (size) *size = static_cast<std::uint64_t>(st.st_size);
+  return fd;
+}
+
+std::string readFile(const std::string& path, std::uint64_t max_size) {
+  std::uint64_t size = 0;
+  const Fd fd = openRegularFile(path, &size);
+  if (size > max_size) fail(path, "file too large (" + std::to_string(size) + " bytes)");
+  std::string data(static_cast<std::size_t>(size), '\0');
+  std::size_t done = 0;
+  while (done < data.size()) {
+    const ssize_t n = ::read(fd.get(), &data[done], data.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      const std::string err = n < 0 ? std::strerror(errno) : "unexpected end of file";
+      throw IoError("cannot read '" + path + "': " + err);
+    }
+    done += static_cast<std::size_t>(n);
+  }
+  return data;
+}
+
+void checkReadable(const std::string& path) { openRegularFile(path); }
+
+Vocabulary buildFromForeign(const std::string& path, std::int64_t k, std::int64_t L,
+                            std::int64_t scoring, std::int64_t weighting,
+                            const std::vector<ForeignNode>& nodes,
+                            const std::vector<ForeignWord>& words) {
+  // Plausibility first: these also bound every later allocation.
+  if (k < 2 || k > 1000)
+    fail(path, "branching factor k = " + std::to_string(k) + " out of range [2, 1000]");
+  if (L < 1 || L > 100) fail(path, "depth L = " + std::to_string(L) + " out of range [1, 100]");
+  if (scoring < 0 || scoring > 5) fail(path, "unknown scoring type " + std::to_string(scoring));
+  if (weighting < 0 || weighting > 3)
+    fail(path, "unknown weighting type " + std::to_string(weighting));
+  const std::size_t n = nodes.size() + 1;  // + root
+  if (nodes.empty()) fail(path, "the vocabulary has no nodes");
+  if (n >= Vocabulary::kNoWord) fail(path, "too many nodes");
+
+  // Index nodes by id; ids must be exactly 1..N.
+  std::vector<std::uint32_t> slot(n, Vocabulary::kNoWord);  // id -> position in `nodes`
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    const ForeignNode& f = nodes[i];
+    if (f.id < 1 || f.id >= static_cast<std::int64_t>(n)) {
+      fail(path,
+           "node id " + std::to_string(f.id) + " out of range [1, " + std::to_string(n - 1) + "]");
+    }
+    if (slot[f.id] != Vocabulary::kNoWord)
+      fail(path, "node id " + std::to_string(f.id) + " listed twice");
+    if (f.parent < 0 || f.parent >= static_cast<std::int64_t>(n) || f.parent == f.id) {
+      fail(path,
+           "node " + std::to_string(f.id) + " has invalid parent " + std::to_string(f.parent));
+    }
+    slot[f.id] = static_cast<std::uint32_t>(i);
+  }
+
+  // Children lists in file order (compressed rows: no per-node allocation).
+  std::vector<std::uint32_t> child_count(n, 0);
+  for (const ForeignNode& f : nodes) ++child_count[f.parent];
+  std::vector<std::uint32_t> row(n + 1, 0);
+  for (std::size_t i = 0; i < n; ++i) row[i + 1] = row[i] + child_count[i];
+  std::vector<std::uint32_t> children(nodes.size());
+  {
+    std::vector<std::uint32_t> fill(row.begin(), row.end() - 1);
+    for (const ForeignNode& f : nodes)
+      children[fill[f.parent]++] = static_cast<std::uint32_t>(f.id);
+  }
+
+  // Keep the file's ids when they already are our layout.
+  bool identity = true;
+  for (std::size_t p = 0; p < n && identity; ++p) {
+    for (std::uint32_t c = row[p]; c < row[p + 1]; ++c) {
+      if (children[c] != children[row[p]] + (c - row[p]) || children[row[p]] <= p) {
+        identity = false;
+        break;
+      }
+    }
+  }
+  // Breadth-first order from the root: the new index of every file id (the
+  // identity when kept). Nodes never reached hang off a cycle.
+  std::vector<std::uint32_t> order;  // new index -> file id
+  order.reserve(n);
+  order.push_back(0);
+  std::vector<std::uint32_t> level(n, 0);
+  for (std::size_t head = 0; head < order.size(); ++head) {
+    const std::uint32_t p = order[head];
+    for (std::uint32_t c = row[p]; c < row[p + 1]; ++c) {
+      level[children[c]] = level[p] + 1;
+      order.push_back(children[c]);
+      if (level[children[c]] > static_cast<std::uint32_t>(L)) {
+        fail(path,
+             "node " + std::to_string(children[c]) + " is deeper than L = " + std::to_string(L));
+      }
+    }
+  }
+  if (order.size() != n) {
+    fail(path, std::to_string(n - order.size()) + " nodes are not reachable from the root (cycle)");
+  }
+  std::vector<std::uint32_t> new_index(n);
+  if (identity) {
+    for (std::size_t i = 0; i < n; ++i) new_index[i] = static_cast<std::uint32_t>(i);
+  } else {
+    for (std::size_t i = 0; i < n; ++i) new_index[order[i]] = static_cast<std::uint32_t>(i);
+  }
+
+  std::vector<Vocabulary::Node> out(n);
+  for (std::size_t id = 0; id < n; ++id) {
+    Vocabulary::Node& node = out[new_index[id]];
+    node.level = level[id];
+    node.num_children = child_count[id];
+    node.first_child = child_count[id] ? new_index[children[row[id]]] : 0;
+    if (id != 0) {
+      const ForeignNode& f = nodes[slot[id]];
+      node.parent = new_index[f.parent];
+      node.weight = f.weight;
+      node.descriptor = f.descriptor;
+    }
+  }
+  for (const ForeignWord& w : words) {
+    if (w.word < 0 || w.word >= static_cast<std::int64_t>(words.size())) {
+      fail(path, "word id " + std::to_string(w.word) + " out of range [0, " +
+                     std::to_string(words.size()) + ")");
+    }
+    if (w.node < 1 || w.node >= static_cast<std::int64_t>(n)) {
+      fail(path,
+           "word " + std::to_string(w.word) + " is on unknown node " + std::to_string(w.node));
+    }
+    Vocabulary::Node& node = out[new_index[w.node]];
+    if (node.word != Vocabulary::kNoWord) {
+      fail(path, "node " + std::to_string(w.node) + " carries two words");
+    }
+    node.word = static_cast<WordId>(w.word);
+  }
+  try {
+    return Vocabulary(static_cast<int>(k), static_cast<int>(L),
+                      static_cast<WeightingType>(weighting), static_cast<ScoringType>(scoring),
+                      std::move(out));
+  } catch (const FormatError& e) {
+    fail(path, e.what());
+  }
+}
+
+}  // namespace vocabulary_io
+
+namespace {
+
+struct FormatName {
+  VocabularyFormat format;
+  const char* name;
+};
+const FormatName kFormatNames[] = {
+    {VocabularyFormat::kBowg, "bowg"},
+    {VocabularyFormat::kDbow2Yaml, "dbow2_yaml"},
+    {VocabularyFormat::kDbow2BriefYaml, "dbow2_brief_yaml"},
+    {VocabularyFormat::kDbow3Yaml, "dbow3_yaml"},
+    {VocabularyFormat::kDbow3Binary, "dbow3"},
+    {VocabularyFormat::kOrbSlamText, "orbslam_txt"},
+    {VocabularyFormat::kVinsBinary, "vins_bin"},
+};
+
+bool endsWith(const std::string& s, const std::string& suffix) {
+  return s.size() >= suffix.size() &&
+         s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+std::string readHead(const std::string& path, std::size_t max) {
+  const vocabulary_io::Fd fd = vocabulary_io::openRegularFile(path);
+  std::string head(max, '\0');
+  ssize_t n;
+  do {
+    n = ::read(fd.get(), &head[0], max);
+  } while (n < 0 && errno == EINTR);
+  if (n < 0) throw IoError("cannot read '" + path + "': " + std::strerror(errno));
+  head.resize(static_cast<std::size_t>(n));
+  return head;
+}
+
+}  // namespace
+
+VocabularyFormat vocabularyFormatFromString(const std::string& s) {
+  std::string names;
+  for (const auto& f : kFormatNames) {
+    if (s == f.name) return f.format;
+    names += std::string(names.empty() ? "" : ", ") + f.name;
+  }
+  throw std::invalid_argument("unknown vocabulary format '" + s + "' (expected one of: " + names +
+                              ")");
+}
+
+std::string toString(VocabularyFormat f) {
+  for (const auto& n : kFormatNames) {
+    if (n.format == f) return n.name;
+  }
+  return "unknown";
+}
+
+VocabularyFormat detectVocabularyFormat(const std::string& path) {
+  const std::string head = readHead(path, 512);
+  if (head.size() >= 8 && std::memcmp(head.data(), vocabulary_io::kBowgMagic, 8) == 0) {
+    return VocabularyFormat::kBowg;
+  }
+  if (head.size() >= 8) {
+    std::uint64_t magic = 0;
+    for (int i = 7; i >= 0; --i) magic = (magic << 8) | static_cast<unsigned char>(head[i]);
+    if (magic == vocabulary_io::kDbow3Magic) return VocabularyFormat::kDbow3Binary;
+  }
+  // gzip: OpenCV YAML (the only compressed format we read); DBoW2 and DBoW3
+  // YAML share one loader, which tells the descriptor encodings apart.
+  if (head.size() >= 2 && static_cast<unsigned char>(head[0]) == 0x1f &&
+      static_cast<unsigned char>(head[1]) == 0x8b) {
+    return VocabularyFormat::kDbow2Yaml;
+  }
+  if (head.compare(0, 5, "%YAML") == 0 || head.find("vocabulary:") != std::string::npos) {
+    return VocabularyFormat::kDbow2Yaml;
+  }
+  // ORB-SLAM text: a first line of exactly four integers.
+  const std::size_t eol = head.find('\n');
+  if (eol != std::string::npos) {
+    const std::string line = head.substr(0, eol);
+    bool ok = !line.empty();
+    int numbers = 0;
+    bool in_number = false;
+    for (char c : line) {
+      if (c >= '0' && c <= '9') {
+        if (!in_number) ++numbers;
+        in_number = true;
+      } else if (c == ' ' || c == '\t' || c == '\r') {
+        in_number = false;
+      } else {
+        ok = false;
+      }
+    }
+    if (ok && numbers == 4) return VocabularyFormat::kOrbSlamText;
+  }
+  if (endsWith(path, ".bin")) return VocabularyFormat::kVinsBinary;
+  throw FormatError(path +
+                    ": unrecognised vocabulary format (expected .bowgvoc, DBoW2/DBoW3 YAML, "
+                    "DBoW3 binary, ORB-SLAM text or a VINS .bin file)");
+}
+
+Vocabulary loadVocabulary(const std::string& path) {
+  return loadVocabulary(path, detectVocabularyFormat(path));
+}
+
+Vocabulary loadVocabulary(const std::string& path, VocabularyFormat format) {
+  switch (format) {
+    case VocabularyFormat::kBowg:
+      return vocabulary_io::loadBowg(path);
+    case VocabularyFormat::kDbow2Yaml:
+    case VocabularyFormat::kDbow2BriefYaml:
+    case VocabularyFormat::kDbow3Yaml:
+      return vocabulary_io::loadDbowYaml(path);
+    case VocabularyFormat::kDbow3Binary:
+      return vocabulary_io::loadDbow3Binary(path);
+    case VocabularyFormat::kOrbSlamText:
+      return vocabulary_io::loadOrbSlamText(path);
+    case VocabularyFormat::kVinsBinary:
+      return vocabulary_io::loadVinsBinary(path);
+  }
+  throw std::invalid_argument("loadVocabulary: unknown format");
+}
+
+void saveVocabulary(const Vocabulary& vocabulary, const std::string& path,
+                    VocabularyFormat format) {
+  if (vocabulary.empty()) throw std::invalid_argument("saveVocabulary: the vocabulary is empty");
+  switch (format) {
+    case VocabularyFormat::kBowg:
+      return vocabulary_io::saveBowg(vocabulary, path);
+    case VocabularyFormat::kDbow2Yaml:
+      return vocabulary_io::saveDbowYaml(vocabulary, path, vocabulary_io::YamlFlavour::kDbow2Orb);
+    case VocabularyFormat::kDbow2BriefYaml:
+      return vocabulary_io::saveDbowYaml(vocabulary, path, vocabulary_io::YamlFlavour::kDbow2Brief);
+    case VocabularyFormat::kDbow3Yaml:
+      return vocabulary_io::saveDbowYaml(vocabulary, path, vocabulary_io::YamlFlavour::kDbow3);
+    case VocabularyFormat::kDbow3Binary:
+      return vocabulary_io::saveDbow3Binary(vocabulary, path);
+    case VocabularyFormat::kOrbSlamText:
+      return vocabulary_io::saveOrbSlamText(vocabulary, path);
+    case VocabularyFormat::kVinsBinary:
+      return vocabulary_io::saveVinsBinary(vocabulary, path);
+  }
+  throw std::invalid_argument("saveVocabulary: unknown format");
+}
+
+}  // namespace bowg

@@ -1,0 +1,230 @@
+// Database: the inverse-index queries equal the direct formulas (word score
+// = scoreBowVectors() for every ScoringType; group score = eq. 3 on eq. 1
+// weights with the table's current IDF), hand-worked group scores, the
+// recent-exclusion limit, and the rebuilds on m / level / scoring changes.
+#include "bowg/database/database.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <random>
+#include <set>
+#include <stdexcept>
+
+#include "bowg/scoring/distribution.h"
+#include "bowg/scoring/word_groups.h"
+#include "bowg/vocabulary/vocabulary.h"
+#include "synthetic_corridor.h"
+#include "synthetic_vocabulary.h"
+
+namespace bowg {
+namespace {
+
+std::shared_ptr<const Vocabulary> vocabulary() {
+  static std::shared_ptr<const Vocabulary> v =
+      std::make_shared<Vocabulary>(testing::makeSyntheticVocabulary(10, 4, 5));
+  return v;
+}
+
+// An entry built from a keyframe the way LoopDetector builds it (minus the
+// query): words, BoW, raw groups into the table, then add().
+DatabaseEntry entryFromKeyframe(const Vocabulary& voc, const KeyframeInput& kf, BowVector* bow) {
+  DatabaseEntry e;
+  e.stamp = kf.stamp;
+  e.keypoints = kf.features.keypoints;
+  e.descriptors = kf.features.descriptors;
+  e.centre_x = 320;
+  e.centre_y = 240;
+  voc.transform(e.descriptors, bow, nullptr, 0, &e.words);
+  e.bow = *bow;
+  e.raw_groups = buildWordGroups(e.keypoints, e.words, WordGroupOptions());
+  return e;
+}
+
+// Fills `db` with 30 corridor keyframes 0.5 m apart (overlapping views share
+// words) and returns a query keyframe's entry over the first ones.
+DatabaseEntry fill(Database* db, BowVector* query_bow) {
+  const testing::Corridor c = testing::makeCorridor(30, 50, 21);
+  std::mt19937_64 rng(4);
+  for (int i = 0; i < 30; ++i) {
+    BowVector bow;
+    DatabaseEntry e = entryFromKeyframe(
+        db->vocabulary(), testing::observeCorridor(c, 0.5 * i, 1.0 + i, rng, 2), &bow);
+    db->addToGroupTable(e.raw_groups);
+    db->add(std::move(e));
+  }
+  DatabaseEntry q = entryFromKeyframe(db->vocabulary(),
+                                      testing::observeCorridor(c, 3.2, 100.0, rng, 2), query_bow);
+  db->addToGroupTable(q.raw_groups);
+  return q;
+}
+
+class DatabaseScoring : public ::testing::TestWithParam<ScoringType> {};
+
+TEST_P(DatabaseScoring, InverseIndexWordScoreEqualsScoreBowVectors) {
+  const ScoringType s = GetParam();
+  Database db(vocabulary(), s, 2, 8);
+  BowVector qbow;
+  const DatabaseEntry qe = fill(&db, &qbow);
+  const DatabaseQuery q = db.makeQuery(qbow, qe.raw_groups, qe.keypoints, 320, 240, false);
+  const EntryId limit = 25;
+  const std::vector<EntryScores> scores = db.query(q, limit, /*with_groups=*/false);
+  // Exactly the entries < limit that share a word with the query.
+  std::set<EntryId> expected;
+  for (EntryId id = 0; id < limit; ++id) {
+    for (const auto& w : db.entry(id).bow) {
+      if (std::binary_search(
+              q.bow.begin(), q.bow.end(), BowEntry(w.first, 0.0),
+              [](const BowEntry& a, const BowEntry& b) { return a.first < b.first; })) {
+        expected.insert(id);
+      }
+    }
+  }
+  ASSERT_EQ(scores.size(), expected.size());
+  ASSERT_GT(scores.size(), 5u);
+  for (const EntryScores& e : scores) {
+    EXPECT_TRUE(expected.count(e.entry));
+    EXPECT_NEAR(e.s_w, scoreBowVectors(s, q.bow, db.entry(e.entry).bow), 1e-12)
+        << toString(s) << " entry " << e.entry;
+    EXPECT_NEAR(e.s_w, db.score(q, e.entry).s_w, 1e-12);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(AllScoringTypes, DatabaseScoring,
+                         ::testing::Values(ScoringType::kL1, ScoringType::kL2,
+                                           ScoringType::kChiSquare, ScoringType::kKl,
+                                           ScoringType::kBhattacharyya, ScoringType::kDotProduct));
+
+TEST(Database, InverseIndexGroupScoreEqualsDirectEq3WithCurrentIdf) {
+  Database db(vocabulary(), ScoringType::kL1, 2, 8);
+  BowVector qbow;
+  const DatabaseEntry qe = fill(&db, &qbow);
+  const DatabaseQuery q = db.makeQuery(qbow, qe.raw_groups, qe.keypoints, 320, 240, false);
+  const std::vector<EntryScores> scores = db.query(q, 30, true);
+  int with_groups = 0;
+  for (const EntryScores& e : scores) {
+    const GroupVector refined = refineGroupWeights(db.entry(e.entry).raw_groups, db.groupTable());
+    EXPECT_NEAR(e.s_g, groupScore(q.refined_groups, refined), 1e-12);
+    if (e.s_g > 0) ++with_groups;
+  }
+  EXPECT_GT(with_groups, 3);
+}
+
+// Hand-worked eq. 1 and eq. 3 through the database (groups only, no words).
+//   A raw {0:2, 1:2}, B raw {1:1, 2:3}, query raw {1:2, 2:2}, all in the table:
+//   cumulative: g0 = 2, g1 = 2+1+2 = 5, g2 = 3+2 = 5; total = 4+4+4 = 12.
+//   IDF: g0 log(12/2) = log 6, g1 = g2 = log(12/5) = log 2.4 (= 0.87547).
+//   TF:  A {0:.5, 1:.5}, B {1:.25, 2:.75}, Q {1:.5, 2:.5}.
+//   dot(Q, A) = (.5 log2.4)(.5 log2.4)                   = .25 log(2.4)^2 = 0.19161
+//   dot(Q, B) = (.5)(.25) log(2.4)^2 + (.5)(.75) log(2.4)^2 = .5 log(2.4)^2 = 0.38322
+//   eq. 3: s_g = 1 - sqrt(1 - dot): A 0.10090, B 0.21465.
+// Then C raw {0:4} joins: cumulative g0 = 6, total = 16; the scores use the
+// new IDF log(16/5) (= 1.16315): dot(Q, A) = .25 log(3.2)^2 = 0.33823.
+TEST(Database, HandWorkedGroupScores) {
+  Database db(vocabulary(), ScoringType::kL1, 2, 8);
+  auto addGroups = [&db](double stamp, const GroupVector& raw) {
+    DatabaseEntry e;
+    e.stamp = stamp;
+    e.raw_groups = raw;
+    db.addToGroupTable(raw);
+    return db.add(e);
+  };
+  EXPECT_EQ(addGroups(1, {{0, 2}, {1, 2}}), 0u);
+  EXPECT_EQ(addGroups(2, {{1, 1}, {2, 3}}), 1u);
+  const GroupVector q_raw{{1, 2}, {2, 2}};
+  db.addToGroupTable(q_raw);
+  DatabaseQuery q = db.makeQuery({}, q_raw, {}, 0, 0, false);
+  const double l24 = std::log(2.4);
+  std::vector<EntryScores> s = db.query(q, 2, true);
+  ASSERT_EQ(s.size(), 2u);
+  EXPECT_NEAR(s[0].s_g, 1 - std::sqrt(1 - 0.25 * l24 * l24), 1e-12);
+  EXPECT_NEAR(s[0].s_g, 0.10090, 1e-5);
+  EXPECT_NEAR(s[1].s_g, 1 - std::sqrt(1 - 0.5 * l24 * l24), 1e-12);
+  EXPECT_NEAR(s[1].s_g, 0.21465, 1e-5);
+  EXPECT_EQ(s[0].s_w, 0.0);  // no shared word
+  // The limit excludes entry 1.
+  s = db.query(q, 1, true);
+  ASSERT_EQ(s.size(), 1u);
+  EXPECT_EQ(s[0].entry, 0u);
+  // Without groups nothing is shared.
+  EXPECT_TRUE(db.query(q, 2, false).empty());
+
+  addGroups(3, {{0, 4}});
+  q = db.makeQuery({}, q_raw, {}, 0, 0, false);
+  const double l32 = std::log(3.2);
+  s = db.query(q, 3, true);
+  ASSERT_EQ(s.size(), 2u);  // C shares no group with the query
+  EXPECT_NEAR(s[0].s_g, 1 - std::sqrt(1 - 0.25 * l32 * l32), 1e-12);
+  EXPECT_NEAR(s[0].s_g, db.score(q, 0).s_g, 1e-12);
+}
+
+TEST(Database, FanBinChangeRebuildsDistributionVectors) {
+  Database db(vocabulary(), ScoringType::kL1, 2, 8);
+  BowVector qbow;
+  const DatabaseEntry qe = fill(&db, &qbow);
+  db.setFanBins(5);
+  const DatabaseQuery q = db.makeQuery(qbow, qe.raw_groups, qe.keypoints, 320, 240, true);
+  ASSERT_EQ(q.distribution.size(), 5u);
+  const std::vector<double> fresh_q = distributionVector(qe.keypoints, 320, 240, 5);
+  for (const EntryScores& e : db.query(q, 30, true)) {
+    const DatabaseEntry& d = db.entry(e.entry);
+    const std::vector<double> fresh = distributionVector(d.keypoints, 320, 240, 5);
+    EXPECT_EQ(db.distribution(e.entry), fresh);
+    EXPECT_NEAR(e.s_d, distributionScore(fresh_q, fresh), 1e-12);
+  }
+  EXPECT_THROW(db.setFanBins(0), std::invalid_argument);
+}
+
+TEST(Database, DirectIndexMatchesTheVocabularyAtEveryLevel) {
+  Database db(vocabulary(), ScoringType::kL1, 2, 8);
+  BowVector qbow;
+  fill(&db, &qbow);
+  for (int level : {1, 3, 4, 2}) {
+    db.setDirectLevel(level);
+    for (EntryId id : {0u, 7u, 29u}) {
+      const DatabaseEntry& e = db.entry(id);
+      BowVector bow;
+      DirectIndex direct;
+      vocabulary()->transform(e.descriptors, &bow, &direct, level);
+      EXPECT_EQ(e.direct, direct) << "level " << level;
+    }
+  }
+}
+
+TEST(Database, ScoringChangeRenormalisesAndReindexes) {
+  Database db(vocabulary(), ScoringType::kL1, 2, 8);
+  BowVector qbow;
+  const DatabaseEntry qe = fill(&db, &qbow);
+  db.setScoring(ScoringType::kL2);
+  const DatabaseQuery q = db.makeQuery(qbow, qe.raw_groups, qe.keypoints, 320, 240, false);
+  for (const EntryScores& e : db.query(q, 30, false)) {
+    BowVector a = qbow, b = db.entry(e.entry).bow;
+    normaliseBowVector(ScoringType::kL2, &a);
+    normaliseBowVector(ScoringType::kL2, &b);
+    EXPECT_NEAR(e.s_w, scoreBowVectors(ScoringType::kL2, a, b), 1e-12);
+  }
+}
+
+TEST(Database, AddRejectsInconsistentEntries) {
+  Database db(vocabulary(), ScoringType::kL1, 2, 8);
+  DatabaseEntry e;
+  e.stamp = 1;
+  e.keypoints.resize(2);
+  e.descriptors.resize(2);
+  e.words = {0};
+  EXPECT_THROW(db.add(e), std::invalid_argument);
+  e.words = {0, static_cast<WordId>(vocabulary()->wordCount())};
+  EXPECT_THROW(db.add(e), std::invalid_argument);
+  e.words = {0, 1};
+  EXPECT_EQ(db.add(e), 0u);
+  EXPECT_THROW(db.add(e), std::invalid_argument);  // same stamp
+  EXPECT_EQ(db.size(), 1u);
+  EXPECT_GT(db.memoryBytes(), 0u);
+  db.clear();
+  EXPECT_TRUE(db.empty());
+}
+
+}  // namespace
+}  // namespace bowg

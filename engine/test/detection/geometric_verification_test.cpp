@@ -1,0 +1,238 @@
+// Geometric verification: correspondence rules (direct-index nodes, Hamming
+// limit, ratio test, mutual matches), statuses, and the relative pose on a
+// synthetic two-view scene with known cameras.
+#include "bowg/detection/geometric_verification.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <stdexcept>
+
+#include "bowg/database/database.h"
+#include "bowg/vocabulary/vocabulary.h"
+#include "synthetic_vocabulary.h"
+
+namespace bowg {
+namespace {
+
+const double kPi = 3.14159265358979323846;
+
+struct Mat3 {
+  double m[9];
+};
+
+Mat3 multiply(const Mat3& a, const Mat3& b) {
+  Mat3 c;
+  for (int r = 0; r < 3; ++r)
+    for (int k = 0; k < 3; ++k) {
+      c.m[3 * r + k] = 0;
+      for (int j = 0; j < 3; ++j) c.m[3 * r + k] += a.m[3 * r + j] * b.m[3 * j + k];
+    }
+  return c;
+}
+
+Mat3 rotX(double a) {
+  return {{1, 0, 0, 0, std::cos(a), -std::sin(a), 0, std::sin(a), std::cos(a)}};
+}
+Mat3 rotY(double a) {
+  return {{std::cos(a), 0, std::sin(a), 0, 1, 0, -std::sin(a), 0, std::cos(a)}};
+}
+
+// Angle of the rotation R_a^T R_b (degrees).
+double rotationErrorDeg(const double* a, const double* b) {
+  double trace = 0;
+  for (int r = 0; r < 3; ++r)
+    for (int j = 0; j < 3; ++j) trace += a[3 * j + r] * b[3 * j + r];
+  return std::acos(std::max(-1.0, std::min(1.0, (trace - 1) / 2))) * 180 / kPi;
+}
+
+CameraIntrinsics camera() {
+  CameraIntrinsics k;
+  k.valid = true;
+  k.fx = k.fy = 450;
+  k.cx = 320;
+  k.cy = 240;
+  return k;
+}
+
+struct TwoViews {
+  std::vector<Keypoint> qk, mk;
+  std::vector<Descriptor> qd, md;
+};
+
+// Random 3D points in front of the query camera (frame Q), seen by the match
+// camera whose pose in Q is (R_QM, t_QM): X_M = R_QM^T (X_Q - t_QM).
+TwoViews makeTwoViews(const Mat3& R, const double t[3], int n, std::uint64_t seed,
+                      double noise_px = 0.3) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> ux(-3, 3), uz(4, 9);
+  std::normal_distribution<double> noise(0, noise_px);
+  std::uniform_int_distribution<int> bit(0, 255);
+  const CameraIntrinsics k = camera();
+  TwoViews v;
+  while (static_cast<int>(v.qk.size()) < n) {
+    const double X[3] = {ux(rng), ux(rng) * 0.7, uz(rng)};
+    double d[3] = {X[0] - t[0], X[1] - t[1], X[2] - t[2]}, Y[3];
+    for (int r = 0; r < 3; ++r) Y[r] = R.m[r] * d[0] + R.m[3 + r] * d[1] + R.m[6 + r] * d[2];
+    if (Y[2] < 1) continue;
+    Keypoint a, b;
+    a.x = static_cast<float>(k.fx * X[0] / X[2] + k.cx + noise(rng));
+    a.y = static_cast<float>(k.fy * X[1] / X[2] + k.cy + noise(rng));
+    b.x = static_cast<float>(k.fx * Y[0] / Y[2] + k.cx + noise(rng));
+    b.y = static_cast<float>(k.fy * Y[1] / Y[2] + k.cy + noise(rng));
+    if (a.x < 0 || a.x >= 640 || a.y < 0 || a.y >= 480) continue;
+    if (b.x < 0 || b.x >= 640 || b.y < 0 || b.y >= 480) continue;
+    Descriptor desc = testing::randomDescriptor(rng);
+    Descriptor seen = desc;
+    for (int f = 0; f < 3; ++f) {
+      const int i = bit(rng);
+      seen.bits[i / 64] ^= 1ull << (i % 64);
+    }
+    v.qk.push_back(a);
+    v.mk.push_back(b);
+    v.qd.push_back(desc);
+    v.md.push_back(seen);
+  }
+  // Present the match features in another order than the query's.
+  std::vector<std::size_t> perm(v.mk.size());
+  for (std::size_t i = 0; i < perm.size(); ++i) perm[i] = i;
+  std::shuffle(perm.begin(), perm.end(), rng);
+  TwoViews out = v;
+  for (std::size_t i = 0; i < perm.size(); ++i) {
+    out.mk[i] = v.mk[perm[i]];
+    out.md[i] = v.md[perm[i]];
+  }
+  return out;
+}
+
+TEST(GeometricVerification, RecoversTheRelativePoseOfTwoKnownCameras) {
+  const Mat3 R = multiply(rotY(8 * kPi / 180), rotX(-3 * kPi / 180));
+  const double t[3] = {0.6, 0.1, 0.2};  // match camera centre in the query frame
+  const TwoViews v = makeTwoViews(R, t, 200, 1);
+  const auto voc = testing::makeSyntheticVocabulary(10, 4, 2);
+  std::vector<WordId> qw, mw;
+  BowVector bow;
+  voc.transform(v.qd, &bow, nullptr, 0, &qw);
+  voc.transform(v.md, &bow, nullptr, 0, &mw);
+  for (bool exhaustive : {false, true}) {
+    GeometricVerificationOptions o;
+    o.exhaustive = exhaustive;
+    o.direct_index_level = 2;
+    o.ransac_threshold_px = 1.5;
+    const DirectIndex qdi = directIndexFromWords(voc, qw, 2),
+                      mdi = directIndexFromWords(voc, mw, 2);
+    const VerificationView q{&v.qk, &v.qd, &qdi}, m{&v.mk, &v.md, &mdi};
+    const GeometricVerificationResult r = verifyGeometry(q, m, camera(), o);
+    ASSERT_EQ(r.status, LoopStatus::kLoopDetected);
+    // 3 flipped bits move some features to another node of the random tree:
+    // the direct index keeps fewer pairs than exhaustive matching.
+    EXPECT_GE(r.inliers, exhaustive ? 180 : 100) << "exhaustive " << exhaustive;
+    ASSERT_TRUE(r.has_relative_pose);
+    // Every inlier pairs the two observations of one 3D point (other
+    // descriptors are ~128 bits apart).
+    for (const Correspondence& c : r.inlier_correspondences) {
+      EXPECT_LE(hammingDistance(v.qd[c.query_index], v.md[c.match_index]), 3);
+    }
+    EXPECT_LT(rotationErrorDeg(r.rotation, R.m), 1.0);
+    const double tn = std::sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]);
+    double cosang = 0;
+    for (int i = 0; i < 3; ++i) cosang += r.translation_direction[i] * t[i] / tn;
+    EXPECT_GT(cosang, std::cos(3 * kPi / 180))
+        << "translation direction off by " << std::acos(std::min(1.0, cosang)) * 180 / kPi;
+  }
+}
+
+TEST(GeometricVerification, WithoutIntrinsicsThereIsNoPose) {
+  const double t[3] = {0.5, 0, 0};
+  const TwoViews v = makeTwoViews(rotY(0.05), t, 100, 2);
+  GeometricVerificationOptions o;
+  o.exhaustive = true;
+  const VerificationView q{&v.qk, &v.qd, nullptr}, m{&v.mk, &v.md, nullptr};
+  const GeometricVerificationResult r = verifyGeometry(q, m, CameraIntrinsics(), o);
+  EXPECT_EQ(r.status, LoopStatus::kLoopDetected);
+  EXPECT_FALSE(r.has_relative_pose);
+}
+
+TEST(GeometricVerification, TooFewCorrespondencesBelowEight) {
+  const double t[3] = {0.5, 0, 0};
+  const TwoViews v = makeTwoViews(rotY(0.05), t, 7, 3);
+  GeometricVerificationOptions o;
+  o.exhaustive = true;
+  const VerificationView q{&v.qk, &v.qd, nullptr}, m{&v.mk, &v.md, nullptr};
+  const GeometricVerificationResult r = verifyGeometry(q, m, camera(), o);
+  EXPECT_EQ(r.status, LoopStatus::kTooFewCorrespondences);
+  EXPECT_EQ(r.correspondences, 7);
+}
+
+TEST(GeometricVerification, TooFewInliersWithoutConsistentGeometry) {
+  const double t[3] = {0.5, 0, 0};
+  TwoViews v = makeTwoViews(rotY(0.05), t, 60, 4);
+  // Scatter the match positions: descriptors still match, geometry does not.
+  std::mt19937_64 rng(9);
+  std::uniform_real_distribution<float> ux(0, 640), uy(0, 480);
+  for (auto& k : v.mk) {
+    k.x = ux(rng);
+    k.y = uy(rng);
+  }
+  GeometricVerificationOptions o;
+  o.exhaustive = true;
+  o.min_inliers = 30;
+  const VerificationView q{&v.qk, &v.qd, nullptr}, m{&v.mk, &v.md, nullptr};
+  const GeometricVerificationResult r = verifyGeometry(q, m, camera(), o);
+  EXPECT_EQ(r.correspondences, 60);
+  EXPECT_EQ(r.status, LoopStatus::kTooFewInliers);
+  EXPECT_LT(r.inliers, 30);
+  EXPECT_TRUE(r.inlier_correspondences.empty());
+}
+
+// Hand-made descriptors: d(k) has the k lowest bits of block 0 set.
+Descriptor bitsSet(int k) {
+  Descriptor d;
+  d.bits[0] = k >= 64 ? ~0ull : ((1ull << k) - 1);
+  return d;
+}
+
+TEST(GeometricVerification, CorrespondenceRules) {
+  std::vector<Keypoint> qk(3), mk(3);
+  GeometricVerificationOptions o;
+  o.max_hamming = 10;
+  o.max_neighbour_ratio = 0.8;
+  // Query 0 = bits(0); match 0 = bits(2) (d=2), match 1 = bits(20) (d=20):
+  // 2 < 0.8 * 20 -> kept. Query 1 = bits(40): nearest match 1 at 20 > 10 -> dropped.
+  // Query 2 = bits(1): match 0 at 1, match 1 at 19: passes ratio but match 0's
+  // closest query is query 2 (1 < 2), so query 0 loses its mutual match.
+  std::vector<Descriptor> qd{bitsSet(0), bitsSet(40), bitsSet(1)};
+  std::vector<Descriptor> md{bitsSet(2), bitsSet(20), bitsSet(63)};
+  o.exhaustive = true;
+  VerificationView q{&qk, &qd, nullptr}, m{&mk, &md, nullptr};
+  auto pairs = findCorrespondences(q, m, o);
+  ASSERT_EQ(pairs.size(), 1u);
+  EXPECT_EQ(pairs[0], std::make_pair(2u, 0u));
+  // Without query 2, query 0 matches match 0.
+  std::vector<Descriptor> qd2{bitsSet(0), bitsSet(40)};
+  std::vector<Keypoint> qk2(2);
+  VerificationView q2{&qk2, &qd2, nullptr};
+  pairs = findCorrespondences(q2, m, o);
+  ASSERT_EQ(pairs.size(), 1u);
+  EXPECT_EQ(pairs[0], std::make_pair(0u, 0u));
+  // Ratio test: a second match at the same distance makes it ambiguous.
+  std::vector<Descriptor> md3{bitsSet(2), bitsSet(2), bitsSet(63)};
+  VerificationView m3{&mk, &md3, nullptr};
+  EXPECT_TRUE(findCorrespondences(q2, m3, o).empty());
+  // Direct index: features in different nodes are never compared.
+  o.exhaustive = false;
+  const DirectIndex qdi{{5, {0, 1}}}, mdi_other{{6, {0, 1, 2}}}, mdi_same{{5, {0, 1, 2}}};
+  q2.direct = &qdi;
+  m.direct = &mdi_other;
+  EXPECT_TRUE(findCorrespondences(q2, m, o).empty());
+  m.direct = &mdi_same;
+  EXPECT_EQ(findCorrespondences(q2, m, o).size(), 1u);
+  // Incomplete views are rejected.
+  m.direct = nullptr;
+  EXPECT_THROW(findCorrespondences(q2, m, o), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace bowg

@@ -1,0 +1,407 @@
+// validate() of every stage's options (each rejection names the parameter)
+// and the ablation presets.
+#include "bowg/detection/detection_options.h"
+
+#include <gtest/gtest.h>
+
+#include <functional>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "bowg/core/errors.h"
+
+namespace bowg {
+namespace {
+
+const double kNan = std::numeric_limits<double>::quiet_NaN();
+const double kInf = std::numeric_limits<double>::infinity();
+
+// Applies `change` to default options and expects validate() to throw an
+// InvalidParameter whose message contains `name`.
+void expectRejected(const std::function<void(LoopDetectorOptions&)>& change,
+                    const std::string& name) {
+  LoopDetectorOptions o;
+  change(o);
+  try {
+    o.validate();
+    ADD_FAILURE() << "validate() accepted an invalid " << name;
+  } catch (const InvalidParameter& e) {
+    EXPECT_NE(std::string(e.what()).find(name), std::string::npos)
+        << "message '" << e.what() << "' does not name " << name;
+  }
+}
+
+void expectAccepted(const std::function<void(LoopDetectorOptions&)>& change) {
+  LoopDetectorOptions o;
+  change(o);
+  EXPECT_NO_THROW(o.validate());
+}
+
+TEST(Options, DefaultsAreValid) { EXPECT_NO_THROW(LoopDetectorOptions().validate()); }
+
+TEST(Options, WordGroups) {
+  expectRejected([](LoopDetectorOptions& o) { o.word_groups.radius_scale = 0; },
+                 "word_groups.radius_scale");
+  expectRejected([](LoopDetectorOptions& o) { o.word_groups.radius_scale = -1; },
+                 "word_groups.radius_scale");
+  expectRejected([](LoopDetectorOptions& o) { o.word_groups.radius_scale = kNan; },
+                 "word_groups.radius_scale");
+  expectRejected([](LoopDetectorOptions& o) { o.word_groups.radius_scale = kInf; },
+                 "word_groups.radius_scale");
+  expectAccepted([](LoopDetectorOptions& o) { o.word_groups.radius_scale = 2.5; });
+}
+
+TEST(Options, Distribution) {
+  expectRejected([](LoopDetectorOptions& o) { o.distribution.fan_bins = 0; },
+                 "distribution.fan_bins");
+  expectRejected([](LoopDetectorOptions& o) { o.distribution.fan_bins = -4; },
+                 "distribution.fan_bins");
+  expectRejected([](LoopDetectorOptions& o) { o.distribution.fan_bins = 100000; },
+                 "distribution.fan_bins");
+  expectAccepted([](LoopDetectorOptions& o) { o.distribution.fan_bins = 1; });
+}
+
+TEST(Options, SimilarityLambdas) {
+  expectRejected([](LoopDetectorOptions& o) { o.similarity.lambda_1 = -0.1; },
+                 "similarity.lambda_1");
+  expectRejected([](LoopDetectorOptions& o) { o.similarity.lambda_1 = 1.1; },
+                 "similarity.lambda_1");
+  expectRejected([](LoopDetectorOptions& o) { o.similarity.lambda_1 = kNan; },
+                 "similarity.lambda_1");
+  expectRejected([](LoopDetectorOptions& o) { o.similarity.lambda_2 = -0.1; },
+                 "similarity.lambda_2");
+  expectRejected([](LoopDetectorOptions& o) { o.similarity.lambda_2 = kNan; },
+                 "similarity.lambda_2");
+  // A sum a hair above 1 (as rounding in a GUI or a parameter file can give)
+  // must still pass: 0.7 + (0.3 + 1e-15) = 1.000000000000001.
+  expectAccepted([](LoopDetectorOptions& o) {
+    o.similarity.lambda_1 = 0.7;
+    o.similarity.lambda_2 = 0.3 + 1e-15;
+    ASSERT_GT(o.similarity.lambda_1 + o.similarity.lambda_2, 1.0);
+  });
+  expectRejected(
+      [](LoopDetectorOptions& o) {
+        o.similarity.lambda_1 = 0.7;
+        o.similarity.lambda_2 = 0.3 + 1e-9;
+      },
+      "similarity.lambda_1 + similarity.lambda_2");
+  expectAccepted([](LoopDetectorOptions& o) {
+    o.similarity.lambda_1 = 1.0;
+    o.similarity.lambda_2 = 0.0;
+  });
+}
+
+TEST(Options, LambdaSumMessage) {
+  SimilarityOptions s;
+  s.lambda_1 = 0.7;
+  s.lambda_2 = 0.5;
+  try {
+    s.validate();
+    ADD_FAILURE() << "lambda_1 + lambda_2 = 1.2 accepted";
+  } catch (const InvalidParameter& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "similarity.lambda_1 + similarity.lambda_2 must be <= 1 (got 0.7 + 0.5)");
+  }
+}
+
+TEST(Options, SimilarityNormalisers) {
+  expectRejected([](LoopDetectorOptions& o) { o.similarity.min_word_normaliser = -0.001; },
+                 "similarity.min_word_normaliser");
+  expectRejected([](LoopDetectorOptions& o) { o.similarity.min_group_normaliser = kNan; },
+                 "similarity.min_group_normaliser");
+  expectRejected([](LoopDetectorOptions& o) { o.similarity.min_distribution_normaliser = -1; },
+                 "similarity.min_distribution_normaliser");
+  expectAccepted([](LoopDetectorOptions& o) { o.similarity.min_word_normaliser = 0; });
+  expectRejected([](LoopDetectorOptions& o) { o.similarity.normaliser_floor = -0.1; },
+                 "similarity.normaliser_floor");
+  expectRejected([](LoopDetectorOptions& o) { o.similarity.normaliser_floor = kNan; },
+                 "similarity.normaliser_floor");
+  expectRejected([](LoopDetectorOptions& o) { o.similarity.normaliser_window = 0; },
+                 "similarity.normaliser_window");
+  expectAccepted([](LoopDetectorOptions& o) {
+    o.similarity.normaliser_floor = 1.0;
+    o.similarity.normaliser_window = 1;
+  });
+}
+
+TEST(Options, TemporalAlignmentAndMissedQueries) {
+  expectRejected([](LoopDetectorOptions& o) { o.temporal_score.alignment_window = -1; },
+                 "temporal_score.alignment_window");
+  expectRejected([](LoopDetectorOptions& o) { o.temporal_score.max_missed_queries = -1; },
+                 "temporal_score.max_missed_queries");
+  expectRejected([](LoopDetectorOptions& o) { o.temporal_verification.max_missed_queries = -2; },
+                 "temporal_verification.max_missed_queries");
+  expectAccepted([](LoopDetectorOptions& o) {
+    o.temporal_score.alignment_window = 3;
+    o.temporal_score.max_missed_queries = 2;
+    o.temporal_verification.max_missed_queries = 2;
+  });
+}
+
+TEST(Options, TemporalScore) {
+  expectRejected([](LoopDetectorOptions& o) { o.temporal_score.w_max = 1.0; },
+                 "temporal_score.w_max");
+  expectRejected([](LoopDetectorOptions& o) { o.temporal_score.w_max = -0.1; },
+                 "temporal_score.w_max");
+  expectRejected([](LoopDetectorOptions& o) { o.temporal_score.w_max = kNan; },
+                 "temporal_score.w_max");
+  expectRejected([](LoopDetectorOptions& o) { o.temporal_score.alpha = 0.0; },
+                 "temporal_score.alpha");
+  expectRejected([](LoopDetectorOptions& o) { o.temporal_score.alpha = -0.2; },
+                 "temporal_score.alpha");
+  expectRejected([](LoopDetectorOptions& o) { o.temporal_score.alpha = kNan; },
+                 "temporal_score.alpha");
+  expectAccepted([](LoopDetectorOptions& o) { o.temporal_score.w_max = 0.0; });
+  expectAccepted([](LoopDetectorOptions& o) { o.temporal_score.w_max = 0.99; });
+}
+
+TEST(Options, Islands) {
+  expectRejected([](LoopDetectorOptions& o) { o.islands.min_score = -0.1; }, "islands.min_score");
+  expectRejected([](LoopDetectorOptions& o) { o.islands.min_score = kNan; }, "islands.min_score");
+  expectRejected([](LoopDetectorOptions& o) { o.islands.recent_exclusion = -1; },
+                 "islands.recent_exclusion");
+  expectRejected([](LoopDetectorOptions& o) { o.islands.max_intra_island_gap = -1; },
+                 "islands.max_intra_island_gap");
+  expectRejected([](LoopDetectorOptions& o) { o.islands.min_island_size = 0; },
+                 "islands.min_island_size");
+  expectAccepted([](LoopDetectorOptions& o) {
+    o.islands.min_score = 0;
+    o.islands.recent_exclusion = 0;
+    o.islands.max_intra_island_gap = 0;
+  });
+}
+
+TEST(Options, TemporalVerification) {
+  expectRejected([](LoopDetectorOptions& o) { o.temporal_verification.k = -1; },
+                 "temporal_verification.k");
+  expectRejected([](LoopDetectorOptions& o) { o.temporal_verification.max_island_distance = -1; },
+                 "temporal_verification.max_island_distance");
+  expectAccepted([](LoopDetectorOptions& o) { o.temporal_verification.k = 0; });
+}
+
+TEST(Options, Geometric) {
+  expectRejected([](LoopDetectorOptions& o) { o.geometric.direct_index_level = 0; },
+                 "geometric.direct_index_level");
+  expectRejected([](LoopDetectorOptions& o) { o.geometric.max_hamming = -1; },
+                 "geometric.max_hamming");
+  expectRejected([](LoopDetectorOptions& o) { o.geometric.max_hamming = 257; },
+                 "geometric.max_hamming");
+  expectRejected([](LoopDetectorOptions& o) { o.geometric.max_neighbour_ratio = 0; },
+                 "geometric.max_neighbour_ratio");
+  expectRejected([](LoopDetectorOptions& o) { o.geometric.max_neighbour_ratio = 1.5; },
+                 "geometric.max_neighbour_ratio");
+  expectRejected([](LoopDetectorOptions& o) { o.geometric.max_neighbour_ratio = kNan; },
+                 "geometric.max_neighbour_ratio");
+  expectRejected([](LoopDetectorOptions& o) { o.geometric.ransac_threshold_px = 0; },
+                 "geometric.ransac_threshold_px");
+  expectRejected([](LoopDetectorOptions& o) { o.geometric.ransac_threshold_px = kInf; },
+                 "geometric.ransac_threshold_px");
+  expectRejected([](LoopDetectorOptions& o) { o.geometric.ransac_confidence = 1.0; },
+                 "geometric.ransac_confidence");
+  expectRejected([](LoopDetectorOptions& o) { o.geometric.ransac_confidence = 0.0; },
+                 "geometric.ransac_confidence");
+  expectRejected([](LoopDetectorOptions& o) { o.geometric.min_inliers = 7; },
+                 "geometric.min_inliers");
+  expectRejected([](LoopDetectorOptions& o) { o.geometric.candidates = 0; },
+                 "geometric.candidates");
+  expectRejected([](LoopDetectorOptions& o) { o.temporal_verification.hypotheses = 0; },
+                 "temporal_verification.hypotheses");
+  expectRejected([](LoopDetectorOptions& o) { o.similarity.normaliser_distance_m = -0.1; },
+                 "similarity.normaliser_distance_m");
+  expectRejected([](LoopDetectorOptions& o) { o.temporal_verification.min_step_m = -0.1; },
+                 "temporal_verification.min_step_m");
+  expectAccepted([](LoopDetectorOptions& o) {
+    o.geometric.candidates = 5;
+    o.geometric.min_inliers = 8;
+    o.geometric.max_neighbour_ratio = 1.0;
+    o.geometric.direct_index_level = 1;
+  });
+}
+
+TEST(Options, Scoring) {
+  expectRejected([](LoopDetectorOptions& o) { o.scoring = static_cast<ScoringType>(17); },
+                 "scoring");
+  expectAccepted([](LoopDetectorOptions& o) { o.scoring = ScoringType::kDotProduct; });
+}
+
+TEST(Options, StageValidateAloneNamesTheStage) {
+  TemporalVerificationOptions t;
+  t.k = -3;
+  try {
+    t.validate();
+    ADD_FAILURE() << "k = -3 accepted";
+  } catch (const InvalidParameter& e) {
+    EXPECT_EQ(std::string(e.what()), "temporal_verification.k must be >= 0 (got -3)");
+  }
+}
+
+struct Modules {
+  bool groups, temporal, distribution;
+};
+
+Modules modules(const LoopDetectorOptions& o) {
+  return {o.word_groups.enabled, o.temporal_score.enabled, o.distribution.enabled};
+}
+
+TEST(Ablation, RowsSwitchOnOneModuleEach) {
+  // Start from the opposite of each row to see every switch move.
+  LoopDetectorOptions all_on, all_off;
+  all_on.word_groups.enabled = all_on.temporal_score.enabled = all_on.distribution.enabled = true;
+  all_off.word_groups.enabled = all_off.temporal_score.enabled = false;
+  all_off.distribution.enabled = false;
+
+  Modules m = modules(LoopDetectorOptions::ablation("bow", all_on));
+  EXPECT_FALSE(m.groups);
+  EXPECT_FALSE(m.temporal);
+  EXPECT_FALSE(m.distribution);
+
+  m = modules(LoopDetectorOptions::ablation("word_groups", all_on));
+  EXPECT_TRUE(m.groups);
+  EXPECT_FALSE(m.temporal);
+  EXPECT_FALSE(m.distribution);
+
+  m = modules(LoopDetectorOptions::ablation("temporal", all_off));
+  EXPECT_TRUE(m.groups);
+  EXPECT_TRUE(m.temporal);
+  EXPECT_FALSE(m.distribution);
+
+  m = modules(LoopDetectorOptions::ablation("distribution", all_off));
+  EXPECT_TRUE(m.groups);
+  EXPECT_TRUE(m.temporal);
+  EXPECT_TRUE(m.distribution);
+}
+
+TEST(Ablation, PaperRowIsTheFullMethodWithoutTheExtensions) {
+  LoopDetectorOptions base;
+  base.word_groups.enabled = false;
+  base.similarity.normaliser_floor = 1.0;
+  base.temporal_score.alignment_window = 2;
+  base.temporal_score.max_missed_queries = 3;
+  base.temporal_verification.max_missed_queries = 1;
+  base.geometric.candidates = 10;
+  base.temporal_verification.hypotheses = 4;
+  base.similarity.normaliser_distance_m = 0.05;
+  base.temporal_verification.min_step_m = 0.02;
+  base.geometric.min_inliers = 25;
+  base.temporal_score.alignment_window_m = 0.05;
+  base.temporal_verification.max_island_distance_m = 0.1;
+  base.islands.recent_exclusion_m = 3.0;
+  const LoopDetectorOptions o = LoopDetectorOptions::ablation("paper", base);
+  EXPECT_EQ(o.temporal_score.alignment_window_m, 0.0);
+  EXPECT_EQ(o.temporal_verification.max_island_distance_m, 0.0);
+  EXPECT_EQ(o.islands.recent_exclusion_m, 3.0);  // the same candidates in every row
+  EXPECT_TRUE(o.word_groups.enabled);
+  EXPECT_TRUE(o.temporal_score.enabled);
+  EXPECT_TRUE(o.distribution.enabled);
+  EXPECT_EQ(o.similarity.normaliser_floor, 0.0);
+  EXPECT_EQ(o.temporal_score.alignment_window, 0);
+  EXPECT_EQ(o.temporal_score.max_missed_queries, 0);
+  EXPECT_EQ(o.temporal_verification.max_missed_queries, 0);
+  EXPECT_EQ(o.geometric.candidates, 1);
+  EXPECT_EQ(o.temporal_verification.hypotheses, 1);
+  EXPECT_EQ(o.similarity.normaliser_distance_m, 0.0);
+  EXPECT_EQ(o.temporal_verification.min_step_m, 0.0);
+  EXPECT_EQ(o.geometric.min_inliers, 25);  // thresholds are the preset's
+  const LoopDetectorOptions pb = LoopDetectorOptions::ablation("paper_bow", base);
+  EXPECT_FALSE(pb.word_groups.enabled);
+  EXPECT_FALSE(pb.temporal_score.enabled);
+  EXPECT_FALSE(pb.distribution.enabled);
+  EXPECT_EQ(pb.similarity.normaliser_floor, 0.0);
+  EXPECT_EQ(pb.temporal_score.alignment_window, 0);
+  EXPECT_EQ(pb.geometric.candidates, 1);
+  EXPECT_EQ(pb.temporal_verification.hypotheses, 1);
+  EXPECT_EQ(pb.similarity.normaliser_distance_m, 0.0);
+  EXPECT_EQ(pb.geometric.min_inliers, 25);
+  const LoopDetectorOptions as_is = LoopDetectorOptions::ablation("configured", base);
+  EXPECT_FALSE(as_is.word_groups.enabled);
+  EXPECT_EQ(as_is.geometric.candidates, 10);
+  EXPECT_EQ(as_is.temporal_verification.hypotheses, 4);
+  EXPECT_EQ(as_is.similarity.normaliser_floor, 1.0);
+  // The module rows keep the extensions of the base.
+  const LoopDetectorOptions full = LoopDetectorOptions::ablation("distribution", base);
+  EXPECT_EQ(full.geometric.candidates, 10);
+  EXPECT_EQ(full.temporal_score.alignment_window, 2);
+}
+
+// Each "without_<x>" row switches exactly one extension back to the paper's
+// version: its own fields change, the other extensions stay as configured.
+TEST(Ablation, WithoutRowsSwitchOffOneExtensionEach) {
+  LoopDetectorOptions base;
+  base.similarity.normaliser_floor = 1.0;
+  base.similarity.normaliser_distance_m = 0.03;
+  base.temporal_score.alignment_window = 1;
+  base.temporal_score.alignment_window_m = 0.05;
+  base.temporal_verification.max_island_distance_m = 0.1;
+  base.temporal_score.max_missed_queries = 1;
+  base.temporal_verification.max_missed_queries = 1;
+  base.temporal_verification.hypotheses = 3;
+  base.temporal_verification.min_step_m = 0.02;
+  base.geometric.candidates = 10;
+  // Which extensions are on, in the order of the rows below.
+  auto on = [](const LoopDetectorOptions& o) {
+    return std::vector<bool>{
+        o.similarity.normaliser_floor > 0,
+        o.similarity.normaliser_distance_m > 0,
+        o.temporal_score.alignment_window > 0 || o.temporal_score.alignment_window_m > 0 ||
+            o.temporal_verification.max_island_distance_m > 0,
+        o.temporal_score.max_missed_queries > 0 || o.temporal_verification.max_missed_queries > 0,
+        o.temporal_verification.hypotheses > 1,
+        o.temporal_verification.min_step_m > 0,
+        o.geometric.candidates > 1};
+  };
+  const char* rows[] = {"without_floor",          "without_normaliser_distance",
+                        "without_alignment",      "without_missed_queries",
+                        "without_hypotheses",     "without_min_step",
+                        "without_reranking"};
+  ASSERT_EQ(on(base), std::vector<bool>(7, true));
+  for (int r = 0; r < 7; ++r) {
+    std::vector<bool> expected(7, true);
+    expected[r] = false;
+    const LoopDetectorOptions o = LoopDetectorOptions::ablation(rows[r], base);
+    EXPECT_EQ(on(o), expected) << rows[r];
+    EXPECT_NO_THROW(o.validate()) << rows[r];
+  }
+  // Every "without" row switches off something the paper row also switches off.
+  EXPECT_EQ(on(LoopDetectorOptions::ablation("paper", base)), std::vector<bool>(7, false));
+}
+
+TEST(Ablation, KeepsTheOtherFields) {
+  LoopDetectorOptions base;
+  base.scoring = ScoringType::kL2;
+  base.similarity.lambda_1 = 0.25;
+  base.distribution.fan_bins = 12;
+  base.temporal_score.alpha = 0.7;
+  base.islands.min_score = 0.45;
+  base.temporal_verification.k = 5;
+  base.geometric.min_inliers = 30;
+  base.word_groups.radius_scale = 1.5;
+  for (const char* row : {"bow", "word_groups", "temporal", "distribution"}) {
+    const LoopDetectorOptions o = LoopDetectorOptions::ablation(row, base);
+    EXPECT_EQ(o.scoring, ScoringType::kL2) << row;
+    EXPECT_DOUBLE_EQ(o.similarity.lambda_1, 0.25) << row;
+    EXPECT_EQ(o.distribution.fan_bins, 12) << row;
+    EXPECT_DOUBLE_EQ(o.temporal_score.alpha, 0.7) << row;
+    EXPECT_DOUBLE_EQ(o.islands.min_score, 0.45) << row;
+    EXPECT_EQ(o.temporal_verification.k, 5) << row;
+    EXPECT_EQ(o.geometric.min_inliers, 30) << row;
+    EXPECT_DOUBLE_EQ(o.word_groups.radius_scale, 1.5) << row;
+    EXPECT_NO_THROW(o.validate()) << row;
+  }
+}
+
+TEST(Ablation, UnknownRowListsTheValidNames) {
+  try {
+    LoopDetectorOptions::ablation("groups", LoopDetectorOptions());
+    ADD_FAILURE() << "unknown row accepted";
+  } catch (const InvalidParameter& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("groups"), std::string::npos) << msg;
+    for (const char* name : {"bow", "word_groups", "temporal", "distribution"}) {
+      EXPECT_NE(msg.find(name), std::string::npos) << msg;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace bowg

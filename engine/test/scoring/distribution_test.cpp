@@ -1,0 +1,156 @@
+// Fan bins, distribution vectors and the cyclic-shift distribution score
+// (paper Sec. III-C, reading of docs/method-notes.md), worked out by hand.
+#include "bowg/scoring/distribution.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace bowg {
+namespace {
+
+const double kPi = 3.14159265358979323846;
+
+Keypoint kp(double x, double y) {
+  Keypoint k;
+  k.x = static_cast<float>(x);
+  k.y = static_cast<float>(y);
+  return k;
+}
+
+// A point at `degrees` from the centre (cx, cy), radius r, image coordinates.
+Keypoint polar(double cx, double cy, double degrees, double r = 50.0) {
+  const double a = degrees * kPi / 180.0;
+  return kp(cx + r * std::cos(a), cy + r * std::sin(a));
+}
+
+TEST(FanBin, OneBinHoldsEverything) {
+  EXPECT_EQ(fanBin(10.f, 10.f, 0, 0, 1), 0);
+  EXPECT_EQ(fanBin(-10.f, 3.f, 0, 0, 1), 0);
+  EXPECT_EQ(fanBin(0.f, -7.f, 0, 0, 1), 0);
+}
+
+TEST(FanBin, FourBinsInImageCoordinates) {
+  // Centre (100, 100); y grows downwards, so atan2(dy, dx) turns clockwise on
+  // screen. Bin width 90 degrees.
+  //   (110, 105): atan2( 5,  10) =  26.6 deg            -> bin 0
+  //   ( 95, 110): atan2(10,  -5) = 116.6 deg            -> bin 1
+  //   ( 90,  95): atan2(-5, -10) = -153.4 -> 206.6 deg  -> bin 2
+  //   (105,  90): atan2(-10,  5) =  -63.4 -> 296.6 deg  -> bin 3
+  EXPECT_EQ(fanBin(110.f, 105.f, 100, 100, 4), 0);
+  EXPECT_EQ(fanBin(95.f, 110.f, 100, 100, 4), 1);
+  EXPECT_EQ(fanBin(90.f, 95.f, 100, 100, 4), 2);
+  EXPECT_EQ(fanBin(105.f, 90.f, 100, 100, 4), 3);
+}
+
+TEST(FanBin, BinStartsBelongToTheirBin) {
+  // Bin k starts at 2*pi*k/m: the four axis directions open bins 0..3.
+  EXPECT_EQ(fanBin(110.f, 100.f, 100, 100, 4), 0);  // 0
+  EXPECT_EQ(fanBin(100.f, 110.f, 100, 100, 4), 1);  // pi/2 (straight down)
+  EXPECT_EQ(fanBin(90.f, 100.f, 100, 100, 4), 2);   // pi
+  EXPECT_EQ(fanBin(100.f, 90.f, 100, 100, 4), 3);   // -pi/2 -> 3*pi/2
+}
+
+TEST(FanBin, EightBinsAtBinCentres) {
+  // 22.5 + 45 k degrees lies in the middle of bin k.
+  for (int k = 0; k < 8; ++k) {
+    const Keypoint p = polar(320, 240, 22.5 + 45.0 * k);
+    EXPECT_EQ(fanBin(p.x, p.y, 320, 240, 8), k) << "bin " << k;
+  }
+  // Just either side of the 45-degree boundary.
+  const Keypoint a = polar(320, 240, 44.0), b = polar(320, 240, 46.0);
+  EXPECT_EQ(fanBin(a.x, a.y, 320, 240, 8), 0);
+  EXPECT_EQ(fanBin(b.x, b.y, 320, 240, 8), 1);
+  // Just below 360 degrees is the last bin, not bin 8.
+  const Keypoint c = polar(320, 240, 359.9);
+  EXPECT_EQ(fanBin(c.x, c.y, 320, 240, 8), 7);
+}
+
+TEST(FanBin, CentreGoesToBinZero) { EXPECT_EQ(fanBin(5.f, 7.f, 5.0, 7.0, 8), 0); }
+
+TEST(FanBin, BadInputThrows) {
+  EXPECT_THROW(fanBin(1.f, 1.f, 0, 0, 0), std::invalid_argument);
+  EXPECT_THROW(fanBin(1.f, 1.f, 0, 0, -3), std::invalid_argument);
+  EXPECT_THROW(fanBin(std::numeric_limits<float>::quiet_NaN(), 1.f, 0, 0, 4),
+               std::invalid_argument);
+  EXPECT_THROW(fanBin(1.f, 1.f, std::numeric_limits<double>::infinity(), 0, 4),
+               std::invalid_argument);
+}
+
+TEST(DistributionVector, CountsAreL2Normalised) {
+  // m = 4 around (0, 0): 3 points in bin 0, 4 in bin 1 -> (3, 4, 0, 0) / 5.
+  std::vector<Keypoint> kps;
+  for (int i = 0; i < 3; ++i) kps.push_back(polar(0, 0, 10.0 + 20.0 * i));
+  for (int i = 0; i < 4; ++i) kps.push_back(polar(0, 0, 95.0 + 20.0 * i));
+  const std::vector<double> v = distributionVector(kps, 0, 0, 4);
+  ASSERT_EQ(v.size(), 4u);
+  EXPECT_DOUBLE_EQ(v[0], 0.6);
+  EXPECT_DOUBLE_EQ(v[1], 0.8);
+  EXPECT_DOUBLE_EQ(v[2], 0.0);
+  EXPECT_DOUBLE_EQ(v[3], 0.0);
+}
+
+TEST(DistributionVector, NoKeypointsGivesZeros) {
+  const std::vector<double> v = distributionVector({}, 10, 10, 8);
+  EXPECT_EQ(v, std::vector<double>(8, 0.0));
+  EXPECT_THROW(distributionVector({}, 10, 10, 0), std::invalid_argument);
+}
+
+TEST(DistributionScore, IdenticalVectorsScoreOne) {
+  const std::vector<double> v{0.6, 0.8, 0.0, 0.0};
+  EXPECT_DOUBLE_EQ(distributionScore(v, v), 1.0);
+}
+
+TEST(DistributionScore, ShiftByTwoBinsScoresOne) {
+  // Roll invariance: q = (0, 0, 0.6, 0.8) is v shifted by two bins; column
+  // M_2 of q's matrix is (q2, q3, q0, q1) = v, so the score is <v, v> = 1.
+  const std::vector<double> v{0.6, 0.8, 0.0, 0.0};
+  const std::vector<double> q{0.0, 0.0, 0.6, 0.8};
+  EXPECT_NEAR(distributionScore(q, v), 1.0, 1e-12);
+  EXPECT_NEAR(distributionScore(v, q), 1.0, 1e-12);
+}
+
+TEST(DistributionScore, BestShiftOfTwoDifferentVectors) {
+  // q = (0.6, 0.8, 0, 0), db = (0.8, 0, 0.6, 0); M_i = (q_i, q_i+1, q_i+2, q_i+3):
+  //   i = 0: (0.6, 0.8, 0,   0  ) . db = 0.48
+  //   i = 1: (0.8, 0,   0,   0.6) . db = 0.64
+  //   i = 2: (0,   0,   0.6, 0.8) . db = 0.36
+  //   i = 3: (0,   0.6, 0.8, 0  ) . db = 0.48
+  // max = 0.64.
+  const std::vector<double> q{0.6, 0.8, 0.0, 0.0};
+  const std::vector<double> db{0.8, 0.0, 0.6, 0.0};
+  EXPECT_NEAR(distributionScore(q, db), 0.64, 1e-12);
+}
+
+TEST(DistributionScore, RolledKeypointsScoreOne) {
+  // Keypoints rotated about the centre by two 45-degree bins (a camera roll)
+  // give the same vector shifted by two: the score stays 1, while the
+  // unshifted inner product is lower. Angles lie well inside their bins.
+  const double offsets[] = {5, 12, 20, 33, 40, 8, 27};
+  const int bins[] = {0, 0, 1, 3, 3, 3, 6};
+  std::vector<Keypoint> kps, rolled;
+  for (int i = 0; i < 7; ++i) {
+    const double deg = 45.0 * bins[i] + offsets[i];
+    kps.push_back(polar(320, 240, deg));
+    rolled.push_back(polar(320, 240, deg + 90.0));
+  }
+  const std::vector<double> v = distributionVector(kps, 320, 240, 8);
+  const std::vector<double> w = distributionVector(rolled, 320, 240, 8);
+  EXPECT_NEAR(distributionScore(v, w), 1.0, 1e-12);
+  double unshifted = 0.0;
+  for (int j = 0; j < 8; ++j) unshifted += v[j] * w[j];
+  EXPECT_LT(unshifted, 0.9);
+}
+
+TEST(DistributionScore, ZeroVectorScoresZero) {
+  EXPECT_DOUBLE_EQ(distributionScore(std::vector<double>(4, 0.0), {0.6, 0.8, 0.0, 0.0}), 0.0);
+}
+
+TEST(DistributionScore, SizeMismatchThrows) {
+  EXPECT_THROW(distributionScore({1.0, 0.0}, {1.0, 0.0, 0.0}), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace bowg

@@ -1,0 +1,133 @@
+// The aligned previous score of the temporal score (temporal_alignment.h),
+// with values worked out by hand.
+#include "bowg/scoring/temporal_alignment.h"
+
+#include <gtest/gtest.h>
+
+#include <limits>
+#include <stdexcept>
+
+#include "bowg/scoring/similarity.h"
+
+namespace bowg {
+namespace {
+
+using Scores = std::vector<std::pair<EntryId, double>>;
+
+TemporalScoreOptions window(int r) {
+  TemporalScoreOptions o;
+  o.alignment_window = r;
+  return o;
+}
+
+TEST(AlignedPreviousScore, WindowZeroIsEquationSevenExactly) {
+  const Scores previous{{4, 0.5}, {5, 0.9}, {6, 0.3}};
+  EXPECT_DOUBLE_EQ(alignedPreviousScore(previous, 6, 0, window(0)), 0.9);  // eta(t-1, 5)
+  EXPECT_DOUBLE_EQ(alignedPreviousScore(previous, 5, 0, window(0)), 0.5);  // eta(t-1, 4)
+  EXPECT_DOUBLE_EQ(alignedPreviousScore(previous, 8, 0, window(0)), 0.0);  // 7 not scored
+  EXPECT_DOUBLE_EQ(alignedPreviousScore(previous, 0, 0, window(0)), 0.0);  // no entry -1
+  EXPECT_DOUBLE_EQ(alignedPreviousScore(Scores(), 5, 0, window(3)), 0.0);
+  // Equal speeds: eq. 7 with w_max 0.6, alpha 0.2, eta 1.0, eta_prev 0.9:
+  // d = 0.5, w_prev = 0.6 / 1.25 = 0.48, eta_temp = 0.48*0.9 + 0.52*1.0.
+  TemporalScoreOptions o = window(0);
+  o.w_max = 0.6;
+  o.alpha = 0.2;
+  EXPECT_NEAR(temporalScore(1.0, alignedPreviousScore(previous, 6, 0, o), o), 0.952, 1e-12);
+}
+
+TEST(AlignedPreviousScore, TwiceTheSpeedStillCarriesThePreviousScore) {
+  // The revisit advances two database entries per query: the previous query
+  // matched entry 10, this one matches entry 12. Eq. 7 reads entry 11, which
+  // was not scored; a window of 1 finds entry 10.
+  const Scores previous{{3, 0.4}, {10, 1.5}, {14, 0.2}};
+  EXPECT_DOUBLE_EQ(alignedPreviousScore(previous, 12, 0, window(0)), 0.0);
+  EXPECT_DOUBLE_EQ(alignedPreviousScore(previous, 12, 0, window(1)), 1.5);
+  // w_max 0.9, alpha 1: d = (1.2 - 1.5) / 1 = -0.3, w_prev = 0.9 / 1.09 =
+  // 0.825688..., eta_temp = 0.825688 * 1.5 + 0.174312 * 1.2 = 1.447706...
+  TemporalScoreOptions o = window(1);
+  o.w_max = 0.9;
+  o.alpha = 1.0;
+  const double eta_prev = alignedPreviousScore(previous, 12, 0, o);
+  EXPECT_NEAR(temporalScore(1.2, eta_prev, o), 1.4477064220, 1e-9);
+  // Without the window the score falls back to (1 - 0) weight on eta.
+  EXPECT_NEAR(temporalScore(1.2, 0.0, o), 1.2 - 0.9 / (1 + 1.44) * 1.2, 1e-12);
+}
+
+TEST(AlignedPreviousScore, SlowerPassAndBackingUpFindTheSameOrNextEntry) {
+  // Half the speed: the revisit stays on entry 10 for two queries. Window 1
+  // around entry 9 (= 10 - 1) covers 8..10.
+  const Scores previous{{10, 1.1}};
+  EXPECT_DOUBLE_EQ(alignedPreviousScore(previous, 10, 0, window(1)), 1.1);
+  // Backing up one entry (10 -> 9) is an offset of -1 from the diagonal's
+  // +1: window 1 around entry 8 covers 7..9, window 2 covers 6..10.
+  EXPECT_DOUBLE_EQ(alignedPreviousScore(previous, 9, 0, window(1)), 0.0);
+  EXPECT_DOUBLE_EQ(alignedPreviousScore(previous, 9, 0, window(2)), 1.1);
+  EXPECT_DOUBLE_EQ(alignedPreviousScore(previous, 8, 0, window(1)), 0.0);  // 6..8
+  EXPECT_DOUBLE_EQ(alignedPreviousScore(previous, 12, 0, window(1)), 1.1);  // 10..12
+  EXPECT_DOUBLE_EQ(alignedPreviousScore(previous, 13, 0, window(1)), 0.0);  // 11..13
+}
+
+TEST(AlignedPreviousScore, TheBestScoreOfTheWindowWins) {
+  const Scores previous{{7, 0.3}, {8, 0.8}, {9, 0.6}, {12, 2.0}};
+  // Entry 10, window 2: entries 7..11 -> 0.8 (12 is outside).
+  EXPECT_DOUBLE_EQ(alignedPreviousScore(previous, 10, 0, window(2)), 0.8);
+  // Window 3: 6..12 -> 2.0.
+  EXPECT_DOUBLE_EQ(alignedPreviousScore(previous, 10, 0, window(3)), 2.0);
+}
+
+TEST(AlignedPreviousScore, MissedQueriesMoveAndWidenTheWindow) {
+  // Two queries could not be scored since the previous scores: the place
+  // moved ~3 entries on. Centre 20 - 3 = 17, half-width 1 * 3: 14..20.
+  const Scores previous{{13, 5.0}, {14, 0.7}, {21, 9.0}};
+  EXPECT_DOUBLE_EQ(alignedPreviousScore(previous, 20, 2, window(1)), 0.7);
+  // Window 0 with misses: entry 20 - 3 = 17 only.
+  EXPECT_DOUBLE_EQ(alignedPreviousScore(previous, 20, 2, window(0)), 0.0);
+  EXPECT_DOUBLE_EQ(alignedPreviousScore(previous, 16, 2, window(0)), 5.0);  // 13
+  EXPECT_THROW(alignedPreviousScore(previous, 20, -1, window(1)), std::invalid_argument);
+}
+
+TEST(AlignedPreviousScore, TheWindowIsClippedAtEntryZero) {
+  const Scores previous{{0, 0.25}, {2, 0.5}};
+  // Entry 1, window 2: centre 0, -2..2 clipped to 0..2.
+  EXPECT_DOUBLE_EQ(alignedPreviousScore(previous, 1, 0, window(2)), 0.5);
+  // Entry 0, window 0: centre -1, nothing.
+  EXPECT_DOUBLE_EQ(alignedPreviousScore(previous, 0, 0, window(0)), 0.0);
+  // Entry 0, window 1: -2..0 -> entry 0.
+  EXPECT_DOUBLE_EQ(alignedPreviousScore(previous, 0, 0, window(1)), 0.25);
+}
+
+TEST(AlignedPreviousScoreInMetres, FindsThePredecessorByTheMetresDriven) {
+  // Entries every 0.1 m of the first pass: odometers 0.0, 0.1, ..., 2.0.
+  std::vector<double> odometers;
+  for (int i = 0; i <= 20; ++i) odometers.push_back(0.1 * i);
+  const Scores previous{{8, 0.4}, {10, 1.3}, {11, 0.9}, {14, 2.2}};
+  // The query drove 0.3 m since the previous scored query (a pass three
+  // times the first one's spacing): candidate 13 (1.3 m) had its place at
+  // 1.0 m, entry 10, then. Window 0.05 m: [0.95, 1.05] -> entry 10 only.
+  EXPECT_DOUBLE_EQ(alignedPreviousScoreInMetres(previous, odometers, 13, 0.3, 0.05), 1.3);
+  // Window 0.12 m: [0.88, 1.12] -> entries 9..11, best 1.3.
+  EXPECT_DOUBLE_EQ(alignedPreviousScoreInMetres(previous, odometers, 13, 0.3, 0.12), 1.3);
+  // Eq. 7's tj-1 (entry 12) was not scored: the keyframe reading finds nothing.
+  TemporalScoreOptions o;
+  EXPECT_DOUBLE_EQ(alignedPreviousScore(previous, 13, 0, o), 0.0);
+  // Stopped (driven 0): the same place, entry 14.
+  EXPECT_DOUBLE_EQ(alignedPreviousScoreInMetres(previous, odometers, 14, 0.0, 0.05), 2.2);
+  // Nothing scored near 0.3 m before entry 5 (0.2 m): 0.
+  EXPECT_DOUBLE_EQ(alignedPreviousScoreInMetres(previous, odometers, 5, 0.3, 0.05), 0.0);
+  EXPECT_THROW(alignedPreviousScoreInMetres(previous, odometers, 21, 0.3, 0.05),
+               std::invalid_argument);
+  EXPECT_THROW(alignedPreviousScoreInMetres(previous, odometers, 5, -0.1, 0.05),
+               std::invalid_argument);
+}
+
+TEST(AlignedPreviousScoreInMetres, EntriesWithoutOdometerNeverMatch) {
+  // Database::odometers() gives -inf before the first known odometer.
+  const double inf = std::numeric_limits<double>::infinity();
+  const std::vector<double> odometers{-inf, -inf, 0.0, 0.5, 1.0};
+  const Scores previous{{0, 9.0}, {1, 9.0}, {3, 0.7}};
+  EXPECT_DOUBLE_EQ(alignedPreviousScoreInMetres(previous, odometers, 4, 0.5, 0.1), 0.7);
+  EXPECT_DOUBLE_EQ(alignedPreviousScoreInMetres(previous, odometers, 4, 1.0, 0.1), 0.0);
+}
+
+}  // namespace
+}  // namespace bowg

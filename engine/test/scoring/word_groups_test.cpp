@@ -1,0 +1,286 @@
+// Word groups (paper Sec. III-A), the word-group table, eq. 1 and eq. 3, with
+// values worked out by hand in the comments.
+#include "bowg/scoring/word_groups.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <random>
+#include <stdexcept>
+
+namespace bowg {
+namespace {
+
+Keypoint kp(float x, float y, float size) {
+  Keypoint k;
+  k.x = x;
+  k.y = y;
+  k.size = size;
+  return k;
+}
+
+// Four keypoints:
+//   k0 (0, 0)     size 5   word 10
+//   k1 (3, 0)     size 2   word 20
+//   k2 (0, 4)     size 5   word 30
+//   k3 (100, 100) size 10  word 40
+// Distances: d01 = 3, d02 = 4, d12 = 5, everything to k3 > 100.
+std::vector<Keypoint> fourKeypoints() {
+  return {kp(0, 0, 5), kp(3, 0, 2), kp(0, 4, 5), kp(100, 100, 10)};
+}
+
+// O(n^2) reference of the word-group definition, to check the grid search.
+GroupVector bruteForceGroups(const std::vector<Keypoint>& kps, const std::vector<WordId>& words,
+                             double radius_scale) {
+  std::map<WordId, double> g;
+  for (std::size_t i = 0; i < kps.size(); ++i) {
+    const double r = radius_scale * kps[i].size;
+    int n = 0;
+    for (std::size_t j = 0; j < kps.size(); ++j) {
+      if (j == i) continue;
+      const double dx = static_cast<double>(kps[j].x) - kps[i].x;
+      const double dy = static_cast<double>(kps[j].y) - kps[i].y;
+      if (dx * dx + dy * dy < r * r) ++n;
+    }
+    if (n > 0) g[words[i]] += n;
+  }
+  return GroupVector(g.begin(), g.end());
+}
+
+TEST(WordGroups, FourKeypointsByHand) {
+  // k0 (r = 5): k1 (3 < 5) and k2 (4 < 5) -> group 10 has weight 2.
+  // k1 (r = 2): k0 at 3 and k2 at 5 are both >= 2 -> no group 20, although
+  //             k1 is in k0's group (the radius is the centre's size).
+  // k2 (r = 5): k0 (4 < 5); k1 at exactly 5 is not strictly closer -> 1.
+  // k3: isolated -> dropped.
+  const GroupVector g = buildWordGroups(fourKeypoints(), {10, 20, 30, 40}, WordGroupOptions());
+  const GroupVector expected{{10, 2.0}, {30, 1.0}};
+  EXPECT_EQ(g, expected);
+}
+
+TEST(WordGroups, MembershipIsAsymmetricWhenSizesDiffer) {
+  // Two points 3 px apart: the large one (r = 5) holds the small one (r = 2)
+  // in its group, not vice versa.
+  const GroupVector g = buildWordGroups({kp(0, 0, 5), kp(3, 0, 2)}, {1, 2}, WordGroupOptions());
+  const GroupVector expected{{1, 1.0}};
+  EXPECT_EQ(g, expected);
+}
+
+TEST(WordGroups, SameWordTwiceAddsUp) {
+  // k0 and k2 share word 7: weights 2 (k0) + 1 (k2) = 3 in the one group 7.
+  const GroupVector g = buildWordGroups(fourKeypoints(), {7, 20, 7, 40}, WordGroupOptions());
+  const GroupVector expected{{7, 3.0}};
+  EXPECT_EQ(g, expected);
+}
+
+TEST(WordGroups, RadiusScaleMultipliesTheSize) {
+  // radius_scale 2: k0 r = 10 -> k1, k2 (2); k1 r = 4 -> k0 at 3 (1), k2 at 5
+  // no; k2 r = 10 -> k0, k1 at 5 (2); k3 r = 20 still isolated.
+  WordGroupOptions o;
+  o.radius_scale = 2.0;
+  const GroupVector g = buildWordGroups(fourKeypoints(), {10, 20, 30, 40}, o);
+  const GroupVector expected{{10, 2.0}, {20, 1.0}, {30, 2.0}};
+  EXPECT_EQ(g, expected);
+}
+
+TEST(WordGroups, OutputSortedById) {
+  // Same geometry as FourKeypointsByHand with decreasing word ids.
+  const GroupVector g = buildWordGroups(fourKeypoints(), {90, 80, 70, 60}, WordGroupOptions());
+  const GroupVector expected{{70, 1.0}, {90, 2.0}};
+  EXPECT_EQ(g, expected);
+}
+
+TEST(WordGroups, IsolatedAndDegenerateInputsGiveNoGroups) {
+  EXPECT_TRUE(buildWordGroups({}, {}, WordGroupOptions()).empty());
+  EXPECT_TRUE(buildWordGroups({kp(1, 1, 10)}, {3}, WordGroupOptions()).empty());
+  // Size 0: nothing is strictly closer than 0, even a point at the same spot.
+  EXPECT_TRUE(buildWordGroups({kp(1, 1, 0), kp(1, 1, 0)}, {3, 4}, WordGroupOptions()).empty());
+}
+
+TEST(WordGroups, CoincidentPointsAreNeighbours) {
+  // Distance 0 < 1 both ways.
+  const GroupVector g = buildWordGroups({kp(5, 5, 1), kp(5, 5, 1)}, {3, 4}, WordGroupOptions());
+  const GroupVector expected{{3, 1.0}, {4, 1.0}};
+  EXPECT_EQ(g, expected);
+}
+
+TEST(WordGroups, MismatchedSizesThrow) {
+  EXPECT_THROW(buildWordGroups(fourKeypoints(), {1, 2, 3}, WordGroupOptions()),
+               std::invalid_argument);
+}
+
+TEST(WordGroups, BadKeypointsThrow) {
+  const WordGroupOptions o;
+  EXPECT_THROW(buildWordGroups({kp(0, 0, -1), kp(1, 0, 2)}, {1, 2}, o), std::invalid_argument);
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  EXPECT_THROW(buildWordGroups({kp(nan, 0, 1), kp(1, 0, 2)}, {1, 2}, o), std::invalid_argument);
+  EXPECT_THROW(buildWordGroups({kp(0, 0, nan), kp(1, 0, 2)}, {1, 2}, o), std::invalid_argument);
+  WordGroupOptions bad;
+  bad.radius_scale = 0.0;
+  EXPECT_THROW(buildWordGroups(fourKeypoints(), {1, 2, 3, 4}, bad), std::invalid_argument);
+}
+
+TEST(WordGroups, GridSearchMatchesAllPairs) {
+  // 600 keypoints of mixed sizes in a 640x480 image, a few words repeated.
+  std::mt19937 rng(42);
+  std::uniform_real_distribution<float> ux(0.f, 640.f), uy(0.f, 480.f), us(1.f, 45.f);
+  std::uniform_int_distribution<WordId> uw(0, 150);
+  std::vector<Keypoint> kps;
+  std::vector<WordId> words;
+  for (int i = 0; i < 600; ++i) {
+    kps.push_back(kp(ux(rng), uy(rng), us(rng)));
+    words.push_back(uw(rng));
+  }
+  for (const double scale : {0.5, 1.0, 1.7}) {
+    WordGroupOptions o;
+    o.radius_scale = scale;
+    const GroupVector g = buildWordGroups(kps, words, o);
+    EXPECT_FALSE(g.empty());
+    EXPECT_EQ(g, bruteForceGroups(kps, words, scale)) << "radius_scale " << scale;
+  }
+}
+
+TEST(WordGroups, GridSearchMatchesAllPairsOnClustersWithMixedScales) {
+  // Multi-scale sizes (ORB-like 31 * 1.2^level, plus tiny GFTT-like ones)
+  // around a few tight clusters far apart, so the grid is mostly empty.
+  std::mt19937 rng(3);
+  std::normal_distribution<float> jitter(0.f, 6.f);
+  std::uniform_int_distribution<int> level(0, 7), cluster(0, 4), tiny(0, 3);
+  const float centres[5][2] = {{10, 10}, {600, 20}, {320, 240}, {30, 470}, {5000, 4000}};
+  std::vector<Keypoint> kps;
+  std::vector<WordId> words;
+  for (int i = 0; i < 400; ++i) {
+    const int c = cluster(rng);
+    const float size = tiny(rng) == 0 ? 3.f : 31.f * std::pow(1.2f, level(rng));
+    kps.push_back(kp(centres[c][0] + jitter(rng), centres[c][1] + jitter(rng), size));
+    words.push_back(static_cast<WordId>(i % 97));
+  }
+  const GroupVector g = buildWordGroups(kps, words, WordGroupOptions());
+  EXPECT_FALSE(g.empty());
+  EXPECT_EQ(g, bruteForceGroups(kps, words, 1.0));
+}
+
+TEST(WordGroups, TinyRadiiOverAHugeExtentStayCorrect) {
+  // Cell size would be 0.01 over an extent of 1e9: the grid must widen its
+  // cells instead of overflowing the cell coordinates.
+  const std::vector<Keypoint> kps{kp(0, 0, 0.01f), kp(0.005f, 0, 0.01f), kp(1e9f, 1e9f, 0.01f),
+                                  kp(1e9f, 1e9f, 0.01f)};
+  const std::vector<WordId> words{1, 2, 3, 4};
+  const GroupVector g = buildWordGroups(kps, words, WordGroupOptions());
+  const GroupVector expected{{1, 1.0}, {2, 1.0}, {3, 1.0}, {4, 1.0}};
+  EXPECT_EQ(g, expected);
+}
+
+// Table after adding image A = {1: 2, 2: 1} and image B = {1: 1, 3: 3}:
+// cumulative 1 -> 3, 2 -> 1, 3 -> 3; total = 3 + 4 = 7.
+WordGroupTable twoImageTable() {
+  WordGroupTable t;
+  t.add({{1, 2.0}, {2, 1.0}});
+  t.add({{1, 1.0}, {3, 3.0}});
+  return t;
+}
+
+TEST(WordGroupTable, AccumulatesPerGroupAndInTotal) {
+  const WordGroupTable t = twoImageTable();
+  EXPECT_EQ(t.size(), 3u);
+  EXPECT_DOUBLE_EQ(t.cumulative(1), 3.0);
+  EXPECT_DOUBLE_EQ(t.cumulative(2), 1.0);
+  EXPECT_DOUBLE_EQ(t.cumulative(3), 3.0);
+  EXPECT_DOUBLE_EQ(t.cumulative(99), 0.0);
+  EXPECT_DOUBLE_EQ(t.total(), 7.0);
+}
+
+TEST(WordGroupTable, IdfIsLogOfTotalOverCumulative) {
+  const WordGroupTable t = twoImageTable();
+  EXPECT_NEAR(t.idf(1), std::log(7.0 / 3.0), 1e-12);  // 0.847298
+  EXPECT_NEAR(t.idf(2), std::log(7.0), 1e-12);        // 1.945910
+  EXPECT_DOUBLE_EQ(t.idf(99), 0.0);                   // never seen
+}
+
+TEST(WordGroupTable, ClearForgetsEverything) {
+  WordGroupTable t = twoImageTable();
+  t.clear();
+  EXPECT_EQ(t.size(), 0u);
+  EXPECT_DOUBLE_EQ(t.total(), 0.0);
+  EXPECT_DOUBLE_EQ(t.cumulative(1), 0.0);
+  EXPECT_DOUBLE_EQ(t.idf(1), 0.0);
+}
+
+TEST(WordGroupTable, RejectsNonPositiveWeights) {
+  WordGroupTable t;
+  EXPECT_THROW(t.add({{1, 0.0}}), std::invalid_argument);
+  EXPECT_THROW(t.add({{1, -2.0}}), std::invalid_argument);
+  EXPECT_THROW(t.add({{1, std::numeric_limits<double>::quiet_NaN()}}), std::invalid_argument);
+  EXPECT_EQ(t.size(), 0u);  // nothing half-added
+}
+
+TEST(Eq1, TermFrequenciesSumToOne) {
+  // {1: 2, 3: 3}: sum 5 -> 0.4, 0.6.
+  const GroupVector tf = groupTermFrequencies({{1, 2.0}, {3, 3.0}});
+  ASSERT_EQ(tf.size(), 2u);
+  EXPECT_EQ(tf[0].first, 1u);
+  EXPECT_DOUBLE_EQ(tf[0].second, 0.4);
+  EXPECT_EQ(tf[1].first, 3u);
+  EXPECT_DOUBLE_EQ(tf[1].second, 0.6);
+  EXPECT_TRUE(groupTermFrequencies({}).empty());
+}
+
+TEST(Eq1, RefinedWeightIsTfTimesIdf) {
+  // Query {1: 2, 3: 3} against the two-image table:
+  //   w~1 = 2/5 * log(7/3) = 0.4 * 0.8472979 = 0.3389191
+  //   w~3 = 3/5 * log(7/3) = 0.6 * 0.8472979 = 0.5083787
+  const GroupVector r = refineGroupWeights({{1, 2.0}, {3, 3.0}}, twoImageTable());
+  ASSERT_EQ(r.size(), 2u);
+  EXPECT_EQ(r[0].first, 1u);
+  EXPECT_NEAR(r[0].second, 0.3389191, 1e-6);
+  EXPECT_EQ(r[1].first, 3u);
+  EXPECT_NEAR(r[1].second, 0.5083787, 1e-6);
+}
+
+TEST(Eq1, GroupsWithZeroIdfAreDropped) {
+  // Table {5: 2} only: idf(5) = log(2/2) = 0; group 6 unknown: idf 0. The
+  // refined vector must hold no zero weights.
+  WordGroupTable t;
+  t.add({{5, 2.0}});
+  EXPECT_TRUE(refineGroupWeights({{5, 2.0}, {6, 1.0}}, t).empty());
+}
+
+TEST(Eq3, ScoreFromDot) {
+  EXPECT_DOUBLE_EQ(groupScoreFromDot(0.0), 0.0);   // 1 - sqrt(1)
+  EXPECT_DOUBLE_EQ(groupScoreFromDot(0.75), 0.5);  // 1 - sqrt(0.25)
+  EXPECT_DOUBLE_EQ(groupScoreFromDot(1.0), 1.0);   // 1 - sqrt(0)
+  EXPECT_DOUBLE_EQ(groupScoreFromDot(1.5), 1.0);   // dot > 1: clamp branch
+  EXPECT_DOUBLE_EQ(groupScoreFromDot(40.0), 1.0);
+  EXPECT_THROW(groupScoreFromDot(std::numeric_limits<double>::quiet_NaN()), std::invalid_argument);
+}
+
+TEST(Eq3, ScoreOfTwoVectors) {
+  // Shared group 2 only: dot = 0.5 * 0.5 = 0.25 -> 1 - sqrt(0.75) = 0.1339746.
+  const GroupVector a{{1, 0.5}, {2, 0.5}}, b{{2, 0.5}, {3, 1.0}};
+  EXPECT_NEAR(groupScore(a, b), 1.0 - std::sqrt(0.75), 1e-12);
+  EXPECT_NEAR(groupScore(b, a), 1.0 - std::sqrt(0.75), 1e-12);
+  // dot = 2.0 * 0.6 = 1.2 > 1 -> 1.
+  EXPECT_DOUBLE_EQ(groupScore({{1, 2.0}}, {{1, 0.6}}), 1.0);
+  // Nothing shared.
+  EXPECT_DOUBLE_EQ(groupScore({{1, 0.5}}, {{2, 0.5}}), 0.0);
+  EXPECT_DOUBLE_EQ(groupScore({}, {}), 0.0);
+}
+
+TEST(Eq3, EndToEndOnTwoImages) {
+  // Image A raw {1: 2, 2: 1}, image B raw {1: 1, 3: 3}; table holds both
+  // (total 7; cumulative 1: 3, 2: 1, 3: 3).
+  //   A: w~1 = 2/3 log(7/3) = 0.5648653, w~2 = 1/3 log 7 = 0.6486367
+  //   B: w~1 = 1/4 log(7/3) = 0.2118245, w~3 = 3/4 log(7/3) = 0.6354734
+  //   dot = 0.5648653 * 0.2118245 = 0.1196523
+  //   s_g = 1 - sqrt(1 - 0.1196523) = 0.0617315
+  const WordGroupTable t = twoImageTable();
+  const GroupVector a = refineGroupWeights({{1, 2.0}, {2, 1.0}}, t);
+  const GroupVector b = refineGroupWeights({{1, 1.0}, {3, 3.0}}, t);
+  EXPECT_NEAR(groupScore(a, b), 0.0617315, 1e-6);
+}
+
+}  // namespace
+}  // namespace bowg
