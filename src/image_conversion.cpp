@@ -1,6 +1,7 @@
 // Incoming image -> 8-bit grey (see image_conversion.h).
 #include "bowg_ros/image_conversion.h"
 
+#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 namespace bowg_ros {
@@ -20,6 +21,8 @@ const EncodingInfo kEncodings[] = {
     {"rgb8", CV_8UC3, cv::COLOR_RGB2GRAY, 3},
     {"bgra8", CV_8UC4, cv::COLOR_BGRA2GRAY, 4},
     {"rgba8", CV_8UC4, cv::COLOR_RGBA2GRAY, 4},
+    {"8UC1", CV_8UC1, -1, 1},
+    {"16UC1", CV_16UC1, -1, 2},
 };
 
 const EncodingInfo* find(const std::string& encoding) {
@@ -56,12 +59,12 @@ std::string imageLayoutProblem(std::uint32_t width, std::uint32_t height, std::u
 cv::Mat toMono8(const cv::Mat& image, const std::string& encoding) {
   const EncodingInfo* e = find(encoding);
   if (!e) {
-    throw UnsupportedEncoding("unsupported image encoding '" + encoding +
-                              "' (supported: mono8, mono16, bgr8, rgb8, bgra8, rgba8)");
+    throw BadImage("unsupported image encoding '" + encoding +
+                              "' (supported: mono8, mono16, bgr8, rgb8, bgra8, rgba8, 8UC1, 16UC1)");
   }
-  if (image.empty()) throw UnsupportedEncoding("empty image with encoding '" + encoding + "'");
+  if (image.empty()) throw BadImage("empty image with encoding '" + encoding + "'");
   if (image.type() != e->type) {
-    throw UnsupportedEncoding("image data does not match its encoding '" + encoding + "'");
+    throw BadImage("image data does not match its encoding '" + encoding + "'");
   }
   if (e->type == CV_8UC1) return image;  // zero copy
   cv::Mat grey;
@@ -69,6 +72,31 @@ cv::Mat toMono8(const cv::Mat& image, const std::string& encoding) {
     image.convertTo(grey, CV_8U, 1.0 / 256.0);
   } else {
     cv::cvtColor(image, grey, e->code);
+  }
+  return grey;
+}
+
+cv::Mat greyFromImage(const sensor_msgs::Image& msg) {
+  const std::string problem =
+      imageLayoutProblem(msg.width, msg.height, msg.step, msg.data.size(), msg.encoding);
+  if (!problem.empty()) throw BadImage("image message: " + problem);
+  const EncodingInfo* e = find(msg.encoding);
+  // Wraps the message's buffer (checked above to hold height x step bytes).
+  const cv::Mat view(static_cast<int>(msg.height), static_cast<int>(msg.width), e->type,
+                     const_cast<std::uint8_t*>(msg.data.data()), msg.step);
+  return toMono8(view, msg.encoding);
+}
+
+cv::Mat greyFromCompressed(const sensor_msgs::CompressedImage& msg) {
+  cv::Mat grey;
+  if (!msg.data.empty()) {
+    const cv::Mat data(1, static_cast<int>(msg.data.size()), CV_8UC1,
+                       const_cast<std::uint8_t*>(msg.data.data()));
+    grey = cv::imdecode(data, cv::IMREAD_GRAYSCALE);
+  }
+  if (grey.empty()) {
+    throw BadImage("cannot decode the compressed image (" + std::to_string(msg.data.size()) +
+                   " bytes, format '" + msg.format + "')");
   }
   return grey;
 }

@@ -1,7 +1,11 @@
-// toMono8: every supported encoding, zero copy for mono8, clear errors.
+// toMono8 and the message conversions: every supported encoding, zero copy
+// for mono8, compressed images, clear errors.
 #include "bowg_ros/image_conversion.h"
 
 #include <gtest/gtest.h>
+
+#include <opencv2/imgcodecs.hpp>
+#include <vector>
 
 namespace bowg_ros {
 namespace {
@@ -45,13 +49,13 @@ TEST(ImageConversion, ColourOrderIsRespected) {
   EXPECT_EQ(toMono8(bgra, "rgba8").at<std::uint8_t>(0, 0), 29);
 }
 
-TEST(ImageConversion, UnsupportedEncodingsNameTheEncoding) {
+TEST(ImageConversion, BadImagesNameTheEncoding) {
   for (const char* e : {"bayer_rggb8", "32FC1", "yuv422", "16UC3", ""}) {
     EXPECT_FALSE(isSupportedEncoding(e)) << e;
     try {
       toMono8(cv::Mat(2, 2, CV_8UC1), e);
       ADD_FAILURE() << e << " accepted";
-    } catch (const UnsupportedEncoding& x) {
+    } catch (const BadImage& x) {
       EXPECT_NE(std::string(x.what()).find(std::string("'") + e + "'"), std::string::npos)
           << x.what();
     }
@@ -62,9 +66,9 @@ TEST(ImageConversion, UnsupportedEncodingsNameTheEncoding) {
 }
 
 TEST(ImageConversion, DataThatDoesNotMatchItsEncodingIsRejected) {
-  EXPECT_THROW(toMono8(cv::Mat(2, 2, CV_8UC3), "mono8"), UnsupportedEncoding);
-  EXPECT_THROW(toMono8(cv::Mat(2, 2, CV_8UC1), "bgr8"), UnsupportedEncoding);
-  EXPECT_THROW(toMono8(cv::Mat(), "mono8"), UnsupportedEncoding);
+  EXPECT_THROW(toMono8(cv::Mat(2, 2, CV_8UC3), "mono8"), BadImage);
+  EXPECT_THROW(toMono8(cv::Mat(2, 2, CV_8UC1), "bgr8"), BadImage);
+  EXPECT_THROW(toMono8(cv::Mat(), "mono8"), BadImage);
 }
 
 // Hand-worked layouts: 4 x 3 bgr8 needs rows of 12 bytes and 3 rows.
@@ -82,6 +86,78 @@ TEST(ImageConversion, LayoutsThatCannotBeReadSafelyAreNamed) {
   EXPECT_EQ(imageLayoutProblem(5, 2, 9, 18, "mono16"),
             "step 9 is shorter than a row of 5 mono16 pixels (10 bytes)");
   EXPECT_NE(imageLayoutProblem(0xffffffffu, 0xffffffffu, 0xffffffffu, 100, "rgba8"), "");
+}
+
+// An Image message of `rows` x `cols` pixels with `step` bytes per row.
+sensor_msgs::Image message(const std::string& encoding, std::uint32_t rows, std::uint32_t cols,
+                           std::uint32_t step, const std::vector<std::uint8_t>& data) {
+  sensor_msgs::Image msg;
+  msg.encoding = encoding;
+  msg.height = rows;
+  msg.width = cols;
+  msg.step = step;
+  msg.data = data;
+  return msg;
+}
+
+TEST(ImageMessages, Mono8MessageIsWrappedNotCopiedAndHonoursItsStep) {
+  // 2 x 2 pixels in rows of 3 bytes (one byte of padding per row).
+  const sensor_msgs::Image msg = message("mono8", 2, 2, 3, {1, 2, 99, 3, 4, 99});
+  const cv::Mat g = greyFromImage(msg);
+  EXPECT_EQ(g.data, msg.data.data());
+  ASSERT_EQ(g.size(), cv::Size(2, 2));
+  EXPECT_EQ(g.at<std::uint8_t>(1, 0), 3);  // the padding byte is skipped
+  EXPECT_EQ(g.at<std::uint8_t>(1, 1), 4);
+}
+
+TEST(ImageMessages, ColourAnd16BitMessagesAreConverted) {
+  // One pure red pixel in BGR order: 0.299 * 255 = 76.2 -> 76.
+  EXPECT_EQ(greyFromImage(message("bgr8", 1, 1, 3, {0, 0, 255})).at<std::uint8_t>(0, 0), 76);
+  // 16UC1 reads as mono16: 0x1234 (little endian bytes 34 12) keeps the high
+  // byte 0x12 = 18 (0x1234 / 256 = 18.2).
+  EXPECT_EQ(greyFromImage(message("16UC1", 1, 1, 2, {0x34, 0x12})).at<std::uint8_t>(0, 0), 18);
+  EXPECT_EQ(greyFromImage(message("8UC1", 1, 1, 1, {200})).at<std::uint8_t>(0, 0), 200);
+}
+
+TEST(ImageMessages, MalformedMessagesAreRefusedBeforeTheBufferIsRead) {
+  try {
+    greyFromImage(message("mono8", 2, 2, 2, {1, 2, 3}));  // 3 bytes, 2 x 2 needed
+    ADD_FAILURE() << "short data accepted";
+  } catch (const BadImage& e) {
+    EXPECT_NE(std::string(e.what()).find("height x step needs 4"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(greyFromImage(message("yuv422", 1, 1, 2, {1, 2})), BadImage);
+  EXPECT_THROW(greyFromImage(message("mono8", 0, 0, 0, {})), BadImage);
+}
+
+TEST(ImageMessages, CompressedImagesDecodeToTheirGreyPixels) {
+  // PNG is lossless: the decoded grey image is the encoded one exactly.
+  cv::Mat grey(3, 4, CV_8UC1);
+  for (int i = 0; i < 12; ++i) grey.data[i] = static_cast<std::uint8_t>(20 * i);
+  sensor_msgs::CompressedImage msg;
+  msg.format = "mono8; png compressed";
+  ASSERT_TRUE(cv::imencode(".png", grey, msg.data));
+  const cv::Mat g = greyFromCompressed(msg);
+  ASSERT_EQ(g.type(), CV_8UC1);
+  EXPECT_EQ(cv::countNonZero(g != grey), 0);
+  // A colour PNG is read as grey with the luma weights: red -> 76.
+  const cv::Mat red(1, 1, CV_8UC3, cv::Scalar(0, 0, 255));
+  ASSERT_TRUE(cv::imencode(".png", red, msg.data));
+  EXPECT_EQ(greyFromCompressed(msg).at<std::uint8_t>(0, 0), 76);
+}
+
+TEST(ImageMessages, UndecodableCompressedDataNamesItsFormat) {
+  sensor_msgs::CompressedImage msg;
+  msg.format = "jpeg";
+  msg.data = {0xFF, 0xD8, 0x00, 0x01};  // a JPEG marker, then nothing usable
+  try {
+    greyFromCompressed(msg);
+    ADD_FAILURE() << "garbage decoded";
+  } catch (const BadImage& e) {
+    EXPECT_NE(std::string(e.what()).find("format 'jpeg'"), std::string::npos) << e.what();
+  }
+  msg.data.clear();
+  EXPECT_THROW(greyFromCompressed(msg), BadImage);
 }
 
 }  // namespace

@@ -328,7 +328,7 @@ TEST(LoopDetectorNodelet, MalformedImagesAreReportedAndTheNodeletKeepsRunning) {
   EXPECT_TRUE(d.waitForStatuses(1, 20.0)) << "the nodelet stopped after a malformed image";
 }
 
-TEST(LoopDetectorNodelet, UnsupportedEncodingIsReportedAndTheNodeletKeepsRunning) {
+TEST(LoopDetectorNodelet, BadImageIsReportedAndTheNodeletKeepsRunning) {
   ErrorLog log;
   Detector d("/encoding", {});
   ASSERT_TRUE(d.loaded());

@@ -1,5 +1,6 @@
 // Feature extraction cost per 640x480 frame (paper Sec. III-A; the paper's
-// whole pipeline budget is 8-19 ms per image on an i9, method-notes).
+// per-image times, Sec. IV "Execution Time": 16 ms on average over 17,565
+// images on an i9).
 // The image is synthetic texture drawn once; each run reports the features
 // found as the counter "features".
 #include <benchmark/benchmark.h>

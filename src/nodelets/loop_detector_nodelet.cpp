@@ -55,6 +55,7 @@
 #include "bowg_ros/debug_image.h"
 #include "bowg_ros/image_conversion.h"
 #include "bowg_ros/keyframe_gate.h"
+#include "bowg_ros/live_parameters.h"
 #include "bowg_ros/ros_conversions.h"
 
 namespace bowg_ros {
@@ -90,7 +91,7 @@ double lastOdometer(const bowg::LoopDetector& detector) {
 /// One frame waiting for the worker: exactly one of the three inputs is set.
 struct Frame {
   std_msgs::Header header;
-  cv_bridge::CvImageConstPtr image;                 // raw image, shared (no copy)
+  sensor_msgs::ImageConstPtr image;                 // raw image, shared (no copy)
   sensor_msgs::CompressedImageConstPtr compressed;  // decoded by the worker
   KeyframeFeatures::ConstPtr features;              // upstream features
   /// Metres driven when the frame passed the gate (NaN without odometry).
@@ -410,21 +411,14 @@ void LoopDetectorNodelet::imageCallback(const sensor_msgs::ImageConstPtr& msg) {
     }
     NODELET_ERROR_THROTTLE(5.0,
                            "unsupported image encoding '%s' (supported: mono8, mono16, "
-                           "bgr8, rgb8, bgra8, rgba8): frame dropped",
+                           "bgr8, rgb8, bgra8, rgba8, 8UC1, 16UC1): frame dropped",
                            msg->encoding.c_str());
     return;
   }
-  Frame frame;
-  frame.header = msg->header;
-  std::string problem =
+  // The layout is checked here, where the drop is counted; the worker
+  // converts the message (greyFromImage), sharing its buffer for mono8.
+  const std::string problem =
       imageLayoutProblem(msg->width, msg->height, msg->step, msg->data.size(), msg->encoding);
-  if (problem.empty()) {
-    try {
-      frame.image = cv_bridge::toCvShare(msg);  // shares the message's buffer
-    } catch (const cv_bridge::Exception& e) {
-      problem = e.what();
-    }
-  }
   if (!problem.empty()) {
     // Counted in the diagnostics whatever the throttled log shows.
     {
@@ -435,6 +429,9 @@ void LoopDetectorNodelet::imageCallback(const sensor_msgs::ImageConstPtr& msg) {
                            msg->header.stamp.toSec(), msg->encoding.c_str(), problem.c_str());
     return;
   }
+  Frame frame;
+  frame.header = msg->header;
+  frame.image = msg;
   offer(std::move(frame));
 }
 
@@ -486,16 +483,9 @@ void LoopDetectorNodelet::processFrame(const Frame& frame) {
   auto t0 = Clock::now();
   cv::Mat grey;
   if (frame.image) {
-    grey = toMono8(frame.image->image, frame.image->encoding);
+    grey = greyFromImage(*frame.image);
   } else if (frame.compressed) {
-    const std::vector<std::uint8_t>& data = frame.compressed->data;
-    grey = cv::imdecode(
-        cv::Mat(1, static_cast<int>(data.size()), CV_8UC1, const_cast<std::uint8_t*>(data.data())),
-        cv::IMREAD_GRAYSCALE);
-    if (grey.empty()) {
-      throw std::invalid_argument("cannot decode compressed image (format '" +
-                                  frame.compressed->format + "')");
-    }
+    grey = greyFromCompressed(*frame.compressed);
   }
   const double convert_ms = msSince(t0);
 
@@ -580,47 +570,23 @@ void LoopDetectorNodelet::processFrame(const Frame& frame) {
 void LoopDetectorNodelet::reconfigure(BoWGConfig& config, uint32_t /*level*/) {
   if (!detector_) return;
   std::lock_guard<std::mutex> lock(detector_mutex_);
+  // Every cfg parameter by name through the parameter table (live_parameters.h).
+  dynamic_reconfigure::Config values;
+  config.__toMessage__(values);
   bowg::PipelineOptions next = options_;
-  bowg::LoopDetectorOptions& d = next.detector;
-  d.similarity.lambda_1 = config.lambda_1;
-  d.similarity.lambda_2 = config.lambda_2;
-  d.temporal_score.w_max = config.w_max;
-  d.temporal_score.alpha = config.alpha;
-  d.distribution.fan_bins = config.fan_bins;
-  d.islands.min_score = config.min_score;
-  d.temporal_verification.k = config.temporal_k;
-  d.geometric.min_inliers = config.min_inliers;
-  d.geometric.direct_index_level = config.direct_index_level;
-  d.word_groups.enabled = config.word_groups;
-  d.distribution.enabled = config.distribution;
-  d.temporal_score.enabled = config.temporal_score;
-  d.geometric.enabled = config.geometric_verification;
-  d.geometric.exhaustive = config.exhaustive_matching;
-  for (const std::string& c : bowg::correctLiveParameters(vocabulary_->depth(), &next)) {
-    NODELET_WARN("dynamic_reconfigure: %s", c.c_str());
-  }
   try {
+    applyLiveConfig(values, &next);
+    for (const std::string& c : bowg::correctLiveParameters(vocabulary_->depth(), &next)) {
+      NODELET_WARN("dynamic_reconfigure: %s", c.c_str());
+    }
     detector_->setOptions(next.detector);  // validates; applies from the next keyframe
     options_ = next;
   } catch (const std::exception& e) {
     NODELET_WARN("dynamic_reconfigure: rejected (%s); keeping the previous values", e.what());
   }
   // Send the values in force back to the client (corrected or kept).
-  const bowg::LoopDetectorOptions& o = options_.detector;
-  config.lambda_1 = o.similarity.lambda_1;
-  config.lambda_2 = o.similarity.lambda_2;
-  config.w_max = o.temporal_score.w_max;
-  config.alpha = o.temporal_score.alpha;
-  config.fan_bins = o.distribution.fan_bins;
-  config.min_score = o.islands.min_score;
-  config.temporal_k = o.temporal_verification.k;
-  config.min_inliers = o.geometric.min_inliers;
-  config.direct_index_level = o.geometric.direct_index_level;
-  config.word_groups = o.word_groups.enabled;
-  config.distribution = o.distribution.enabled;
-  config.temporal_score = o.temporal_score.enabled;
-  config.geometric_verification = o.geometric.enabled;
-  config.exhaustive_matching = o.geometric.exhaustive;
+  writeLiveConfig(options_, &values);
+  config.__fromMessage__(values);
 }
 
 bool LoopDetectorNodelet::saveDatabase(SaveDatabase::Request& req, SaveDatabase::Response& res) {

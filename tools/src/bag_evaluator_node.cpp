@@ -16,8 +16,6 @@
 #include <ros/ros.h>
 #include <rosbag/bag.h>
 #include <rosbag/view.h>
-#include <sensor_msgs/CompressedImage.h>
-#include <sensor_msgs/Image.h>
 #include <std_msgs/Empty.h>
 #include <sys/stat.h>
 
@@ -34,6 +32,7 @@
 #include "bowg_evaluation/online_run.h"
 #include "bowg_evaluation/stamp_index.h"
 #include "bowg_ros/KeyframeStatus.h"
+#include "bowg_ros/bag_images.h"
 #include "bowg_ros/LoopClosure.h"
 
 namespace {
@@ -51,16 +50,7 @@ std::vector<std::int64_t> imageStamps(const std::string& path, const std::string
   rosbag::View view(bag, rosbag::TopicQuery(topic));
   std::vector<std::int64_t> stamps;
   for (const rosbag::MessageInstance& m : view) {
-    ros::Time stamp;
-    if (const sensor_msgs::Image::ConstPtr img = m.instantiate<sensor_msgs::Image>()) {
-      stamp = img->header.stamp;
-    } else if (const sensor_msgs::CompressedImage::ConstPtr c =
-                   m.instantiate<sensor_msgs::CompressedImage>()) {
-      stamp = c->header.stamp;
-    } else {
-      throw bowg::FormatError(topic + " in " + path + " is " + m.getDataType() +
-                              ", not sensor_msgs/Image or CompressedImage");
-    }
+    const ros::Time stamp = bowg_ros::bagImageStamp(m, path);
     stamps.push_back(static_cast<std::int64_t>(stamp.toNSec()));
   }
   if (stamps.empty()) throw bowg::FormatError("the bag " + path + " has no message on " + topic);

@@ -25,8 +25,6 @@
 #include <rosbag/bag.h>
 #include <rosbag/view.h>
 #include <sensor_msgs/CameraInfo.h>
-#include <sensor_msgs/Image.h>
-#include <sensor_msgs/image_encodings.h>
 
 #include "bowg/core/atomic_file.h"
 #include "bowg/core/errors.h"
@@ -40,6 +38,8 @@
 #include "bowg_evaluation/odometry_file.h"
 #include "bowg_evaluation/parallel_runs.h"
 #include "bowg_evaluation/pr_report.h"
+#include "bowg_ros/bag_images.h"
+#include "bowg_ros/ros_conversions.h"
 
 namespace {
 
@@ -50,7 +50,8 @@ const char* kUsage =
     "usage: bowg_evaluate (--bag FILE | --images DIR) --vocabulary FILE [options]\n"
     "Input:\n"
     "  --bag FILE                 rosbag with the images\n"
-    "  --image-topic T            sensor_msgs/Image topic [/camera/image_raw]\n"
+    "  --image-topic T            sensor_msgs/Image or CompressedImage topic\n"
+    "                             [/camera/image_raw]\n"
     "  --camera-info-topic T      sensor_msgs/CameraInfo topic, 'none' to ignore [/camera/camera_info]\n"
     "  --images DIR               image folder (png/jpg/jpeg/pgm/bmp, sorted by file name)\n"
     "  --rate HZ                  stamps of folder images: frame n at n / HZ s [1]\n"
@@ -224,29 +225,6 @@ class ProgressBar {
   int last_ = -1;
 };
 
-cv::Mat toGrey(const sensor_msgs::Image& msg) {
-  namespace enc = sensor_msgs::image_encodings;
-  const std::string& e = msg.encoding;
-  int type = 0, code = -1;
-  if (e == enc::MONO8 || e == enc::TYPE_8UC1) type = CV_8UC1;
-  else if (e == enc::MONO16 || e == enc::TYPE_16UC1) type = CV_16UC1;
-  else if (e == enc::BGR8) { type = CV_8UC3; code = cv::COLOR_BGR2GRAY; }
-  else if (e == enc::RGB8) { type = CV_8UC3; code = cv::COLOR_RGB2GRAY; }
-  else if (e == enc::BGRA8) { type = CV_8UC4; code = cv::COLOR_BGRA2GRAY; }
-  else if (e == enc::RGBA8) { type = CV_8UC4; code = cv::COLOR_RGBA2GRAY; }
-  else throw FormatError("image encoding '" + e + "' is not supported (mono8/16, bgr8, rgb8, bgra8, rgba8)");
-  const std::size_t elem = CV_ELEM_SIZE(type);
-  if (msg.step < msg.width * elem || msg.data.size() < static_cast<std::size_t>(msg.step) * msg.height) {
-    throw FormatError("image message data is shorter than height * step");
-  }
-  const cv::Mat view(msg.height, msg.width, type, const_cast<uint8_t*>(msg.data.data()), msg.step);
-  cv::Mat grey;
-  if (type == CV_16UC1) view.convertTo(grey, CV_8U, 1.0 / 256);
-  else if (code >= 0) cv::cvtColor(view, grey, code);
-  else grey = view.clone();
-  return grey;
-}
-
 std::vector<std::string> listImages(const std::string& dir) {
   DIR* d = ::opendir(dir.c_str());
   if (!d) throw IoError("cannot open the image folder " + dir);
@@ -325,22 +303,13 @@ std::vector<FrameInput> loadFrames(const Args& a, const FeatureExtractor& extrac
   for (const rosbag::MessageInstance& m : view) {
     if (frames.size() >= total) break;
     if (m.getTopic() == a.info_topic) {
+      // The first valid camera_info, checked as the nodelet checks it.
       const sensor_msgs::CameraInfo::ConstPtr info = m.instantiate<sensor_msgs::CameraInfo>();
-      if (info && !intrinsics.valid && info->K[0] > 0) {
-        intrinsics.valid = true;
-        intrinsics.fx = info->K[0];
-        intrinsics.fy = info->K[4];
-        intrinsics.cx = info->K[2];
-        intrinsics.cy = info->K[5];
-      }
+      if (info && !intrinsics.valid) intrinsics = bowg_ros::toIntrinsics(*info);
       continue;
     }
-    const sensor_msgs::Image::ConstPtr img = m.instantiate<sensor_msgs::Image>();
-    if (!img) {
-      throw FormatError(a.image_topic + " in " + a.bag + " is not sensor_msgs/Image (" +
-                        m.getDataType() + ")");
-    }
-    add(toGrey(*img), img->header.stamp.toSec(), intrinsics);
+    const bowg_ros::BagImage image = bowg_ros::readBagImage(m, a.bag);
+    add(image.grey, image.stamp.toSec(), intrinsics);
     bar(frames.size(), total);
   }
   return frames;

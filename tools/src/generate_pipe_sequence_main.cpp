@@ -28,10 +28,13 @@
 
 #include <geometry_msgs/PoseStamped.h>
 #include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 #include <rosbag/bag.h>
 #include <sensor_msgs/CameraInfo.h>
+#include <sensor_msgs/CompressedImage.h>
 #include <sensor_msgs/Image.h>
 #include <sensor_msgs/image_encodings.h>
+#include <std_msgs/Header.h>
 
 #include "bowg/core/atomic_file.h"
 #include "bowg_evaluation/ground_truth.h"
@@ -52,6 +55,9 @@ const char* kUsage =
     "usage: bowg_generate_pipe_sequence (--bag FILE | --images DIR) [options]\n"
     "  --bag FILE             write a rosbag: /camera/image_raw (mono8), /camera/camera_info,\n"
     "                         /ground_truth/pose (geometry_msgs/PoseStamped, frame map)\n"
+    "  --bag-images FORMAT    the bag's images: mono8, bgr8 (the grey image in three\n"
+    "                         channels) or jpeg (sensor_msgs/CompressedImage on\n"
+    "                         /camera/image_raw/compressed, quality 95) [mono8]\n"
     "  --images DIR           write frame_000000.png ... (and poses.csv) into DIR\n"
     "  --gt FILE              ground-truth loops (default: <bag>_gt.txt or DIR/ground_truth.txt)\n"
     "  --route NAME           figure-eight, circuit, partial or no-revisit (docs/pipe_sequence.md)\n"
@@ -84,7 +90,7 @@ const char* kUsage =
     "                         compress) [none]\n";
 
 struct Args {
-  std::string bag, images, gt, compression = "none";
+  std::string bag, images, gt, compression = "none", bag_images = "mono8";
   std::string route = "figure-eight", route_nodes, texture_images;
   double texture_crop = 0.15;
   bool texture_crop_given = false, route_given = false;
@@ -93,6 +99,37 @@ struct Args {
   CameraModel camera;
   eval::GroundTruthOptions gt_options;
 };
+
+// One frame into the bag in the chosen format (--bag-images); every format
+// holds the same grey image (bgr8: three equal channels, which OpenCV's luma
+// weights turn back into the same grey; jpeg: lossy, decoded alike live and
+// offline).
+void writeBagImage(rosbag::Bag* bag, const std_msgs::Header& header, const cv::Mat& grey,
+                   const std::string& format) {
+  if (format == "jpeg") {
+    sensor_msgs::CompressedImage msg;
+    msg.header = header;
+    msg.format = "mono8; jpeg compressed mono8";
+    if (!cv::imencode(".jpg", grey, msg.data, {cv::IMWRITE_JPEG_QUALITY, 95})) {
+      throw std::runtime_error("cannot encode frame " + std::to_string(header.seq) + " as JPEG");
+    }
+    bag->write("/camera/image_raw/compressed", header.stamp, msg);
+    return;
+  }
+  cv::Mat pixels = grey;
+  if (format == "bgr8") cv::cvtColor(grey, pixels, cv::COLOR_GRAY2BGR);
+  sensor_msgs::Image msg;
+  msg.header = header;
+  msg.height = pixels.rows;
+  msg.width = pixels.cols;
+  msg.encoding = format == "bgr8" ? sensor_msgs::image_encodings::BGR8
+                                  : sensor_msgs::image_encodings::MONO8;
+  msg.is_bigendian = 0;
+  msg.step = static_cast<std::uint32_t>(pixels.cols * pixels.elemSize());
+  const cv::Mat packed = pixels.isContinuous() ? pixels : pixels.clone();
+  msg.data.assign(packed.data, packed.data + packed.total() * packed.elemSize());
+  bag->write("/camera/image_raw", header.stamp, msg);
+}
 
 double toNumber(const std::string& flag, const std::string& value) {
   char* end = nullptr;
@@ -142,6 +179,12 @@ Args parseArgs(int argc, char** argv) {
     else if (flag == "--images") a.images = v;
     else if (flag == "--gt") a.gt = v;
     else if (flag == "--compression") a.compression = v;
+    else if (flag == "--bag-images") {
+      if (v != "mono8" && v != "bgr8" && v != "jpeg") {
+        throw std::invalid_argument("--bag-images must be mono8, bgr8 or jpeg (got '" + v + "')");
+      }
+      a.bag_images = v;
+    }
     else if (flag == "--laps") a.sequence.laps = toInt(flag, v);
     else if (flag == "--frames") a.sequence.max_frames = toInt(flag, v);
     else if (flag == "--seed") {
@@ -297,16 +340,11 @@ int run(int argc, char** argv) {
     const cv::Vec4d q = rotationToQuaternion(f.pose.R_world_body);
     if (!args.bag.empty()) {
       const ros::Time stamp = stampOf(f.stamp);
-      sensor_msgs::Image msg;
-      msg.header.seq = f.index;
-      msg.header.stamp = stamp;
-      msg.header.frame_id = info.header.frame_id;
-      msg.height = image.rows;
-      msg.width = image.cols;
-      msg.encoding = sensor_msgs::image_encodings::MONO8;
-      msg.is_bigendian = 0;
-      msg.step = image.cols;
-      msg.data.assign(image.data, image.data + image.total());
+      std_msgs::Header header;
+      header.seq = f.index;
+      header.stamp = stamp;
+      header.frame_id = info.header.frame_id;
+      writeBagImage(&bag, header, image, args.bag_images);
       info.header.seq = f.index;
       info.header.stamp = stamp;
       geometry_msgs::PoseStamped pose;
@@ -320,7 +358,6 @@ int run(int argc, char** argv) {
       pose.pose.orientation.y = q[1];
       pose.pose.orientation.z = q[2];
       pose.pose.orientation.w = q[3];
-      bag.write("/camera/image_raw", stamp, msg);
       bag.write("/camera/camera_info", stamp, info);
       bag.write("/ground_truth/pose", stamp, pose);
     }

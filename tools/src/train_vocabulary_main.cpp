@@ -16,19 +16,15 @@
 #include <string>
 #include <vector>
 
-#include <cv_bridge/cv_bridge.h>
-#include <opencv2/imgcodecs.hpp>
 #include <rosbag/bag.h>
 #include <rosbag/view.h>
-#include <sensor_msgs/CompressedImage.h>
-#include <sensor_msgs/Image.h>
 
 #include "bowg/core/errors.h"
 #include "bowg/features/feature_extractor.h"
 #include "bowg/vocabulary/vocabulary_io.h"
 #include "bowg/vocabulary/vocabulary_trainer.h"
 #include "bowg_evaluation/image_file.h"
-#include "bowg_ros/image_conversion.h"
+#include "bowg_ros/bag_images.h"
 
 namespace {
 
@@ -157,31 +153,6 @@ rosbag::Bag openBag(const std::string& path) {
     throw bowg::IoError("cannot open the bag '" + path + "': " + e.what());
   }
   return bag;
-}
-
-// The grey image of an Image or CompressedImage message, converted as the
-// nodelet converts its input (bowg_ros::toMono8), so that a vocabulary
-// trained on a bag sees the features the detector will see.
-cv::Mat greyOf(const rosbag::MessageInstance& m, const std::string& bag_path) {
-  if (const sensor_msgs::Image::ConstPtr img = m.instantiate<sensor_msgs::Image>()) {
-    if (!bowg_ros::isSupportedEncoding(img->encoding)) {
-      throw bowg::FormatError("bag '" + bag_path + "', topic " + m.getTopic() +
-                              ": unsupported image encoding '" + img->encoding + "'");
-    }
-    return bowg_ros::toMono8(cv_bridge::toCvShare(img)->image, img->encoding).clone();
-  }
-  if (const sensor_msgs::CompressedImage::ConstPtr c =
-          m.instantiate<sensor_msgs::CompressedImage>()) {
-    cv::Mat grey = cv::imdecode(c->data, cv::IMREAD_GRAYSCALE);
-    if (grey.empty()) {
-      throw bowg::FormatError("bag '" + bag_path + "', topic " + m.getTopic() +
-                              ": cannot decode a compressed image (" + c->format + ")");
-    }
-    return grey;
-  }
-  throw bowg::FormatError("bag '" + bag_path + "', topic " + m.getTopic() + " holds " +
-                          m.getDataType() +
-                          ", not sensor_msgs/Image or sensor_msgs/CompressedImage");
 }
 
 }  // namespace
@@ -345,7 +316,7 @@ int main(int argc, char** argv) {
       for (const rosbag::MessageInstance& m : view) {
         if (i >= images.size() || images[i].bag != b) break;
         if (index++ != images[i].index) continue;
-        add(greyOf(m, bags[b]));
+        add(bowg_ros::readBagImage(m, bags[b]).grey);
         ++i;
         progressBar(0.2 * i / images.size(), "extracting features");
       }

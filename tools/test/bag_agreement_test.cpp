@@ -59,84 +59,126 @@ std::map<std::pair<int, int>, double> loopsOf(const std::string& csv_path) {
   return loops;
 }
 
-TEST(BagAgreement, NodeletOnAPlayedBagFindsTheOfflineToolsLoops) {
-  ASSERT_EQ(run("rm -rf " + kDir + " && mkdir -p " + kDir, "/dev/null"), 0);
-  const std::string bin = BOWG_TOOLS_BIN_DIR;
+const std::string kSequence = " --frames 300 --speed 1.0 --width 320 --height 240";
+
+// The vocabulary every format's run uses: a small one trained on another seed
+// (other texture and roll), read from a bag as the trainer's --bag path does.
+class BagAgreement : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    ASSERT_EQ(run("rm -rf " + kDir + " && mkdir -p " + kDir, "/dev/null"), 0);
+    const std::string bin = BOWG_TOOLS_BIN_DIR;
+    ASSERT_EQ(run(bin +
+                      "/bowg_generate_pipe_sequence --seed 2 --frames 80 --speed 1.0 --width 320"
+                      " --height 240 --bag " +
+                      kDir + "/train.bag",
+                  kDir + "/generate_train.log"),
+              0);
+    ASSERT_EQ(run(bin + "/bowg_train_vocabulary --k 8 --L 4 --threads 1 --seed 1 --output " +
+                      vocabulary() + " --bag " + kDir + "/train.bag",
+                  kDir + "/train.log"),
+              0)
+        << readAll(kDir + "/train.log");
+  }
+
+  static std::string vocabulary() { return kDir + "/vocabulary.bowgvoc"; }
+  static std::string config() { return std::string(BOWG_REPO_DIR) + "/config/pipe.yaml"; }
+
   // 300 frames of 320 x 240 at 10 cm per frame (1 m/s, 10 Hz): 30 m of the
-  // route, past the first closed circuit, so the sequence has revisits.
-  const std::string sequence = " --frames 300 --speed 1.0 --width 320 --height 240";
-  ASSERT_EQ(run(bin + "/bowg_generate_pipe_sequence --bag " + kDir + "/pipe.bag" + sequence,
-                kDir + "/generate.log"),
-            0)
-      << readAll(kDir + "/generate.log");
-  // A small vocabulary trained on another seed (other texture and roll),
-  // read from a bag as the trainer's --bag path does.
-  ASSERT_EQ(run(bin +
-                    "/bowg_generate_pipe_sequence --seed 2 --frames 80 --speed 1.0 --width 320"
-                    " --height 240 --bag " +
-                    kDir + "/train.bag",
-                kDir + "/generate_train.log"),
-            0);
-  const std::string vocabulary = kDir + "/vocabulary.bowgvoc";
-  ASSERT_EQ(run(bin + "/bowg_train_vocabulary --k 8 --L 4 --threads 1 --seed 1 --output " +
-                    vocabulary + " --bag " + kDir + "/train.bag",
-                kDir + "/train.log"),
-            0)
-      << readAll(kDir + "/train.log");
-  const std::string config = std::string(BOWG_REPO_DIR) + "/config/pipe.yaml";
-  const std::string gt = kDir + "/pipe_gt.txt";
+  // route, past the first closed circuit, so the sequence has revisits. The
+  // bag's images in `format` (bowg_generate_pipe_sequence --bag-images).
+  // Returns the offline tool's loops; every image is a keyframe.
+  static std::map<std::pair<int, int>, double> offlineLoops(const std::string& format) {
+    const std::string bin = BOWG_TOOLS_BIN_DIR;
+    const std::string dir = kDir + "/" + format;
+    EXPECT_EQ(run("mkdir -p " + dir + " && " + bin + "/bowg_generate_pipe_sequence --bag " + dir +
+                      "/pipe.bag --bag-images " + format + kSequence,
+                  dir + "/generate.log"),
+              0)
+        << readAll(dir + "/generate.log");
+    const std::string topic =
+        format == "jpeg" ? " --image-topic /camera/image_raw/compressed" : "";
+    EXPECT_EQ(run(bin + "/bowg_evaluate --quiet --sweep score --bag " + dir + "/pipe.bag --gt " +
+                      dir + "/pipe_gt.txt --vocabulary " + vocabulary() + " --config " +
+                      config() + topic + " --output " + dir + "/offline",
+                  dir + "/offline.log"),
+              0)
+        << readAll(dir + "/offline.log");
+    return loopsOf(dir + "/offline/detections_bowg.csv");
+  }
 
-  // Offline: every image is a keyframe.
-  ASSERT_EQ(run(bin + "/bowg_evaluate --quiet --sweep score --bag " + kDir + "/pipe.bag --gt " +
-                    gt + " --vocabulary " + vocabulary + " --config " + config + " --output " +
-                    kDir + "/offline",
-                kDir + "/offline.log"),
-            0)
-      << readAll(kDir + "/offline.log");
-  const auto offline = loopsOf(kDir + "/offline/detections_bowg.csv");
+  // The nodelet fed by `rosbag play` on the bag offlineLoops() wrote.
+  static std::map<std::pair<int, int>, double> liveLoops(const std::string& format) {
+    const std::string dir = kDir + "/" + format;
+    // A queue that never fills, so that the detector never drops a frame,
+    // at the bag's own rate: the nodelet's image subscription has a short
+    // queue of its own (5 messages), which a faster play can overflow when
+    // the shared CPU stalls the manager's threads (seen once at rate 3).
+    const int port = freePort();
+    EXPECT_GT(port, 0);
+    const std::string launch =
+        "env ROS_MASTER_URI=http://127.0.0.1:" + std::to_string(port) + " ROS_HOME=" + dir +
+        "/ros_home timeout -s INT 240 roslaunch -p " + std::to_string(port) +
+        " bowg_ros evaluate_bag.launch bag:=" + dir + "/pipe.bag gt:=" + dir +
+        "/pipe_gt.txt vocabulary:=" + vocabulary() + " config:=" + config() +
+        " rate:=1 queue_size:=100000 idle_timeout:=30 output_dir:=" + dir + "/live" +
+        (format == "jpeg" ? " use_compressed:=true" : "");
+    run(launch, dir + "/live.log");  // roslaunch's own exit code says little
+    const std::string summary = readAll(dir + "/live/summary.txt");
+    EXPECT_FALSE(summary.empty()) << "no live summary; roslaunch log:\n"
+                                  << readAll(dir + "/live.log");
+    EXPECT_NE(summary.find("images in bag: 300\n"), std::string::npos) << summary;
+    EXPECT_NE(summary.find("frames dropped: 0\n"), std::string::npos) << summary;
+    EXPECT_NE(summary.find("keyframes processed: 300\n"), std::string::npos) << summary;
+    EXPECT_NE(summary.find("unmapped stamps: 0\n"), std::string::npos) << summary;
+    return loopsOf(dir + "/live/detections_nodelet.csv");
+  }
 
-  // Live: a queue that never fills, so that the detector never drops a frame,
-  // at the bag's own rate: the nodelet's image subscription has a short
-  // queue of its own (5 messages), which a faster play can overflow when the
-  // shared CPU stalls the manager's threads (seen once at rate 3).
-  const int port = freePort();
-  ASSERT_GT(port, 0);
-  const std::string launch = "env ROS_MASTER_URI=http://127.0.0.1:" + std::to_string(port) +
-                             " ROS_HOME=" + kDir + "/ros_home timeout -s INT 240 roslaunch -p " +
-                             std::to_string(port) + " bowg_ros evaluate_bag.launch bag:=" + kDir +
-                             "/pipe.bag gt:=" + gt + " vocabulary:=" + vocabulary +
-                             " config:=" + config + " rate:=1 queue_size:=100000" +
-                             " idle_timeout:=30 output_dir:=" + kDir + "/live";
-  run(launch, kDir + "/live.log");  // roslaunch's own exit code says little
-  const std::string summary = readAll(kDir + "/live/summary.txt");
-  ASSERT_FALSE(summary.empty()) << "no live summary; roslaunch log:\n"
-                                << readAll(kDir + "/live.log");
-  EXPECT_NE(summary.find("images in bag: 300\n"), std::string::npos) << summary;
-  EXPECT_NE(summary.find("frames dropped: 0\n"), std::string::npos) << summary;
-  EXPECT_NE(summary.find("keyframes processed: 300\n"), std::string::npos) << summary;
-  EXPECT_NE(summary.find("unmapped stamps: 0\n"), std::string::npos) << summary;
-  const auto live = loopsOf(kDir + "/live/detections_nodelet.csv");
-
-  // Not vacuous: the sequence has revisits and the offline tool finds some.
-  EXPECT_GT(offline.size(), 0u) << readAll(kDir + "/offline/summary.txt");
-  for (const auto& l : offline) {
-    const auto it = live.find(l.first);
-    if (it == live.end()) {
-      ADD_FAILURE() << "offline loop " << l.first.first << " -> " << l.first.second
-                    << " missing from the nodelet's";
-      continue;
+  static void expectSameLoops(const std::map<std::pair<int, int>, double>& offline,
+                              const std::map<std::pair<int, int>, double>& live) {
+    // Not vacuous: the sequence has revisits and the offline tool finds some.
+    EXPECT_GT(offline.size(), 0u);
+    for (const auto& l : offline) {
+      const auto it = live.find(l.first);
+      if (it == live.end()) {
+        ADD_FAILURE() << "offline loop " << l.first.first << " -> " << l.first.second
+                      << " missing from the nodelet's";
+        continue;
+      }
+      // Not bit for bit: the nodelet's first frame arrives before the first
+      // camera_info (no intrinsics: image-centre fan and F-matrix instead of
+      // E-matrix), the offline tool's has it; the temporal score (eqs. 6-7)
+      // carries that tiny difference along (measured: 2e-6 at most).
+      EXPECT_NEAR(it->second, l.second, 1e-4)
+          << "score of " << l.first.first << " -> " << l.first.second;
     }
-    // Not bit for bit: the nodelet's first frame arrives before the first
-    // camera_info (no intrinsics: image-centre fan and F-matrix instead of
-    // E-matrix), the offline tool's has it; the temporal score (eqs. 6-7)
-    // carries that tiny difference along (measured: 2e-6 at most).
-    EXPECT_NEAR(it->second, l.second, 1e-4)
-        << "score of " << l.first.first << " -> " << l.first.second;
+    for (const auto& l : live) {
+      EXPECT_TRUE(offline.count(l.first))
+          << "nodelet loop " << l.first.first << " -> " << l.first.second << " not found offline";
+    }
   }
-  for (const auto& l : live) {
-    EXPECT_TRUE(offline.count(l.first))
-        << "nodelet loop " << l.first.first << " -> " << l.first.second << " not found offline";
-  }
+};
+
+TEST_F(BagAgreement, NodeletOnAPlayedMono8BagFindsTheOfflineToolsLoops) {
+  const auto offline = offlineLoops("mono8");
+  expectSameLoops(offline, liveLoops("mono8"));
+}
+
+// A colour bag goes through the same conversion live and offline; its grey
+// image is the mono8 bag's exactly (three equal channels), so even the loops
+// are the mono8 bag's.
+TEST_F(BagAgreement, NodeletOnAPlayedColourBagFindsTheOfflineToolsLoops) {
+  const auto offline = offlineLoops("bgr8");
+  expectSameLoops(offline, liveLoops("bgr8"));
+  const auto mono = loopsOf(kDir + "/mono8/offline/detections_bowg.csv");
+  if (!mono.empty()) EXPECT_EQ(offline, mono);
+}
+
+// A compressed bag (sensor_msgs/CompressedImage, JPEG) is decoded by the same
+// function live (~use_compressed) and offline (--image-topic .../compressed).
+TEST_F(BagAgreement, NodeletOnAPlayedCompressedBagFindsTheOfflineToolsLoops) {
+  const auto offline = offlineLoops("jpeg");
+  expectSameLoops(offline, liveLoops("jpeg"));
 }
 
 }  // namespace

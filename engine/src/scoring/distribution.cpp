@@ -1,5 +1,5 @@
 // Feature-distribution score (paper Sec. III-C). The paper's formula takes the
-// largest *distance* over cyclic shifts; docs/method-notes.md fixes the reading
+// largest *distance* over cyclic shifts; docs/method.md (step 5) fixes the reading
 // to the best *alignment* (largest inner product), which is what makes the
 // score roll invariant.
 #include "bowg/scoring/distribution.h"

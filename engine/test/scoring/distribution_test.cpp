@@ -1,5 +1,5 @@
 // Fan bins, distribution vectors and the cyclic-shift distribution score
-// (paper Sec. III-C, reading of docs/method-notes.md), worked out by hand.
+// (paper Sec. III-C, reading of docs/method.md, step 5), worked out by hand.
 #include "bowg/scoring/distribution.h"
 
 #include <gtest/gtest.h>

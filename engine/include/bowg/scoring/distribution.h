@@ -1,5 +1,5 @@
 // Feature-distribution score (paper Sec. III-C, eqs. 8-9; reading fixed in
-// docs/method-notes.md: best alignment over cyclic shifts, not the largest
+// docs/method.md (step 5): best alignment over cyclic shifts, not the largest
 // distance).
 #pragma once
 

@@ -1,0 +1,53 @@
+// Images of a rosbag (see bag_images.h).
+#include "bowg_ros/bag_images.h"
+
+#include <sensor_msgs/CompressedImage.h>
+#include <sensor_msgs/Image.h>
+
+#include "bowg/core/errors.h"
+#include "bowg_ros/image_conversion.h"
+
+namespace bowg_ros {
+namespace {
+
+[[noreturn]] void notAnImage(const rosbag::MessageInstance& m, const std::string& bag_path) {
+  throw bowg::FormatError("bag '" + bag_path + "', topic " + m.getTopic() + " holds " +
+                          m.getDataType() +
+                          ", not sensor_msgs/Image or sensor_msgs/CompressedImage");
+}
+
+}  // namespace
+
+BagImage readBagImage(const rosbag::MessageInstance& m, const std::string& bag_path) {
+  BagImage out;
+  try {
+    if (const sensor_msgs::Image::ConstPtr img = m.instantiate<sensor_msgs::Image>()) {
+      out.grey = greyFromImage(*img).clone();  // the message dies with this scope
+      out.stamp = img->header.stamp;
+      return out;
+    }
+    if (const sensor_msgs::CompressedImage::ConstPtr c =
+            m.instantiate<sensor_msgs::CompressedImage>()) {
+      out.grey = greyFromCompressed(*c);
+      out.stamp = c->header.stamp;
+      return out;
+    }
+  } catch (const BadImage& e) {
+    throw bowg::FormatError("bag '" + bag_path + "', topic " + m.getTopic() + " at " +
+                            std::to_string(m.getTime().toSec()) + ": " + e.what());
+  }
+  notAnImage(m, bag_path);
+}
+
+ros::Time bagImageStamp(const rosbag::MessageInstance& m, const std::string& bag_path) {
+  if (const sensor_msgs::Image::ConstPtr img = m.instantiate<sensor_msgs::Image>()) {
+    return img->header.stamp;
+  }
+  if (const sensor_msgs::CompressedImage::ConstPtr c =
+          m.instantiate<sensor_msgs::CompressedImage>()) {
+    return c->header.stamp;
+  }
+  notAnImage(m, bag_path);
+}
+
+}  // namespace bowg_ros
