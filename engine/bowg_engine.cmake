@@ -39,16 +39,6 @@ if(BOWG_HAS_MPOPCNT)
 endif()
 set_target_properties(bowg_engine PROPERTIES POSITION_INDEPENDENT_CODE ON)
 
-# ROS-free command-line tools (vocabulary conversion). The rosbag-aware tools,
-# among them the vocabulary trainer (image folders and rosbags), live in
-# ../tools and link rosbag; their end-to-end tests are there too.
-file(GLOB BOWG_ENGINE_TOOL_SOURCES ${BOWG_ENGINE_DIR}/tools/*.cpp)
-foreach(tool_source ${BOWG_ENGINE_TOOL_SOURCES})
-  get_filename_component(tool_name ${tool_source} NAME_WE)
-  add_executable(bowg_${tool_name} ${tool_source})
-  target_link_libraries(bowg_${tool_name} bowg_engine)
-endforeach()
-
 # Engine tests: one gtest executable per test/*_test.cpp. Test data written by
 # the tests themselves goes to the build tree; shared third-party data is read
 # from BOWG_SHARED_DATA_DIR (tests skip with a message where it is absent).

@@ -1,9 +1,8 @@
 // bowg_train_vocabulary: trains a vocabulary tree (paper Sec. III-A) from the
 // images of folders and/or rosbags (sensor_msgs/Image or CompressedImage on
 // one topic). Gathering the images and extracting their features live here;
-// the training itself is the engine's bowg::trainVocabulary(). It lives in
-// tools/ (not engine/tools/) because reading bags links rosbag, which the
-// ROS-free engine must not.
+// the training itself is the engine's bowg::trainVocabulary(). Bag images
+// are read through the ROS layer (bag_images.h), as the nodelet reads them.
 #include <dirent.h>
 #include <sys/stat.h>
 

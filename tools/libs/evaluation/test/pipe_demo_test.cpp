@@ -37,9 +37,9 @@ namespace bowg {
 namespace {
 
 std::string repoDir() {
-  // <repo>/tools/evaluation/test/pipe_demo_test.cpp
+  // <repo>/tools/libs/evaluation/test/pipe_demo_test.cpp
   std::string f = __FILE__;
-  for (int i = 0; i < 4; ++i) f = f.substr(0, f.find_last_of('/'));
+  for (int i = 0; i < 5; ++i) f = f.substr(0, f.find_last_of('/'));
   return f;
 }
 

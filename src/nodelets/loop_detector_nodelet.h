@@ -1,0 +1,180 @@
+// bowg_ros/LoopDetectorNodelet: the thin ROS shell around bowg::LoopDetector.
+// Parameters in (through the engine's parameter table), engine call
+// on a worker thread, messages out:
+//
+//   image (+ camera_info) or keyframe_features
+//     -> camera callback: encoding check, stamp order, keyframe gate, push
+//        (never blocks: bounded queue drops the oldest frame)
+//     -> worker thread: grey conversion, features, LoopDetector::process()
+//        under the detector lock
+//     -> loop_closure, ~keyframe_status, ~debug_image (lazy), diagnostics
+//
+// dynamic_reconfigure, the services and the worker share the detector through
+// one mutex, so an option swap or a database load happens between keyframes.
+//
+// One class, its member functions grouped by job: loop_detector_nodelet.cpp
+// (start-up and shutdown), nodelet_parameters.cpp (private parameters),
+// nodelet_input.cpp (callbacks, stamp order, keyframe gate),
+// nodelet_worker.cpp (grey image, features, detector), nodelet_output.cpp
+// (messages, debug image, diagnostics), nodelet_services.cpp (live tuning,
+// database services). Private to the nodelet library.
+#pragma once
+
+#include <cv_bridge/cv_bridge.h>
+#include <diagnostic_updater/diagnostic_updater.h>
+#include <dynamic_reconfigure/server.h>
+#include <image_transport/camera_common.h>
+#include <image_transport/image_transport.h>
+#include <nav_msgs/Odometry.h>
+#include <nodelet/nodelet.h>
+#include <ros/ros.h>
+#include <sensor_msgs/CameraInfo.h>
+#include <sensor_msgs/CompressedImage.h>
+#include <sensor_msgs/Image.h>
+#include <std_srvs/Trigger.h>
+
+#include <algorithm>
+#include <atomic>
+#include <boost/thread/recursive_mutex.hpp>
+#include <chrono>
+#include <limits>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+
+#include "bowg/core/errors.h"
+#include "bowg/database/database.h"
+#include "bowg/detection/loop_detector.h"
+#include "bowg/features/feature_extractor.h"
+#include "bowg/parameters/parameter_table.h"
+#include "bowg/vocabulary/vocabulary.h"
+#include "bowg/vocabulary/vocabulary_io.h"
+#include "bowg_ros/BoWGConfig.h"
+#include "bowg_ros/KeyframeFeatures.h"
+#include "bowg_ros/KeyframeStatus.h"
+#include "bowg_ros/LoadDatabase.h"
+#include "bowg_ros/LoopClosure.h"
+#include "bowg_ros/SaveDatabase.h"
+#include "bowg_ros/bounded_queue.h"
+#include "bowg_ros/debug_image.h"
+#include "bowg_ros/image_conversion.h"
+#include "bowg_ros/keyframe_gate.h"
+#include "bowg_ros/live_parameters.h"
+#include "bowg_ros/ros_conversions.h"
+
+namespace bowg_ros {
+
+using Clock = std::chrono::steady_clock;
+
+inline double msSince(Clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+/// Where a loaded database's odometers end (0 when it has none): the gate's
+/// odometer continues from there, so the keyframes' odometers keep growing.
+inline double lastOdometer(const bowg::LoopDetector& detector) {
+  return std::max(0.0, detector.database().lastOdometer());
+}
+
+/// One frame waiting for the worker: exactly one of the three inputs is set.
+struct Frame {
+  std_msgs::Header header;
+  sensor_msgs::ImageConstPtr image;                 // raw image, shared (no copy)
+  sensor_msgs::CompressedImageConstPtr compressed;  // decoded by the worker
+  KeyframeFeatures::ConstPtr features;              // upstream features
+  /// Metres driven when the frame passed the gate (NaN without odometry).
+  double odometer = std::numeric_limits<double>::quiet_NaN();
+};
+
+/// Counters for the diagnostics, guarded by LoopDetectorNodelet::stats_mutex_.
+struct Stats {
+  std::size_t frames_received = 0;
+  std::size_t keyframes = 0;
+  std::size_t loops = 0;
+  std::size_t skipped_out_of_order = 0;
+  std::size_t bad_encoding = 0;
+  std::size_t malformed = 0;  ///< image messages whose layout cannot be read
+  std::size_t errors = 0;
+  // Sums since the last diagnostics update (for means per window).
+  std::size_t window_keyframes = 0;
+  double window_convert_ms = 0, window_feature_ms = 0, window_transform_ms = 0,
+         window_word_groups_ms = 0, window_query_ms = 0, window_islands_ms = 0,
+         window_verification_ms = 0, window_total_ms = 0;
+  Clock::time_point window_start = Clock::now();
+};
+
+class LoopDetectorNodelet : public nodelet::Nodelet {
+ public:
+  ~LoopDetectorNodelet() override;
+
+ private:
+  void onInit() override;
+  bool loadParameters(ros::NodeHandle& pnh);
+
+  void imageCallback(const sensor_msgs::ImageConstPtr& msg);
+  void compressedCallback(const sensor_msgs::CompressedImageConstPtr& msg);
+  void featuresCallback(const KeyframeFeatures::ConstPtr& msg);
+  void cameraInfoCallback(const sensor_msgs::CameraInfoConstPtr& msg);
+  void odometryCallback(const nav_msgs::OdometryConstPtr& msg);
+  /// Stamp order + keyframe gate; true when `frame` was queued.
+  bool offer(Frame frame);
+
+  void workerLoop();
+  void processFrame(const Frame& frame);
+  /// loop_closure, ~keyframe_status and the lazy ~debug_image of one keyframe
+  /// (called by the worker under the detector lock).
+  void publishResult(const Frame& frame, const bowg::LoopResult& result, const cv::Mat& grey,
+                     std::size_t num_features, std::size_t database_size, double convert_ms,
+                     double feature_ms);
+
+  void reconfigure(BoWGConfig& config, uint32_t level);
+  bool saveDatabase(SaveDatabase::Request& req, SaveDatabase::Response& res);
+  bool loadDatabase(LoadDatabase::Request& req, LoadDatabase::Response& res);
+  bool resetDatabase(std_srvs::Trigger::Request& req, std_srvs::Trigger::Response& res);
+  void diagnose(diagnostic_updater::DiagnosticStatusWrapper& status);
+
+  // Parameters.
+  std::string vocabulary_path_, database_load_path_, database_save_path_;
+  int queue_size_ = 2;
+  int debug_image_cache_ = 200;
+  bool use_compressed_ = false, use_features_input_ = false, publish_correspondences_ = false;
+  KeyframeGateOptions gate_options_;
+
+  // Engine, guarded by detector_mutex_ (worker, dynamic_reconfigure, services).
+  std::mutex detector_mutex_;
+  bowg::PipelineOptions options_;
+  std::shared_ptr<const bowg::Vocabulary> vocabulary_;
+  std::unique_ptr<bowg::FeatureExtractor> extractor_;
+  std::unique_ptr<bowg::LoopDetector> detector_;
+  std::map<bowg::EntryId, cv::Mat> debug_cache_;  // keyframe images while debugging
+
+  // Camera callback side.
+  std::mutex gate_mutex_;
+  KeyframeGate gate_;
+  std::mutex intrinsics_mutex_;
+  bowg::CameraIntrinsics intrinsics_;
+  std::atomic<bool> intrinsics_warned_{false};
+
+  std::unique_ptr<BoundedQueue<Frame>> queue_;
+  std::thread worker_;
+  bool initialised_ = false;
+
+  std::mutex stats_mutex_;
+  Stats stats_;
+
+  // ROS interfaces.
+  std::unique_ptr<image_transport::ImageTransport> it_, private_it_;
+  image_transport::Subscriber image_sub_;
+  ros::Subscriber compressed_sub_, features_sub_, info_sub_, odom_sub_;
+  ros::Publisher loop_pub_, status_pub_;
+  image_transport::Publisher debug_pub_;
+  ros::ServiceServer save_srv_, load_srv_, reset_srv_;
+  boost::recursive_mutex config_mutex_;
+  std::unique_ptr<dynamic_reconfigure::Server<BoWGConfig>> reconfigure_server_;
+  std::unique_ptr<diagnostic_updater::Updater> updater_;
+  ros::WallTimer diagnostics_timer_;
+};
+
+}  // namespace bowg_ros

@@ -1,0 +1,93 @@
+// LoopDetectorNodelet: the private parameters. The nodelet's own are read
+// here; every other one must be a row of the engine's parameter table.
+#include "loop_detector_nodelet.h"
+
+#include <sstream>
+
+namespace bowg_ros {
+
+namespace {
+
+/// The nodelet's own private parameters (not engine options); every other
+/// private parameter must be a row of the engine's parameter table.
+const char* const kNodeParameters[] = {
+    "vocabulary_path",    "queue_size",         "min_keyframe_interval",   "min_keyframe_distance",
+    "use_compressed",     "use_features_input", "publish_correspondences", "database_load_path",
+    "database_save_path", "debug_image_cache",  "image_transport",         "diagnostic_period",
+};
+
+bool isNodeParameter(const std::string& name) {
+  for (const char* p : kNodeParameters) {
+    if (name == p) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+bool LoopDetectorNodelet::loadParameters(ros::NodeHandle& pnh) {
+  pnh.param<std::string>("vocabulary_path", vocabulary_path_, "");
+  pnh.param("queue_size", queue_size_, 2);
+  pnh.param("min_keyframe_interval", gate_options_.min_interval, 0.0);
+  pnh.param("min_keyframe_distance", gate_options_.min_distance, 0.0);
+  pnh.param("use_compressed", use_compressed_, false);
+  pnh.param("use_features_input", use_features_input_, false);
+  pnh.param("publish_correspondences", publish_correspondences_, false);
+  pnh.param<std::string>("database_load_path", database_load_path_, "");
+  pnh.param<std::string>("database_save_path", database_save_path_, "");
+  pnh.param("debug_image_cache", debug_image_cache_, 200);
+  if (queue_size_ < 1) {
+    NODELET_FATAL("~queue_size must be >= 1 (got %d)", queue_size_);
+    return false;
+  }
+  try {
+    gate_options_.validate();
+  } catch (const std::exception& e) {
+    NODELET_FATAL("%s", e.what());
+    return false;
+  }
+
+  // Engine options: every other private parameter must be a table row, so a
+  // misspelled key is an error instead of a silently ignored setting.
+  std::vector<std::string> names;
+  ros::param::getParamNames(names);
+  const std::string prefix = pnh.getNamespace() + "/";
+  std::map<std::string, std::string> values;
+  for (const std::string& full : names) {
+    if (full.compare(0, prefix.size(), prefix) != 0) continue;
+    const std::string name = full.substr(prefix.size());
+    if (name.find('/') != std::string::npos || isNodeParameter(name)) continue;
+    XmlRpc::XmlRpcValue v;
+    if (!pnh.getParam(name, v)) continue;
+    switch (v.getType()) {
+      case XmlRpc::XmlRpcValue::TypeBoolean:
+        values[name] = bool(v) ? "true" : "false";
+        break;
+      case XmlRpc::XmlRpcValue::TypeInt:
+        values[name] = std::to_string(int(v));
+        break;
+      case XmlRpc::XmlRpcValue::TypeDouble: {
+        std::ostringstream s;
+        s.precision(17);
+        s << double(v);
+        values[name] = s.str();
+        break;
+      }
+      case XmlRpc::XmlRpcValue::TypeString:
+        values[name] = std::string(v);
+        break;
+      default:
+        NODELET_FATAL("parameter %s: only scalars are allowed", full.c_str());
+        return false;
+    }
+  }
+  try {
+    bowg::applyParameters(values, &options_, pnh.getNamespace());
+  } catch (const std::exception& e) {
+    NODELET_FATAL("invalid parameters: %s", e.what());
+    return false;
+  }
+  return true;
+}
+
+}  // namespace bowg_ros

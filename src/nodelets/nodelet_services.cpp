@@ -1,0 +1,96 @@
+// LoopDetectorNodelet: live tuning (dynamic_reconfigure, by name through the
+// parameter table) and the database services (save, load, reset).
+#include "loop_detector_nodelet.h"
+
+namespace bowg_ros {
+
+void LoopDetectorNodelet::reconfigure(BoWGConfig& config, uint32_t /*level*/) {
+  if (!detector_) return;
+  std::lock_guard<std::mutex> lock(detector_mutex_);
+  // Every cfg parameter by name through the parameter table (live_parameters.h).
+  dynamic_reconfigure::Config values;
+  config.__toMessage__(values);
+  bowg::PipelineOptions next = options_;
+  try {
+    applyLiveConfig(values, &next);
+    for (const std::string& c : bowg::correctLiveParameters(vocabulary_->depth(), &next)) {
+      NODELET_WARN("dynamic_reconfigure: %s", c.c_str());
+    }
+    detector_->setOptions(next.detector);  // validates; applies from the next keyframe
+    options_ = next;
+  } catch (const std::exception& e) {
+    NODELET_WARN("dynamic_reconfigure: rejected (%s); keeping the previous values", e.what());
+  }
+  // Send the values in force back to the client (corrected or kept).
+  writeLiveConfig(options_, &values);
+  config.__fromMessage__(values);
+}
+
+bool LoopDetectorNodelet::saveDatabase(SaveDatabase::Request& req, SaveDatabase::Response& res) {
+  const std::string path = req.path.empty() ? database_save_path_ : req.path;
+  if (path.empty()) {
+    res.success = false;
+    res.message = "no path given and ~database_save_path is not set";
+    return true;
+  }
+  std::lock_guard<std::mutex> lock(detector_mutex_);
+  try {
+    detector_->save(path);
+    res.success = true;
+    res.message = "saved " + std::to_string(detector_->database().size()) + " keyframes to " + path;
+    NODELET_INFO("%s", res.message.c_str());
+  } catch (const std::exception& e) {
+    res.success = false;
+    res.message = e.what();
+    NODELET_ERROR("save_database: %s", e.what());
+  }
+  return true;
+}
+
+bool LoopDetectorNodelet::loadDatabase(LoadDatabase::Request& req, LoadDatabase::Response& res) {
+  const std::string path = req.path.empty() ? database_load_path_ : req.path;
+  if (path.empty()) {
+    res.success = false;
+    res.message = "no path given and ~database_load_path is not set";
+    return true;
+  }
+  std::lock_guard<std::mutex> lock(detector_mutex_);
+  try {
+    detector_->load(path);  // keeps the running database on any error
+    debug_cache_.clear();
+    {
+      // Stamps restart from the loaded database's; let the gate follow.
+      std::lock_guard<std::mutex> gate_lock(gate_mutex_);
+      gate_.reset();
+      gate_.setOdometer(lastOdometer(*detector_));
+    }
+    res.success = true;
+    res.message =
+        "loaded " + std::to_string(detector_->database().size()) + " keyframes from " + path;
+    NODELET_INFO("%s", res.message.c_str());
+  } catch (const std::exception& e) {
+    res.success = false;
+    res.message = std::string(e.what()) + " (the running database is kept)";
+    NODELET_ERROR("load_database: %s", res.message.c_str());
+  }
+  return true;
+}
+
+bool LoopDetectorNodelet::resetDatabase(std_srvs::Trigger::Request&,
+                                        std_srvs::Trigger::Response& res) {
+  queue_->clear();
+  std::lock_guard<std::mutex> lock(detector_mutex_);
+  const std::size_t n = detector_->database().size();
+  detector_->reset();
+  debug_cache_.clear();
+  {
+    std::lock_guard<std::mutex> gate_lock(gate_mutex_);
+    gate_.reset();
+  }
+  res.success = true;
+  res.message = "forgot " + std::to_string(n) + " keyframes";
+  NODELET_INFO("reset: %s", res.message.c_str());
+  return true;
+}
+
+}  // namespace bowg_ros

@@ -1,0 +1,78 @@
+// LoopDetectorNodelet: the worker thread. Grey image, features, one
+// LoopDetector::process() per keyframe under the detector lock.
+#include "loop_detector_nodelet.h"
+
+namespace bowg_ros {
+
+void LoopDetectorNodelet::workerLoop() {
+  Frame frame;
+  while (queue_->pop(&frame)) {
+    try {
+      processFrame(frame);
+    } catch (const std::exception& e) {
+      {
+        std::lock_guard<std::mutex> lock(stats_mutex_);
+        ++stats_.errors;
+      }
+      NODELET_ERROR_THROTTLE(2.0, "keyframe at %.6f skipped: %s", frame.header.stamp.toSec(),
+                             e.what());
+    }
+    frame = Frame();  // release the image now, not at the next pop
+  }
+}
+
+void LoopDetectorNodelet::processFrame(const Frame& frame) {
+  // 1. Grey image (shared for mono8) or upstream features.
+  auto t0 = Clock::now();
+  cv::Mat grey;
+  if (frame.image) {
+    grey = greyFromImage(*frame.image);
+  } else if (frame.compressed) {
+    grey = greyFromCompressed(*frame.compressed);
+  }
+  const double convert_ms = msSince(t0);
+
+  bowg::KeyframeInput input;
+  input.stamp = frame.header.stamp.toSec();
+  input.odometer = frame.odometer;
+  {
+    std::lock_guard<std::mutex> lock(intrinsics_mutex_);
+    input.intrinsics = intrinsics_;
+  }
+  if (!input.intrinsics.valid && !intrinsics_warned_.exchange(true)) {
+    NODELET_WARN(
+        "no valid camera_info yet: loop closures carry no relative pose "
+        "(has_relative_pose = false) until one arrives");
+  }
+
+  std::lock_guard<std::mutex> lock(detector_mutex_);
+  t0 = Clock::now();
+  if (frame.features) {
+    input.features = fromMessage(*frame.features);
+  } else {
+    input.features = extractor_->extract(grey);
+  }
+  const double feature_ms = frame.features ? 0.0 : msSince(t0);
+  const std::size_t num_features = input.features.size();
+
+  const bowg::LoopResult result = detector_->process(input);
+  const std::size_t database_size = detector_->database().size();
+  const bool found = result.status == bowg::LoopStatus::kLoopDetected;
+
+  publishResult(frame, result, grey, num_features, database_size, convert_ms, feature_ms);
+
+  std::lock_guard<std::mutex> stats_lock(stats_mutex_);
+  ++stats_.keyframes;
+  ++stats_.window_keyframes;
+  if (found) ++stats_.loops;
+  stats_.window_convert_ms += convert_ms;
+  stats_.window_feature_ms += feature_ms;
+  stats_.window_transform_ms += result.timings.transform_ms;
+  stats_.window_word_groups_ms += result.timings.word_groups_ms;
+  stats_.window_query_ms += result.timings.query_ms;
+  stats_.window_islands_ms += result.timings.islands_ms;
+  stats_.window_verification_ms += result.timings.verification_ms;
+  stats_.window_total_ms += result.timings.total_ms + convert_ms + feature_ms;
+}
+
+}  // namespace bowg_ros
