@@ -1,5 +1,5 @@
 // LoopDetector::process: the per-keyframe pipeline of the paper (Fig. 2,
-// Sec. III-B/C/D). The file format and the reading/writing live in database_io.cpp
+// Sec. III-B/C/D). The file format and the reading/writing live in detector_file.cpp
 // (saveDetectorFile / loadDetectorFile); save() and load() wrap them.
 #include "bowg/detection/loop_detector.h"
 
@@ -12,7 +12,7 @@
 
 #include "bowg/core/errors.h"
 #include "bowg/database/database.h"
-#include "bowg/database/database_io.h"
+#include "bowg/detection/detector_file.h"
 #include "bowg/detection/geometric_verification.h"
 #include "bowg/detection/islands.h"
 #include "bowg/scoring/similarity.h"

@@ -1,7 +1,7 @@
 // The loop detector's memory of previous queries (eq. 7's previous scores,
 // the temporal-verification chains, the normaliser history): everything
 // besides the database that a restarted detector needs to continue where it
-// stopped. Saved with the database (database/database_io.h).
+// stopped. Saved with the database (detector_file.h).
 #pragma once
 
 #include <limits>

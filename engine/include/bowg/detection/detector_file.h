@@ -1,5 +1,5 @@
-// Saving and loading a database with the detector's memory: one file, checked
-// on load so that nothing invalid is restored.
+// The detector file: a database with the detector's memory, saved and loaded
+// as one file, checked on load so that nothing invalid is restored.
 #pragma once
 
 #include <memory>

@@ -11,7 +11,7 @@
 #include "bowg/core/atomic_file.h"
 #include "bowg/core/checksum.h"
 #include "bowg/core/errors.h"
-#include "bowg/database/database_io.h"
+#include "bowg/detection/detector_file.h"
 #include "bowg/vocabulary/vocabulary.h"
 
 namespace bowg {

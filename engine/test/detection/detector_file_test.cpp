@@ -37,7 +37,7 @@ LoopDetectorOptions options() {
 }
 
 std::string outPath(const std::string& name) {
-  return std::string(BOWG_TEST_OUTPUT_DIR) + "/database_io_test_" + name;
+  return std::string(BOWG_TEST_OUTPUT_DIR) + "/detector_file_test_" + name;
 }
 
 std::string readBytes(const std::string& path) {
@@ -269,7 +269,7 @@ TEST(DatabaseIo, OdometersAndMissedQueryCountersRoundTrip) {
 
 // A file whose checksum is right but whose content no run can produce (a
 // forged or buggy writer): refused by name, the detector untouched. Offsets
-// from the layout (database_io.cpp): header 28 bytes, u32 scoring, u32 entry
+// from the layout (detector_file.cpp): header 28 bytes, u32 scoring, u32 entry
 // count, then entry 0: stamp, centre x, y (f64), intrinsics valid (u8), fx,
 // fy, cx, cy (f64), u32 feature count, feature 0: x, y, size, angle,
 // response (f32), ...
