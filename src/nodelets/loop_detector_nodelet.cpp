@@ -104,8 +104,8 @@ void LoopDetectorNodelet::onInit() {
   // are counted, only in our own queue).
   const int input_queue = std::max(5, queue_size_);
   if (use_features_input_) {
-    features_sub_ =
-        nh.subscribe("keyframe_features", input_queue, &LoopDetectorNodelet::featuresCallback, this);
+    features_sub_ = nh.subscribe("keyframe_features", input_queue,
+                                 &LoopDetectorNodelet::featuresCallback, this);
   } else if (use_compressed_) {
     // Debian lacks the compressed image_transport plugin: subscribe to the
     // CompressedImage topic directly and decode with cv::imdecode.

@@ -1,8 +1,8 @@
 // LoopDetectorNodelet: the private parameters. The nodelet's own are read
 // here; every other one must be a row of the engine's parameter table.
-#include "loop_detector_nodelet.h"
-
 #include <sstream>
+
+#include "loop_detector_nodelet.h"
 
 namespace bowg_ros {
 

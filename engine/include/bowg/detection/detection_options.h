@@ -127,8 +127,7 @@ struct LoopDetectorOptions {
   /// paper (x = floor, normaliser_distance, alignment, missed_queries,
   /// hypotheses, min_step, reranking), so that the suite shows what each
   /// extension adds to the configuration.
-  static LoopDetectorOptions ablation(const std::string& row,
-                                      const LoopDetectorOptions& base);
+  static LoopDetectorOptions ablation(const std::string& row, const LoopDetectorOptions& base);
 };
 
 }  // namespace bowg

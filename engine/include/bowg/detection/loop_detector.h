@@ -35,11 +35,11 @@ struct StageTimings {
 /// The scores of one candidate against the query (paper notation).
 struct CandidateScores {
   EntryId entry = 0;
-  double eta_w = 0;     ///< normalised word score (eq. 2)
-  double eta_g = 0;     ///< normalised word-group score (eq. 4)
-  double eta_d = 0;     ///< normalised distribution score
-  double eta_sim = 0;   ///< combined similarity (eq. 5 or 9)
-  double eta = 0;       ///< final score: eta_temp (eq. 7) or eta_sim
+  double eta_w = 0;    ///< normalised word score (eq. 2)
+  double eta_g = 0;    ///< normalised word-group score (eq. 4)
+  double eta_d = 0;    ///< normalised distribution score
+  double eta_sim = 0;  ///< combined similarity (eq. 5 or 9)
+  double eta = 0;      ///< final score: eta_temp (eq. 7) or eta_sim
 };
 
 struct KeyframeInput {

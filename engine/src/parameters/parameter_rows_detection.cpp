@@ -1,0 +1,92 @@
+// Parameter rows of the detection stage: islands, temporal and geometric
+// verification (paper Sec. III-D).
+#include <string>
+#include <vector>
+
+#include "parameters/parameter_rows.h"
+
+namespace bowg {
+namespace parameter_rows {
+
+void addDetectionRows(std::vector<Row>* rows) {
+  const std::string det = "detector";
+  // --- Islands (Sec. III-D).
+  rows->push_back(doubleRow("min_score", det, "islands.min_score", 0.0, 10.0, true,
+                            BOWG_FIELD(double, detector.islands.min_score),
+                            "Acceptance threshold on the final score eta (the paper's second "
+                            "alpha)"));
+  rows->push_back(intRow("recent_exclusion", det, "islands.recent_exclusion", 0, 1000000, false,
+                         BOWG_FIELD(int, detector.islands.recent_exclusion),
+                         "The most recent keyframes are never loop candidates"));
+  rows->push_back(doubleRow("recent_exclusion_m", det, "islands.recent_exclusion_m", 0.0, 1e6,
+                            false, BOWG_FIELD(double, detector.islands.recent_exclusion_m),
+                            "The same window in metres driven, used instead when odometry gives "
+                            "the keyframes an odometer (0 = keyframes always)"));
+  rows->push_back(intRow("max_intra_island_gap", det, "islands.max_intra_island_gap", 0, 10000,
+                         false, BOWG_FIELD(int, detector.islands.max_intra_island_gap),
+                         "Candidates whose ids differ by at most this form one island"));
+  rows->push_back(intRow("min_island_size", det, "islands.min_island_size", 1, 10000, false,
+                         BOWG_FIELD(int, detector.islands.min_island_size),
+                         "Islands with fewer members are ignored"));
+  // --- Temporal verification.
+  rows->push_back(intRow("temporal_k", det, "temporal_verification.k", 0, 100, true,
+                         BOWG_FIELD(int, detector.temporal_verification.k),
+                         "k: previous queries whose best islands must agree (0 = off)"));
+  rows->push_back(intRow("max_island_distance", det, "temporal_verification.max_island_distance", 0,
+                         10000, false,
+                         BOWG_FIELD(int, detector.temporal_verification.max_island_distance),
+                         "Two islands agree when their id intervals are at most this far apart"));
+  rows->push_back(intRow("temporal_max_missed", det, "temporal_verification.max_missed_queries", 0,
+                         100, false,
+                         BOWG_FIELD(int, detector.temporal_verification.max_missed_queries),
+                         "Queries without an island that do not break the temporal chain "
+                         "(0 = DLoopDetector: the first one breaks it)"));
+  rows->push_back(doubleRow(
+      "max_island_distance_m", det, "temporal_verification.max_island_distance_m", 0.0, 100.0,
+      false, BOWG_FIELD(double, detector.temporal_verification.max_island_distance_m),
+      "With odometry: the previous island moved by the metres driven must "
+      "come within this of the current one (0 = max_island_distance in ids)"));
+  rows->push_back(intRow("temporal_hypotheses", det, "temporal_verification.hypotheses", 1, 100,
+                         false, BOWG_FIELD(int, detector.temporal_verification.hypotheses),
+                         "Islands per query followed with their own temporal chains "
+                         "(1 = DLoopDetector: the chosen island only)"));
+  rows->push_back(
+      doubleRow("temporal_min_step_m", det, "temporal_verification.min_step_m", 0.0, 100.0, false,
+                BOWG_FIELD(double, detector.temporal_verification.min_step_m),
+                "With odometry: a query counts towards the temporal chain only after "
+                "this many metres driven since the last one that did (0 = every query)"));
+  // --- Geometric verification.
+  rows->push_back(boolRow("geometric_verification", det, "geometric.enabled", true,
+                          BOWG_FIELD(bool, detector.geometric.enabled),
+                          "Ablation switch: fundamental-matrix RANSAC on direct-index "
+                          "correspondences"));
+  rows->push_back(intRow("direct_index_level", det, "geometric.direct_index_level", 1, 10, true,
+                         BOWG_FIELD(int, detector.geometric.direct_index_level),
+                         "Vocabulary level of the direct index (1..L; paper Table III: 4 of 6)"));
+  rows->push_back(boolRow("exhaustive_matching", det, "geometric.exhaustive", true,
+                          BOWG_FIELD(bool, detector.geometric.exhaustive),
+                          "Match every feature against every feature instead of using the direct "
+                          "index"));
+  rows->push_back(intRow("max_hamming", det, "geometric.max_hamming", 0, 256, false,
+                         BOWG_FIELD(int, detector.geometric.max_hamming),
+                         "Largest Hamming distance of a correspondence (bits of 256)"));
+  rows->push_back(doubleRow("max_neighbour_ratio", det, "geometric.max_neighbour_ratio", 0.01, 1.0,
+                            false, BOWG_FIELD(double, detector.geometric.max_neighbour_ratio),
+                            "Best/second-best distance ratio test for correspondences"));
+  rows->push_back(doubleRow("ransac_threshold_px", det, "geometric.ransac_threshold_px", 0.1, 100.0,
+                            false, BOWG_FIELD(double, detector.geometric.ransac_threshold_px),
+                            "RANSAC reprojection threshold (px)"));
+  rows->push_back(doubleRow("ransac_confidence", det, "geometric.ransac_confidence", 0.5, 0.9999,
+                            false, BOWG_FIELD(double, detector.geometric.ransac_confidence),
+                            "RANSAC confidence"));
+  rows->push_back(intRow("min_inliers", det, "geometric.min_inliers", 8, 10000, true,
+                         BOWG_FIELD(int, detector.geometric.min_inliers),
+                         "Accept a loop with at least this many RANSAC inliers"));
+  rows->push_back(intRow("verified_candidates", det, "geometric.candidates", 1, 100, false,
+                         BOWG_FIELD(int, detector.geometric.candidates),
+                         "Geometric re-ranking: verify the best entries of this many top islands "
+                         "and keep the one with the most inliers (1 = the paper)"));
+}
+
+}  // namespace parameter_rows
+}  // namespace bowg

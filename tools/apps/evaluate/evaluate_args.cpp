@@ -1,0 +1,189 @@
+// bowg_evaluate's command line (evaluate_args.h).
+#include "evaluate_args.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <iostream>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "bowg/detection/detection_options.h"
+
+namespace bowg {
+namespace evaluate_app {
+
+const char* const kUsage =
+    "usage: bowg_evaluate (--bag FILE | --images DIR) --vocabulary FILE [options]\n"
+    "Input:\n"
+    "  --bag FILE                 rosbag with the images\n"
+    "  --image-topic T            sensor_msgs/Image or CompressedImage topic\n"
+    "                             [/camera/image_raw]\n"
+    "  --camera-info-topic T      sensor_msgs/CameraInfo topic, 'none' to ignore "
+    "[/camera/camera_info]\n"
+    "  --images DIR               image folder (png/jpg/jpeg/pgm/bmp, sorted by file name)\n"
+    "  --rate HZ                  stamps of folder images: frame n at n / HZ s [1]\n"
+    "  --max-frames N             use the first N images only [all]\n"
+    "  --odometry FILE            metres driven per frame (CSV with 'frame' and 'odometer' or\n"
+    "                             'distance' columns, e.g. the generator's poses.csv): the\n"
+    "                             recent-exclusion window in metres (recent_exclusion_m)\n"
+    "Engine:\n"
+    "  --vocabulary FILE          any format bowg::loadVocabulary reads (required)\n"
+    "  --config FILE              parameter file, e.g. config/pipe.yaml [engine defaults]\n"
+    "Evaluation:\n"
+    "  --gt FILE                  ground truth 'query: match,...' (0-based frame indices)\n"
+    "  --output DIR               where CSVs, the PR plot and summary.txt go [bowg_evaluation]\n"
+    "  --ablation                 run bow, word_groups, temporal, distribution side by side\n"
+    "  --rows A,B,...             ablation rows to run instead (implies --ablation): bow,\n"
+    "                             word_groups, temporal, distribution (each with the\n"
+    "                             configuration's extensions), paper (the paper's method as\n"
+    "                             written), paper_bow (its pipeline with pure bag of words:\n"
+    "                             DBoW2 + DLoopDetector), configured (the configuration),\n"
+    "                             without_floor, without_normaliser_distance,\n"
+    "                             without_alignment, without_missed_queries,\n"
+    "                             without_hypotheses, without_min_step, without_reranking\n"
+    "                             (the configuration with one extension switched off)\n"
+    "  --sweep rerun|score        PR curve: re-run the detector per threshold (exact, slower)\n"
+    "                             or sweep the final score of one run at the lowest threshold\n"
+    "                             [rerun]\n"
+    "  --thresholds LO:STEP:HI|A,B,C   min_score values of the sweep [0.2:0.2:2]; the\n"
+    "                             configured min_score is always one of them\n"
+    "  --jobs N                   threads for the re-runs of the sweep (0 = one per core) [0];\n"
+    "                             the timing runs at the configured threshold run alone\n"
+    "  --quiet                    no progress bar\n"
+    "Diagnosis:\n"
+    "  --dump-candidates FILE     with --gt: one run of the configured detector (every score on,\n"
+    "                             minimum normalisers 0) writing, per query with a revisit, the\n"
+    "                             rank of the best true match under eta_w, eta_g, eta_d, eta_sim\n"
+    "                             and eta, the normalisers and the feature count (CSV); prints\n"
+    "                             the top-1 rates and median ranks, then stops\n";
+
+namespace {
+
+double toNumber(const std::string& flag, const std::string& v) {
+  char* end = nullptr;
+  const double x = std::strtod(v.c_str(), &end);
+  if (v.empty() || *end != '\0' || !std::isfinite(x)) {
+    throw std::invalid_argument(flag + ": '" + v + "' is not a number");
+  }
+  return x;
+}
+
+std::vector<double> parseThresholds(const std::string& v) {
+  std::vector<double> out;
+  if (v.find(':') != std::string::npos) {
+    std::istringstream in(v);
+    std::string a, b, c;
+    if (!std::getline(in, a, ':') || !std::getline(in, b, ':') || !std::getline(in, c, ':')) {
+      throw std::invalid_argument("--thresholds: expected LO:STEP:HI, got " + v);
+    }
+    const double lo = toNumber("--thresholds", a), step = toNumber("--thresholds", b),
+                 hi = toNumber("--thresholds", c);
+    if (!(step > 0) || hi < lo || (hi - lo) / step > 1000) {
+      throw std::invalid_argument("--thresholds: need STEP > 0, HI >= LO, at most 1000 values");
+    }
+    for (int i = 0; lo + i * step <= hi + 1e-9; ++i) out.push_back(lo + i * step);
+  } else {
+    std::istringstream in(v);
+    std::string item;
+    while (std::getline(in, item, ',')) out.push_back(toNumber("--thresholds", item));
+  }
+  for (double t : out) {
+    if (t < 0) throw std::invalid_argument("--thresholds: min_score values must be >= 0");
+  }
+  if (out.empty()) throw std::invalid_argument("--thresholds: no value");
+  std::sort(out.begin(), out.end(), std::greater<double>());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
+std::vector<std::string> splitList(const std::string& v) {
+  std::vector<std::string> out;
+  std::istringstream in(v);
+  std::string item;
+  while (std::getline(in, item, ',')) {
+    if (!item.empty()) out.push_back(item);
+  }
+  return out;
+}
+
+}  // namespace
+
+Args parseArgs(int argc, char** argv) {
+  Args a;
+  a.thresholds = parseThresholds("0.2:0.2:2");
+  for (int i = 1; i < argc; ++i) {
+    const std::string flag = argv[i];
+    if (flag == "-h" || flag == "--help") {
+      std::cout << kUsage;
+      std::exit(0);
+    }
+    if (flag == "--ablation") {
+      a.ablation = true;
+      continue;
+    }
+    if (flag == "--quiet") {
+      a.quiet = true;
+      continue;
+    }
+    if (i + 1 >= argc) throw std::invalid_argument(flag + ": missing value (see --help)");
+    const std::string v = argv[++i];
+    if (flag == "--bag")
+      a.bag = v;
+    else if (flag == "--image-topic")
+      a.image_topic = v;
+    else if (flag == "--camera-info-topic")
+      a.info_topic = v;
+    else if (flag == "--images")
+      a.images = v;
+    else if (flag == "--rate")
+      a.rate = toNumber(flag, v);
+    else if (flag == "--max-frames")
+      a.max_frames = static_cast<long>(toNumber(flag, v));
+    else if (flag == "--vocabulary")
+      a.vocabulary = v;
+    else if (flag == "--config")
+      a.config = v;
+    else if (flag == "--gt")
+      a.gt = v;
+    else if (flag == "--output")
+      a.output = v;
+    else if (flag == "--sweep")
+      a.sweep = v;
+    else if (flag == "--thresholds")
+      a.thresholds = parseThresholds(v);
+    else if (flag == "--dump-candidates")
+      a.dump_candidates = v;
+    else if (flag == "--odometry")
+      a.odometry = v;
+    else if (flag == "--rows") {
+      a.rows = splitList(v);
+      if (a.rows.empty()) throw std::invalid_argument("--rows needs at least one row");
+      for (const std::string& row : a.rows)
+        LoopDetectorOptions::ablation(row, LoopDetectorOptions());
+      a.ablation = true;
+    } else if (flag == "--jobs") {
+      const double j = toNumber(flag, v);
+      if (j < 0 || j > 256 || j != static_cast<int>(j)) {
+        throw std::invalid_argument("--jobs must be an integer in [0, 256]");
+      }
+      a.jobs = static_cast<int>(j);
+    } else
+      throw std::invalid_argument("unknown option " + flag + " (see --help)");
+  }
+  if (a.bag.empty() == a.images.empty()) {
+    throw std::invalid_argument("give exactly one of --bag FILE and --images DIR (see --help)");
+  }
+  if (a.vocabulary.empty()) throw std::invalid_argument("--vocabulary FILE is required");
+  if (a.sweep != "rerun" && a.sweep != "score") {
+    throw std::invalid_argument("--sweep must be rerun or score, not " + a.sweep);
+  }
+  if (!(a.rate > 0)) throw std::invalid_argument("--rate must be > 0");
+  if (a.max_frames < 0) throw std::invalid_argument("--max-frames must be >= 0");
+  return a;
+}
+}  // namespace evaluate_app
+}  // namespace bowg

@@ -1,0 +1,29 @@
+// bowg_evaluate's command line: the options and their parser.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace bowg {
+namespace evaluate_app {
+
+extern const char* const kUsage;
+
+struct Args {
+  std::string bag, image_topic = "/camera/image_raw", info_topic = "/camera/camera_info";
+  std::string images, vocabulary, config, gt, output = "bowg_evaluation", sweep = "rerun";
+  std::string odometry;
+  std::string dump_candidates;
+  double rate = 1.0;
+  long max_frames = 0;
+  int jobs = 0;
+  bool ablation = false, quiet = false;
+  std::vector<std::string> rows{"bow", "word_groups", "temporal", "distribution"};
+  std::vector<double> thresholds;
+};
+
+/// Throws std::invalid_argument naming the flag (see kUsage); exits 0 on --help.
+Args parseArgs(int argc, char** argv);
+
+}  // namespace evaluate_app
+}  // namespace bowg

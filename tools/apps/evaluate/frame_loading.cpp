@@ -1,0 +1,131 @@
+// Frames of an image folder or a bag (frame_loading.h).
+#include "frame_loading.h"
+
+#include <dirent.h>
+#include <rosbag/bag.h>
+#include <rosbag/view.h>
+#include <sensor_msgs/CameraInfo.h>
+
+#include <algorithm>
+#include <cctype>
+#include <chrono>
+#include <cstdio>
+#include <string>
+
+#include "bowg/core/errors.h"
+#include "bowg_evaluation/image_file.h"
+#include "bowg_evaluation/odometry_file.h"
+#include "bowg_ros/bag_images.h"
+#include "bowg_ros/ros_conversions.h"
+#include "console_output.h"
+
+namespace bowg {
+namespace evaluate_app {
+
+using namespace bowg::eval;
+
+namespace {
+
+std::vector<std::string> listImages(const std::string& dir) {
+  DIR* d = ::opendir(dir.c_str());
+  if (!d) throw IoError("cannot open the image folder " + dir);
+  std::vector<std::string> files;
+  while (dirent* e = ::readdir(d)) {
+    std::string name = e->d_name, lower = name;
+    std::transform(lower.begin(), lower.end(), lower.begin(), ::tolower);
+    for (const char* ext : {".png", ".jpg", ".jpeg", ".pgm", ".bmp"}) {
+      const std::string x(ext);
+      if (lower.size() > x.size() && lower.compare(lower.size() - x.size(), x.size(), x) == 0) {
+        files.push_back(dir + "/" + name);
+        break;
+      }
+    }
+  }
+  ::closedir(d);
+  std::sort(files.begin(), files.end());
+  if (files.empty()) throw IoError("no png/jpg/jpeg/pgm/bmp image in " + dir);
+  return files;
+}
+
+}  // namespace
+
+std::vector<FrameInput> loadFrames(const Args& a, const FeatureExtractor& extractor) {
+  std::vector<FrameInput> frames;
+  auto add = [&](const cv::Mat& grey, double stamp, const CameraIntrinsics& k) {
+    FrameInput f;
+    // rosbag stamps may repeat (several cameras, a replayed clock): keep
+    // them strictly increasing as the detector requires.
+    f.stamp = frames.empty() ? stamp : std::max(stamp, frames.back().stamp + 1e-6);
+    f.intrinsics = k;
+    const auto t0 = std::chrono::steady_clock::now();
+    f.features = grey.empty() ? ImageFeatures() : extractor.extract(grey);
+    f.feature_ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    frames.push_back(std::move(f));
+  };
+  ProgressBar bar("features", a.quiet);
+  if (!a.images.empty()) {
+    std::vector<std::string> files = listImages(a.images);
+    if (a.max_frames > 0 && files.size() > static_cast<std::size_t>(a.max_frames))
+      files.resize(a.max_frames);
+    std::size_t skipped = 0;
+    for (std::size_t i = 0; i < files.size(); ++i) {
+      std::string why;
+      const cv::Mat grey = eval::readGreyImage(files[i], &why);
+      if (grey.empty()) {
+        // Kept as a frame without features, so that frame i stays image i
+        // of the folder (the ground truth's numbering).
+        std::fprintf(stderr, "\nwarning: image %s skipped (%s): a frame without features\n",
+                     files[i].c_str(), why.c_str());
+        ++skipped;
+      }
+      add(grey, i / a.rate, CameraIntrinsics());
+      bar(i + 1, files.size());
+    }
+    if (skipped > 0) {
+      std::fprintf(stderr, "warning: %zu of %zu images skipped (unreadable)\n", skipped,
+                   files.size());
+    }
+    if (skipped == files.size()) throw FormatError("no readable image in " + a.images);
+    return frames;
+  }
+  rosbag::Bag bag;
+  try {
+    bag.open(a.bag, rosbag::bagmode::Read);
+  } catch (const rosbag::BagException& e) {
+    throw IoError("cannot open the bag " + a.bag + ": " + e.what());
+  }
+  std::vector<std::string> topics{a.image_topic};
+  if (a.info_topic != "none") topics.push_back(a.info_topic);
+  rosbag::View view(bag, rosbag::TopicQuery(topics));
+  rosbag::View images_only(bag, rosbag::TopicQuery(a.image_topic));
+  std::size_t total = images_only.size();
+  if (total == 0) throw FormatError("the bag " + a.bag + " has no messages on " + a.image_topic);
+  if (a.max_frames > 0) total = std::min<std::size_t>(total, a.max_frames);
+  CameraIntrinsics intrinsics;
+  for (const rosbag::MessageInstance& m : view) {
+    if (frames.size() >= total) break;
+    if (m.getTopic() == a.info_topic) {
+      // The first valid camera_info, checked as the nodelet checks it.
+      const sensor_msgs::CameraInfo::ConstPtr info = m.instantiate<sensor_msgs::CameraInfo>();
+      if (info && !intrinsics.valid) intrinsics = bowg_ros::toIntrinsics(*info);
+      continue;
+    }
+    const bowg_ros::BagImage image = bowg_ros::readBagImage(m, a.bag);
+    add(image.grey, image.stamp.toSec(), intrinsics);
+    bar(frames.size(), total);
+  }
+  return frames;
+}
+
+void attachOdometry(const std::string& path, std::vector<FrameInput>* frames) {
+  const std::vector<double> odometer = readOdometry(path);
+  if (odometer.size() < frames->size()) {
+    throw FormatError(path + ": odometers for " + std::to_string(odometer.size()) +
+                      " frames, the input has " + std::to_string(frames->size()));
+  }
+  for (std::size_t i = 0; i < frames->size(); ++i) (*frames)[i].odometer = odometer[i];
+}
+
+}  // namespace evaluate_app
+}  // namespace bowg

@@ -1,0 +1,22 @@
+// The frames bowg_evaluate runs the detector over: features extracted once
+// from an image folder or a bag (images converted as the nodelet converts
+// them), with intrinsics and optional odometers.
+#pragma once
+
+#include <vector>
+
+#include "bowg/features/feature_extractor.h"
+#include "bowg_evaluation/detector_run.h"
+#include "evaluate_args.h"
+
+namespace bowg {
+namespace evaluate_app {
+
+/// Extracts the features of every image once (shared by every run).
+std::vector<eval::FrameInput> loadFrames(const Args& a, const FeatureExtractor& extractor);
+
+/// Sets every frame's odometer from --odometry (one per frame at least).
+void attachOdometry(const std::string& path, std::vector<eval::FrameInput>* frames);
+
+}  // namespace evaluate_app
+}  // namespace bowg

@@ -1,0 +1,141 @@
+// bowg_evaluate's outputs (summary_report.h).
+#include "summary_report.h"
+
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <map>
+#include <sstream>
+
+#include "bowg/core/atomic_file.h"
+#include "bowg_evaluation/pr_report.h"
+#include "bowg_evaluation/timing_stats.h"
+#include "console_output.h"
+
+namespace bowg {
+namespace evaluate_app {
+
+using namespace bowg::eval;
+
+namespace {
+
+// Precision, recall, F1 and recall at 100 % precision per row.
+void accuracyTable(const Args& a, const std::vector<RowResult>& results, const GroundTruth& gt,
+                   const std::vector<double>& thresholds, double threshold, std::ostream& s) {
+  s << "ground truth: " << a.gt << " (" << gt.positives() << " queries with a revisit)\n"
+    << "PR sweep: "
+    << (a.sweep == "rerun" ? "detector re-run per min_score"
+                           : "final score of one run at the lowest min_score")
+    << ", " << thresholds.size() << " thresholds " << thresholds.back() << ".."
+    << thresholds.front() << "\n\n";
+  s << "at min_score " << threshold << "; R@100%P = recall at 100 % precision (its threshold)\n"
+    << "row            precision  recall      F1   TP   FP  R@100%P (threshold)  loops\n";
+  for (const RowResult& r : results) {
+    char line[256];
+    std::snprintf(
+        line, sizeof(line), "%-14s %9.3f %7.3f %7.3f %4d %4d  %7.3f (%9s)  %5zu\n",
+        r.run.name.c_str(), r.at_threshold.precision, r.at_threshold.recall, r.at_threshold.f1,
+        r.at_threshold.true_positives, r.at_threshold.false_positives, r.full_precision.recall,
+        std::isinf(r.full_precision.threshold) ? "none"
+                                               : fmt("%.3f", r.full_precision.threshold).c_str(),
+        detectionsOf(r.run).size());
+    s << line;
+  }
+  if (a.ablation) {
+    // The comparison the ablation is for, in one line (rows: bow first,
+    // the full method last).
+    const PrPoint& bow = results.front().full_precision;
+    const PrPoint& full = results.back().full_precision;
+    s << "\nrecall at 100 % precision: full BoWG " << fmt("%.3f", full.recall)
+      << ", pure bag of words " << fmt("%.3f", bow.recall);
+    if (bow.recall > 0) s << " (" << fmt("%.1f", full.recall / bow.recall) << "x)";
+    s << "\n";
+  }
+}
+
+// Without a ground truth: keyframes per status and every loop.
+void countsTable(const std::vector<RowResult>& results, std::ostream& s) {
+  s << "\nno ground truth: counts only\n";
+  for (const RowResult& r : results) {
+    std::map<std::string, int> counts;
+    for (const KeyframeRecord& k : r.run.keyframes) ++counts[toString(k.status)];
+    s << r.run.name << ":";
+    for (const auto& kv : counts) s << " " << kv.first << "=" << kv.second;
+    s << "\n";
+    for (const KeyframeRecord& k : r.run.keyframes) {
+      if (k.match < 0) continue;
+      s << "  loop " << k.frame << " -> " << k.match << "  score " << fmt("%.3f", k.candidate_score)
+        << "  inliers " << k.inliers << "\n";
+    }
+  }
+}
+
+void timingTable(const std::vector<RowResult>& results, std::ostream& s) {
+  s << "\nper-keyframe timing (ms): mean / median / p95 / max\n";
+  for (const RowResult& r : results) {
+    s << r.run.name << " (" << fmt("%.1f", r.run.wall_seconds) << " s for the run):\n";
+    for (const auto& kv : stageTimingStats(r.run)) {
+      char line[160];
+      std::snprintf(line, sizeof(line), "  %-15s %7.2f %7.2f %7.2f %7.2f\n", kv.first.c_str(),
+                    kv.second.mean, kv.second.median, kv.second.p95, kv.second.max);
+      s << line;
+    }
+  }
+}
+
+// Five bins in the summary, twenty in time_vs_database_size.csv.
+void timeVersusSize(const Args& a, const std::vector<RowResult>& results, std::ostream& s) {
+  s << "\ndetector time vs database size (ms, mean / max):\n";
+  std::ostringstream size_csv;
+  size_csv << "method,first_size,last_size,mean_ms,median_ms,p95_ms,max_ms\n";
+  for (const RowResult& r : results) {
+    s << r.run.name << ":";
+    for (const TimeVsSize& t : timeVersusDatabaseSize(r.run, 5)) {
+      s << "  [" << t.first << "-" << t.last << "] "
+        << fmt("%.2f/%.2f", t.total_ms.mean, t.total_ms.max);
+    }
+    s << "\n";
+    for (const TimeVsSize& t : timeVersusDatabaseSize(r.run, 20)) {
+      size_csv << r.run.name << "," << t.first << "," << t.last << "," << t.total_ms.mean << ","
+               << t.total_ms.median << "," << t.total_ms.p95 << "," << t.total_ms.max << "\n";
+    }
+  }
+  writeFileAtomically(a.output + "/time_vs_database_size.csv", size_csv.str());
+}
+
+}  // namespace
+
+void writeReport(const Args& a, const std::vector<RowResult>& results, std::size_t frames,
+                 const GroundTruth* gt, const std::vector<double>& thresholds, double threshold) {
+  for (const RowResult& r : results) {
+    writeFileAtomically(a.output + "/keyframes_" + r.run.name + ".csv", keyframesCsv(r.run, gt));
+    writeFileAtomically(a.output + "/detections_" + r.run.name + ".csv",
+                        detectionsToCsv(detectionsOf(r.run)));
+  }
+  std::ostringstream s;
+  s << "input: " << (a.bag.empty() ? a.images : a.bag) << " (" << frames << " frames)\n"
+    << "vocabulary: " << a.vocabulary
+    << "  config: " << (a.config.empty() ? "(defaults)" : a.config) << "  min_score: " << threshold
+    << "\n";
+  if (gt) {
+    accuracyTable(a, results, *gt, thresholds, threshold, s);
+  } else {
+    countsTable(results, s);
+  }
+  timingTable(results, s);
+  timeVersusSize(a, results, s);
+  if (gt) {
+    std::vector<NamedCurve> curves;
+    for (const RowResult& r : results) curves.push_back({r.run.name, r.curve});
+    writePrCurvesCsv(a.output + "/pr_curves.csv", curves);
+    writePrPlot(a.output + "/pr_curve.png", curves,
+                "BoWG precision-recall (" + std::to_string(frames) + " frames)");
+  }
+  s << "\noutputs in " << a.output << ": summary.txt, keyframes_<row>.csv, detections_<row>.csv, "
+    << "time_vs_database_size.csv" << (gt ? ", pr_curves.csv, pr_curve.png" : "") << "\n";
+  writeFileAtomically(a.output + "/summary.txt", s.str());
+  std::cout << s.str();
+}
+
+}  // namespace evaluate_app
+}  // namespace bowg
