@@ -1,0 +1,326 @@
+// One query of the loop detector (query_steps.h), in steps: scores, islands
+// with geometric re-ranking, temporal verification, geometric verification.
+#include "detection/query_steps.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "bowg/detection/geometric_verification.h"
+#include "bowg/detection/islands.h"
+#include "bowg/scoring/similarity.h"
+#include "bowg/scoring/temporal_alignment.h"
+
+namespace bowg {
+namespace query_steps {
+namespace {
+
+// The number of entries driven up to `odometer`: those whose odometer (an
+// entry without one carries the one before it, Database::odometers) is at
+// most it. One binary search over the non-decreasing odometers.
+std::size_t entriesDrivenUpTo(const Database& database, double odometer) {
+  const std::vector<double>& odometers = database.odometers();
+  return static_cast<std::size_t>(std::upper_bound(odometers.begin(), odometers.end(), odometer) -
+                                  odometers.begin());
+}
+
+// Entries with id < the returned limit may be candidates. In keyframes: all
+// but the `recent_exclusion` newest. In metres (the query has an odometer and
+// recent_exclusion_m > 0): the entries before the newest one driven at least
+// recent_exclusion_m before the query; entries without an odometer there are
+// treated as recent.
+EntryId candidateLimit(const Database& database, const IslandOptions& options, double odometer) {
+  const std::size_t n = database.size();
+  if (std::isnan(odometer) || !(options.recent_exclusion_m > 0.0)) {
+    const std::size_t excluded = static_cast<std::size_t>(options.recent_exclusion);
+    return static_cast<EntryId>(n > excluded ? n - excluded : 0);
+  }
+  // The non-decreasing odometers find the entries driven far enough back;
+  // those at the end of that range without an odometer of their own carry
+  // the one before them and are dropped.
+  std::size_t limit = entriesDrivenUpTo(database, odometer - options.recent_exclusion_m);
+  while (limit > 0 && std::isnan(database.entries()[limit - 1].odometer)) --limit;
+  return static_cast<EntryId>(limit);
+}
+
+// The normalisers' I_{t-1} (SimilarityOptions::normaliser_distance_m): the
+// newest entry driven at least that far before the query, when both have
+// odometers; else the previous keyframe (the paper).
+EntryId normaliserEntry(const Database& database, const SimilarityOptions& options,
+                        double odometer) {
+  const EntryId previous = static_cast<EntryId>(database.size() - 1);
+  if (std::isnan(odometer) || !(options.normaliser_distance_m > 0.0)) return previous;
+  const std::size_t behind = entriesDrivenUpTo(database, odometer - options.normaliser_distance_m);
+  if (behind == 0 || std::isnan(database.entries()[behind - 1].odometer)) return previous;
+  return static_cast<EntryId>(behind - 1);
+}
+
+// The query's final scores of every candidate (and the step's outcome): false
+// when the query stops before its candidates are scored (database too small,
+// low normaliser); `r` then has its status. Updates the temporal memory.
+bool scoreCandidates(const QueryContext& ctx, const DatabaseQuery& q,
+                     const DatabaseEntry& query_entry, bool with_groups, bool with_distribution,
+                     LoopResult* r, std::vector<std::pair<EntryId, double>>* etas) {
+  const Database& database = ctx.database;
+  const LoopDetectorOptions& options = ctx.options;
+  DetectorState& state = ctx.state;
+  const auto finish = [&](LoopStatus status) {
+    r->status = status;
+    recordUnscoredQuery(options, &state);
+    return false;
+  };
+  if (database.size() == 0) return finish(LoopStatus::kDatabaseTooSmall);
+
+  const SimilarityOptions& so = options.similarity;
+  // Normalisers (eqs. 2, 4): the same scores against I_{t-1}, the last entry
+  // (or the one driven normaliser_distance_m back). They join the history
+  // from the first keyframe on, so that the floor has its median ready when
+  // the database is large enough to be queried.
+  const EntryScores norm = database.score(q, normaliserEntry(database, so, query_entry.odometer));
+  const Normalisers previous{norm.s_w, norm.s_g, norm.s_d};
+  const Normalisers expected = state.normalisers.median();
+  state.normalisers.push(previous, static_cast<std::size_t>(so.normaliser_window));
+  r->word_normaliser = norm.s_w;
+  r->group_normaliser = with_groups ? norm.s_g : 0.0;
+  r->distribution_normaliser = with_distribution ? norm.s_d : 0.0;
+  const EntryId limit = candidateLimit(database, options.islands, query_entry.odometer);
+  if (limit == 0) return finish(LoopStatus::kDatabaseTooSmall);
+  // What eqs. 2 and 4 divide by: s(I_t, I_t-1), raised to the normaliser
+  // floor where it is unusually small.
+  const Normalisers divisor = flooredNormalisers(previous, expected, so.normaliser_floor);
+  // A normaliser of 0 (I_{t-1} shares no word / group / occupied fan bin with
+  // I_t) cannot divide eqs. 2 and 4 even when the minimum is set to 0 (a valid
+  // value): such a keyframe is always low_normaliser, never inf/NaN scores.
+  // Without the floor (the paper) the test reads s(I_t, I_t-1) itself. With
+  // it, the floored divisor: a previous keyframe that shares little with this
+  // one (keyframes 10-20 cm apart, a jolt, a roll) does not silence the
+  // query while the recent keyframes scored normally; an image too poor to
+  // score still gets scores too small for any island.
+  const Normalisers& tested = so.normaliser_floor > 0.0 ? divisor : previous;
+  const auto low = [](double normaliser, double minimum) {
+    return !(normaliser > 0.0) || normaliser < minimum;
+  };
+  if (low(tested.word, so.min_word_normaliser) ||
+      (with_groups && low(tested.group, so.min_group_normaliser)) ||
+      (with_distribution && low(tested.distribution, so.min_distribution_normaliser))) {
+    return finish(LoopStatus::kLowNormaliser);
+  }
+  r->word_divisor = divisor.word;
+  r->group_divisor = with_groups ? divisor.group : 0.0;
+  r->distribution_divisor = with_distribution ? divisor.distribution : 0.0;
+
+  const std::vector<EntryScores> scores = database.query(q, limit, with_groups);
+  r->candidates_scored = scores.size();
+  etas->reserve(scores.size());
+  // Eq. 7's predecessor in metres when odometry allows it
+  // (TemporalScoreOptions::alignment_window_m), else in keyframes.
+  const TemporalScoreOptions& to = options.temporal_score;
+  const bool metric_alignment = to.alignment_window_m > 0.0 && !std::isnan(query_entry.odometer) &&
+                                !std::isnan(state.previous_odometer);
+  const double driven = metric_alignment ? query_entry.odometer - state.previous_odometer : 0.0;
+  ctx.candidates.reserve(scores.size());
+  for (const EntryScores& s : scores) {
+    CandidateScores c;
+    c.entry = s.entry;
+    c.eta_w = normaliseScore(s.s_w, divisor.word);
+    c.eta_g = with_groups ? normaliseScore(s.s_g, divisor.group) : 0.0;
+    c.eta_d = with_distribution ? normaliseScore(s.s_d, divisor.distribution) : 0.0;
+    c.eta_sim =
+        combineSimilarity(c.eta_w, c.eta_g, c.eta_d, options.word_groups, options.distribution, so);
+    // Eqs. 6-7: eta(t-1, tj-1) is the previous query's final score of the
+    // entry before this one (alignment_window 0), or the best-aligned one
+    // near it (temporal_alignment.h); 0 when none was scored then.
+    const double eta_prev =
+        metric_alignment
+            ? alignedPreviousScoreInMetres(state.previous_etas, database.odometers(), s.entry,
+                                           driven, to.alignment_window_m)
+            : alignedPreviousScore(state.previous_etas, s.entry, state.missed_queries, to);
+    c.eta = temporalScore(c.eta_sim, eta_prev, options.temporal_score);
+    ctx.candidates.push_back(c);
+    etas->emplace_back(c.entry, c.eta);
+  }
+  state.previous_etas = *etas;  // sorted by entry id, as the scores are
+  state.missed_queries = 0;
+  state.previous_odometer = query_entry.odometer;
+  return true;
+}
+
+// The two sides of a geometric verification. The query's direct index is
+// built on the first verification only: with one verified candidate most
+// queries stop at the temporal check before it.
+class Verifier {
+ public:
+  Verifier(const QueryContext& ctx, const DatabaseEntry& query, const CameraIntrinsics& k)
+      : ctx_(ctx), query_(query), intrinsics_(k), built_(ctx.options.geometric.exhaustive) {}
+
+  VerificationView query() {
+    if (!built_) {
+      direct_ = directIndexFromWords(ctx_.vocabulary, query_.words, ctx_.database.directLevel());
+      built_ = true;
+    }
+    return VerificationView{&query_.keypoints, &query_.descriptors, &direct_};
+  }
+
+  VerificationView match(EntryId id) const {
+    const DatabaseEntry& m = ctx_.database.entry(id);
+    return VerificationView{&m.keypoints, &m.descriptors, &m.direct};
+  }
+
+  const CameraIntrinsics& intrinsics() const { return intrinsics_; }
+
+ private:
+  const QueryContext& ctx_;
+  const DatabaseEntry& query_;
+  const CameraIntrinsics& intrinsics_;
+  DirectIndex direct_;
+  bool built_;
+};
+
+struct IslandChoice {
+  std::size_t chosen = 0;         ///< index into the islands
+  GeometricVerificationResult g;  ///< of its best entry, when verified
+  bool verified = false;
+  double rerank_ms = 0;
+};
+
+// Geometric re-ranking (GeometricVerificationOptions::candidates): the
+// query's island is the one of the top `candidates` whose best entry has the
+// most inliers (ties: the better-scored island). With 1 it is the
+// best-scored island, verified after the temporal verification (the paper).
+IslandChoice chooseIsland(const std::vector<Island>& islands,
+                          const GeometricVerificationOptions& go, Verifier* verifier) {
+  IslandChoice c;
+  const std::size_t reranked =
+      go.enabled ? std::min(islands.size(), static_cast<std::size_t>(go.candidates)) : 1;
+  if (reranked <= 1) return c;
+  const auto t_rerank = Clock::now();
+  const VerificationView qv = verifier->query();
+  for (std::size_t i = 0; i < reranked; ++i) {
+    const VerificationView mv = verifier->match(islands[i].best_entry);
+    const auto pairs = findCorrespondences(qv, mv, go);
+    // Inliers are a subset of the correspondences: a candidate with no
+    // more correspondences than the best inlier count so far cannot win,
+    // so its RANSAC is skipped (the choice is the same).
+    if (i > 0 && static_cast<int>(pairs.size()) <= c.g.inliers) continue;
+    GeometricVerificationResult gi =
+        verifyCorrespondences(pairs, qv, mv, verifier->intrinsics(), go);
+    if (i == 0 || gi.inliers > c.g.inliers) {
+      c.g = std::move(gi);
+      c.chosen = i;
+    }
+  }
+  c.verified = true;
+  c.rerank_ms = msBetween(t_rerank, Clock::now());
+  return c;
+}
+
+// Geometric verification of the best entry of the chosen island (done
+// already when re-ranking); the loop and its relative pose.
+void verifyMatch(const QueryContext& ctx, const Island& island, IslandChoice* choice,
+                 Verifier* verifier, Clock::time_point t_verify, LoopResult* r) {
+  const GeometricVerificationOptions& go = ctx.options.geometric;
+  const DatabaseEntry& match = ctx.database.entry(island.best_entry);
+  r->match_id = match.id;
+  r->match_stamp = match.stamp;
+  if (!go.enabled) {
+    r->status = LoopStatus::kLoopDetected;
+    return;
+  }
+  GeometricVerificationResult& g = choice->g;
+  if (!choice->verified) {
+    g = verifyGeometry(verifier->query(), verifier->match(island.best_entry),
+                       verifier->intrinsics(), go);
+  }
+  r->timings.verification_ms = choice->rerank_ms + msBetween(t_verify, Clock::now());
+  r->status = g.status;
+  r->correspondences = g.correspondences;
+  r->inliers = g.inliers;
+  if (g.status != LoopStatus::kLoopDetected) {
+    r->match_id = 0;
+    r->match_stamp = 0;
+    return;
+  }
+  r->inlier_correspondences = std::move(g.inlier_correspondences);
+  r->has_relative_pose = g.has_relative_pose;
+  std::copy(g.rotation, g.rotation + 9, r->rotation);
+  std::copy(g.translation_direction, g.translation_direction + 3, r->translation_direction);
+}
+
+}  // namespace
+
+void recordUnscoredQuery(const LoopDetectorOptions& options, DetectorState* state) {
+  if (state->missed_queries < options.temporal_score.max_missed_queries &&
+      !state->previous_etas.empty()) {
+    ++state->missed_queries;
+  } else {
+    state->previous_etas.clear();
+    state->missed_queries = 0;
+    state->previous_odometer = std::numeric_limits<double>::quiet_NaN();
+  }
+  state->consistency.miss(options.temporal_verification);
+}
+
+void runQuery(const QueryContext& ctx, const DatabaseQuery& q, const DatabaseEntry& query_entry,
+              const CameraIntrinsics& intrinsics, bool with_groups, bool with_distribution,
+              LoopResult* r) {
+  const LoopDetectorOptions& options = ctx.options;
+  const auto t_query = Clock::now();
+  std::vector<std::pair<EntryId, double>> etas;
+  const bool scored =
+      scoreCandidates(ctx, q, query_entry, with_groups, with_distribution, r, &etas);
+  const auto t_islands = Clock::now();
+  r->timings.query_ms = msBetween(t_query, t_islands);
+  if (!scored) return;
+  if (etas.empty()) {
+    r->status = LoopStatus::kNoCandidates;
+    recordUnscoredQuery(options, &ctx.state);
+    return;
+  }
+  r->has_candidate = true;
+  r->best = *std::max_element(
+      ctx.candidates.begin(), ctx.candidates.end(),
+      [](const CandidateScores& a, const CandidateScores& b) { return a.eta < b.eta; });
+
+  // Islands (Sec. III-D, eq. 10) and temporal verification.
+  std::vector<Island> islands = computeIslands(etas, options.islands);
+  for (Island& i : islands) {
+    i.first_m = ctx.database.entry(i.first).odometer;
+    i.last_m = ctx.database.entry(i.last).odometer;
+  }
+  if (islands.empty()) {
+    r->status = LoopStatus::kNoScoreAboveThreshold;
+    ctx.state.consistency.miss(options.temporal_verification);
+    r->timings.islands_ms = msBetween(t_islands, Clock::now());
+    return;
+  }
+  Verifier verifier(ctx, query_entry, intrinsics);
+  IslandChoice choice = chooseIsland(islands, options.geometric, &verifier);
+  const Island& island = islands[choice.chosen];
+  r->island_first = island.first;
+  r->island_last = island.last;
+  r->island_score = island.score;
+  const auto it =
+      std::lower_bound(ctx.candidates.begin(), ctx.candidates.end(), island.best_entry,
+                       [](const CandidateScores& c, EntryId id) { return c.entry < id; });
+  if (it != ctx.candidates.end() && it->entry == island.best_entry) r->best = *it;
+  // The followed hypotheses (TemporalVerificationOptions::hypotheses): the
+  // chosen island first, then the best-scored others.
+  std::vector<Island> followed{island};
+  const std::size_t wanted = static_cast<std::size_t>(options.temporal_verification.hypotheses);
+  for (std::size_t i = 0; i < islands.size() && followed.size() < wanted; ++i) {
+    if (i != choice.chosen) followed.push_back(islands[i]);
+  }
+  const bool consistent = ctx.state.consistency.update(followed, 0, options.temporal_verification,
+                                                       query_entry.odometer);
+  const auto t_verify = Clock::now();
+  r->timings.islands_ms = msBetween(t_islands, t_verify) - choice.rerank_ms;
+  r->timings.verification_ms = choice.rerank_ms;
+  if (!consistent) {
+    r->status = LoopStatus::kNoTemporalConsistency;
+    return;
+  }
+  verifyMatch(ctx, island, &choice, &verifier, t_verify, r);
+}
+
+}  // namespace query_steps
+}  // namespace bowg
