@@ -1,0 +1,143 @@
+// The detector file's binary layout (detector_file.h) and the little-endian
+// writer and bounds-checked reader it is written and read with. Internal to
+// the detection stage.
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "bowg/core/errors.h"
+#include "bowg/core/types.h"
+#include "bowg/detection/islands.h"
+
+namespace bowg {
+namespace detector_file {
+
+constexpr char kMagic[8] = {'B', 'O', 'W', 'G', 'D', 'B', 0, 0};
+// Version 2 appends the normaliser history; version 3 then the two
+// missed-query counters (previous scores, temporal chain) and the entries'
+// odometers (u32 count = entries, f64 each, NaN = unknown). Older files still
+// load, with an empty history, zero counters and unknown odometers. Version 4
+// appends the temporal verification's other hypotheses (u32 count, then an
+// island and an i32 chain length each); older files load with none.
+constexpr std::uint32_t kVersion = 4;
+constexpr std::uint32_t kOldestVersion = 1;
+// magic + version + fingerprint + payload size | ... | checksum
+constexpr std::size_t kHeaderBytes = 8 + 4 + 8 + 8;
+constexpr std::size_t kTrailerBytes = 8;
+// Fixed bytes of one entry / one feature in the payload.
+constexpr std::size_t kEntryFixedBytes = 8 * 3 + 1 + 8 * 4 + 4 + 4 + 4;
+constexpr std::size_t kFeatureBytes = 6 * 4 + 32 + 4;
+constexpr std::size_t kPairBytes = 4 + 8;
+constexpr std::size_t kNormaliserBytes = 3 * 8;
+constexpr std::size_t kIslandBytes = 4 + 4 + 8 + 4 + 8 + 4;
+
+class Writer {
+ public:
+  void u8(std::uint8_t v) { out_.push_back(static_cast<char>(v)); }
+  void u32(std::uint32_t v) {
+    for (int i = 0; i < 4; ++i) out_.push_back(static_cast<char>((v >> (8 * i)) & 0xff));
+  }
+  void u64(std::uint64_t v) {
+    for (int i = 0; i < 8; ++i) out_.push_back(static_cast<char>((v >> (8 * i)) & 0xff));
+  }
+  void i32(std::int32_t v) { u32(static_cast<std::uint32_t>(v)); }
+  void f32(float v) {
+    std::uint32_t b;
+    std::memcpy(&b, &v, 4);
+    u32(b);
+  }
+  void f64(double v) {
+    std::uint64_t b;
+    std::memcpy(&b, &v, 8);
+    u64(b);
+  }
+  void bytes(const char* p, std::size_t n) { out_.append(p, n); }
+  void pairs(const std::vector<std::pair<WordId, double>>& v) {
+    u32(static_cast<std::uint32_t>(v.size()));
+    for (const auto& p : v) {
+      u32(p.first);
+      f64(p.second);
+    }
+  }
+  std::string& str() { return out_; }
+
+ private:
+  std::string out_;
+};
+
+class Reader {
+ public:
+  Reader(const std::string& path, const char* data, std::size_t size)
+      : path_(path), p_(data), end_(data + size) {}
+  std::size_t left() const { return static_cast<std::size_t>(end_ - p_); }
+  void need(std::size_t n, const char* what) const {
+    if (n > left()) fail(std::string("truncated while reading ") + what);
+  }
+  [[noreturn]] void fail(const std::string& why) const {
+    throw FormatError("database file '" + path_ + "': " + why);
+  }
+  std::uint8_t u8(const char* what) {
+    need(1, what);
+    return static_cast<std::uint8_t>(*p_++);
+  }
+  std::uint32_t u32(const char* what) { return littleEndian<std::uint32_t>(what); }
+  std::uint64_t u64(const char* what) { return littleEndian<std::uint64_t>(what); }
+  // The file is little-endian whatever the host: assemble byte by byte.
+  template <typename T>
+  T littleEndian(const char* what) {
+    need(sizeof(T), what);
+    T v = 0;
+    for (std::size_t i = 0; i < sizeof(T); ++i)
+      v |= static_cast<T>(static_cast<unsigned char>(p_[i])) << (8 * i);
+    p_ += sizeof(T);
+    return v;
+  }
+  std::int32_t i32(const char* what) { return static_cast<std::int32_t>(u32(what)); }
+  float f32(const char* what) {
+    const std::uint32_t b = u32(what);
+    float v;
+    std::memcpy(&v, &b, 4);
+    return v;
+  }
+  double f64(const char* what) {
+    const std::uint64_t b = u64(what);
+    double v;
+    std::memcpy(&v, &b, 8);
+    return v;
+  }
+  /// A count of items of `item_bytes` each that must fit in the bytes left.
+  std::size_t count(std::size_t item_bytes, const char* what) {
+    const std::uint64_t n = u32(what);
+    if (item_bytes > 0 && n > left() / item_bytes) {
+      fail(std::string("count of ") + what + " (" + std::to_string(n) +
+           ") exceeds the file length");
+    }
+    return static_cast<std::size_t>(n);
+  }
+  std::vector<std::pair<WordId, double>> pairs(const char* what) {
+    const std::size_t n = count(kPairBytes, what);
+    std::vector<std::pair<WordId, double>> v;
+    v.reserve(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      const WordId id = u32(what);
+      const double w = f64(what);
+      if (!std::isfinite(w)) fail(std::string("non-finite weight in ") + what);
+      if (!v.empty() && id <= v.back().first) fail(std::string(what) + " not sorted by id");
+      v.emplace_back(id, w);
+    }
+    return v;
+  }
+
+ private:
+  std::string path_;
+  const char* p_;
+  const char* end_;
+};
+
+}  // namespace detector_file
+}  // namespace bowg

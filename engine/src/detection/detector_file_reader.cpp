@@ -1,0 +1,301 @@
+// Loading the detector file (detector_file.h; layout in
+// detector_file_format.h). Every count read is checked against the bytes
+// left before anything is allocated, so a corrupt count cannot trigger a huge
+// allocation; the checksum is verified before any content is interpreted;
+// every value restored is checked against what a run can produce.
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <limits>
+#include <sstream>
+
+#include "bowg/core/checksum.h"
+#include "bowg/detection/detector_file.h"
+#include "bowg/vocabulary/vocabulary.h"
+#include "detection/detector_file_format.h"
+
+namespace bowg {
+
+using namespace detector_file;
+
+namespace {
+
+Island readIsland(Reader* r) {
+  Island i;
+  i.first = r->u32("island");
+  i.last = r->u32("island");
+  i.score = r->f64("island");
+  i.best_entry = r->u32("island");
+  i.best_score = r->f64("island");
+  i.size = r->i32("island");
+  return i;
+}
+
+std::string readWholeFile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw IoError("cannot open database file '" + path + "' for reading");
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  if (in.bad()) throw IoError("error while reading database file '" + path + "'");
+  return ss.str();
+}
+
+// Magic, version, payload size, checksum and vocabulary; returns the version.
+std::uint32_t checkHeader(const std::string& path, const std::string& bytes,
+                          const Vocabulary& vocabulary, std::uint64_t* payload_size) {
+  Reader header(path, bytes.data(), bytes.size());
+  if (bytes.size() < kHeaderBytes + kTrailerBytes) {
+    header.fail("file too short (" + std::to_string(bytes.size()) + " bytes) to be a database");
+  }
+  if (std::memcmp(bytes.data(), kMagic, 8) != 0) header.fail("not a BoWG database (bad magic)");
+  Reader r(path, bytes.data() + 8, bytes.size() - 8);
+  const std::uint32_t version = r.u32("version");
+  if (version < kOldestVersion || version > kVersion) {
+    r.fail("unsupported version " + std::to_string(version) + " (expected " +
+           std::to_string(kOldestVersion) + " to " + std::to_string(kVersion) + ")");
+  }
+  const std::uint64_t fingerprint = r.u64("vocabulary fingerprint");
+  const std::uint64_t payload = r.u64("payload size");
+  if (payload != bytes.size() - kHeaderBytes - kTrailerBytes) {
+    r.fail("payload size " + std::to_string(payload) + " does not match the file length " +
+           std::to_string(bytes.size()) + " (truncated or extended)");
+  }
+  Reader trailer(path, bytes.data() + bytes.size() - kTrailerBytes, kTrailerBytes);
+  const std::uint64_t stored_sum = trailer.u64("checksum");
+  if (checksum64(bytes.data(), bytes.size() - kTrailerBytes) != stored_sum) {
+    r.fail("checksum mismatch (the file is corrupt)");
+  }
+  if (fingerprint != vocabulary.fingerprint()) {
+    r.fail(
+        "it was built with another vocabulary (fingerprint mismatch): load the vocabulary "
+        "the database was created with");
+  }
+  *payload_size = payload;
+  return version;
+}
+
+// Stamp, fan centre and intrinsics of entry `i`.
+void readEntryHeader(Reader* p, const std::string& entry, DatabaseEntry* e) {
+  e->stamp = p->f64("entry stamp");
+  e->centre_x = p->f64("entry centre");
+  e->centre_y = p->f64("entry centre");
+  e->intrinsics.valid = p->u8("intrinsics") != 0;
+  e->intrinsics.fx = p->f64("intrinsics");
+  e->intrinsics.fy = p->f64("intrinsics");
+  e->intrinsics.cx = p->f64("intrinsics");
+  e->intrinsics.cy = p->f64("intrinsics");
+  if (!std::isfinite(e->stamp) || !std::isfinite(e->centre_x) || !std::isfinite(e->centre_y)) {
+    p->fail(entry + " has a non-finite stamp or centre");
+  }
+  const CameraIntrinsics& k = e->intrinsics;
+  if (k.valid && !(k.fx > 0.0 && k.fy > 0.0 && std::isfinite(k.fx) && std::isfinite(k.fy) &&
+                   std::isfinite(k.cx) && std::isfinite(k.cy))) {
+    p->fail(entry + " has invalid intrinsics (fx, fy must be finite > 0, cx, cy finite)");
+  }
+}
+
+// Keypoints, descriptors and words of one entry.
+void readFeatures(Reader* p, const std::string& entry, DatabaseEntry* e) {
+  const std::size_t nf = p->count(kFeatureBytes, "features");
+  e->keypoints.resize(nf);
+  e->descriptors.resize(nf);
+  e->words.resize(nf);
+  for (std::size_t f = 0; f < nf; ++f) {
+    Keypoint& k = e->keypoints[f];
+    k.x = p->f32("keypoint");
+    k.y = p->f32("keypoint");
+    k.size = p->f32("keypoint");
+    k.angle = p->f32("keypoint");
+    k.response = p->f32("keypoint");
+    k.octave = p->i32("keypoint");
+    if (!std::isfinite(k.x) || !std::isfinite(k.y) || !std::isfinite(k.angle) ||
+        !std::isfinite(k.response) || !(k.size >= 0.0f && std::isfinite(k.size))) {
+      p->fail(entry + " keypoint " + std::to_string(f) +
+              " has a non-finite coordinate, angle or response, or an invalid size");
+    }
+    for (auto& b : e->descriptors[f].bits) b = p->u64("descriptor");
+    e->words[f] = p->u32("word");
+  }
+}
+
+DatabaseEntry readEntry(Reader* p, std::size_t i, ScoringType stored_scoring) {
+  DatabaseEntry e;
+  const std::string entry = "entry " + std::to_string(i);
+  readEntryHeader(p, entry, &e);
+  readFeatures(p, entry, &e);
+  e.bow = p->pairs("BoW vector");
+  e.raw_groups = p->pairs("word groups");
+  // Stored weights are > 0 (words of weight 0 are never stored) and, for
+  // every scoring type but the dot product, normalised to at most 1.
+  const bool normalised = stored_scoring != ScoringType::kDotProduct;
+  for (const auto& b : e.bow) {
+    if (!(b.second > 0.0) || (normalised && b.second > 1.0 + 1e-9)) {
+      p->fail(entry + " has a BoW weight " + std::to_string(b.second) + " outside (0, " +
+              (normalised ? "1]" : "inf)"));
+    }
+  }
+  for (const auto& g : e.raw_groups) {
+    if (!(g.second > 0.0)) p->fail(entry + " has a word-group weight <= 0");
+  }
+  return e;
+}
+
+// The temporal chain as stored, restored once the entries are in.
+struct StoredChain {
+  Island last;
+  int length = 0;
+  int missed = 0;
+  double last_query_m = std::numeric_limits<double>::quiet_NaN();
+  std::vector<IslandHypothesis> others;
+};
+
+// Version 1: eq. 7's previous scores and the chosen island's chain.
+void readPreviousScoresAndChain(Reader* p, std::size_t n, DetectorState* state,
+                                StoredChain* chain) {
+  state->previous_etas = p->pairs("previous scores");
+  if (!state->previous_etas.empty() && state->previous_etas.back().first >= n) {
+    p->fail("previous scores refer to an entry beyond the database");
+  }
+  for (const auto& e : state->previous_etas) {
+    if (e.second < 0.0) p->fail("a previous score is negative");
+  }
+  chain->last = readIsland(p);
+  chain->length = p->i32("chain length");
+  // A chain counts queries, one per entry: it cannot be longer than the
+  // database (a forged one would pass the temporal check at once).
+  if (chain->length < 0 || static_cast<std::size_t>(chain->length) > n) {
+    p->fail("temporal-consistency chain length " + std::to_string(chain->length) + " outside 0.." +
+            std::to_string(n) + " (the number of entries)");
+  }
+}
+
+// Version 2: the normaliser history.
+void readNormalisers(Reader* p, DetectorState* state) {
+  const std::size_t nn = p->count(kNormaliserBytes, "normalisers");
+  std::vector<Normalisers> normalisers(nn);
+  for (Normalisers& v : normalisers) {
+    v.word = p->f64("normaliser");
+    v.group = p->f64("normaliser");
+    v.distribution = p->f64("normaliser");
+    if (!(v.word >= 0.0) || !(v.group >= 0.0) || !(v.distribution >= 0.0) ||
+        !std::isfinite(v.word + v.group + v.distribution)) {
+      p->fail("a stored normaliser is negative or not finite");
+    }
+  }
+  state->normalisers.restore(normalisers);
+}
+
+// Version 3: the missed-query counters and the odometers.
+void readCountersAndOdometers(Reader* p, std::vector<DatabaseEntry>* entries, DetectorState* state,
+                              StoredChain* chain) {
+  const std::size_t n = entries->size();
+  state->missed_queries = p->i32("missed queries");
+  chain->missed = p->i32("missed queries");
+  if (state->missed_queries < 0 || chain->missed < 0 ||
+      static_cast<std::size_t>(state->missed_queries) > n ||
+      static_cast<std::size_t>(chain->missed) > n) {
+    p->fail("missed-query count outside 0.." + std::to_string(n));
+  }
+  if (state->missed_queries > 0 && state->previous_etas.empty()) {
+    p->fail("missed queries counted without previous scores");
+  }
+  if (chain->missed > 0 && chain->length == 0) {
+    p->fail("missed queries counted without a temporal chain");
+  }
+  if (p->count(8, "odometers") != n) p->fail("odometer count differs from the entry count");
+  double previous = -1.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double o = p->f64("odometer");
+    (*entries)[i].odometer = o;
+    if (std::isnan(o)) continue;
+    if (!std::isfinite(o) || o < 0.0 || o < previous) {
+      p->fail("entry " + std::to_string(i) + " has a negative, non-finite or decreasing odometer");
+    }
+    previous = o;
+  }
+  state->previous_odometer = p->f64("odometer");
+  chain->last_query_m = p->f64("odometer");
+  for (double o : {state->previous_odometer, chain->last_query_m}) {
+    if (!std::isnan(o) && !(std::isfinite(o) && o >= 0.0)) {
+      p->fail("a stored query odometer is invalid");
+    }
+  }
+}
+
+// Version 4: the temporal verification's other hypotheses.
+void readHypotheses(Reader* p, std::size_t n, StoredChain* chain) {
+  const std::size_t no = p->count(kIslandBytes + 4, "hypotheses");
+  if (no > 0 && chain->length == 0) p->fail("temporal hypotheses stored without a temporal chain");
+  chain->others.resize(no);
+  for (IslandHypothesis& h : chain->others) {
+    h.island = readIsland(p);
+    h.chain_length = p->i32("chain length");
+    if (h.chain_length < 1 || static_cast<std::size_t>(h.chain_length) > n) {
+      p->fail("a temporal hypothesis has a chain length outside 1.." + std::to_string(n));
+    }
+  }
+}
+
+// The chain's islands must lie inside the database; their odometers come
+// from the entries.
+void restoreChain(Reader* p, const Database& db, StoredChain* chain, DetectorState* state) {
+  const std::size_t n = db.size();
+  const auto place = [&](Island* i) {
+    if (i->first > i->last || i->last >= n || i->best_entry < i->first || i->best_entry > i->last) {
+      p->fail("a temporal island lies outside the database");
+    }
+    i->first_m = db.entry(i->first).odometer;
+    i->last_m = db.entry(i->last).odometer;
+  };
+  if (chain->length > 0) place(&chain->last);
+  for (IslandHypothesis& h : chain->others) place(&h.island);
+  state->consistency.restore(chain->last, chain->length, chain->missed, chain->last_query_m,
+                             std::move(chain->others));
+}
+
+}  // namespace
+
+std::unique_ptr<Database> loadDetectorFile(const std::string& path,
+                                           std::shared_ptr<const Vocabulary> vocabulary,
+                                           ScoringType scoring, int direct_index_level,
+                                           int fan_bins, DetectorState* state) {
+  const std::string bytes = readWholeFile(path);
+  std::uint64_t payload = 0;
+  const std::uint32_t version = checkHeader(path, bytes, *vocabulary, &payload);
+  Reader p(path, bytes.data() + kHeaderBytes, static_cast<std::size_t>(payload));
+  std::unique_ptr<Database> db(new Database(vocabulary, scoring, direct_index_level, fan_bins));
+  const std::uint32_t stored_scoring = p.u32("scoring type");
+  if (stored_scoring > static_cast<std::uint32_t>(ScoringType::kDotProduct)) {
+    p.fail("unknown scoring type " + std::to_string(stored_scoring));
+  }
+  // Vectors stored for the same scoring type are used bit for bit.
+  const bool bow_normalised = static_cast<ScoringType>(stored_scoring) == scoring;
+  const std::size_t n = p.count(kEntryFixedBytes, "entries");
+  // Entries join the database once the state after them (their odometers,
+  // version 3) has been read.
+  std::vector<DatabaseEntry> entries;
+  entries.reserve(n);
+  try {
+    for (std::size_t i = 0; i < n; ++i) {
+      entries.push_back(readEntry(&p, i, static_cast<ScoringType>(stored_scoring)));
+    }
+    StoredChain chain;
+    readPreviousScoresAndChain(&p, n, state, &chain);
+    if (version >= 2) readNormalisers(&p, state);
+    if (version >= 3) readCountersAndOdometers(&p, &entries, state, &chain);
+    if (version >= 4) readHypotheses(&p, n, &chain);
+    for (DatabaseEntry& e : entries) {
+      db->addToGroupTable(e.raw_groups);
+      db->add(std::move(e), bow_normalised);
+    }
+    restoreChain(&p, *db, &chain, state);
+  } catch (const std::invalid_argument& e) {
+    // Content the database itself rejects (word ids out of range,
+    // non-increasing stamps, invalid weights): still a format problem.
+    p.fail(std::string("invalid content: ") + e.what());
+  }
+  if (p.left() != 0) p.fail("unexpected bytes after the detector state");
+  return db;
+}
+
+}  // namespace bowg
