@@ -8,6 +8,8 @@
 
 namespace bowg {
 
+// One branch per row: long because the list of rows is, and kept in one
+// piece so that every row is seen beside the others.
 LoopDetectorOptions LoopDetectorOptions::ablation(const std::string& row,
                                                   const LoopDetectorOptions& base) {
   // Rows of the paper's ablation study (Sec. IV): each switches on one more

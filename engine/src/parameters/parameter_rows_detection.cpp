@@ -8,6 +8,8 @@
 namespace bowg {
 namespace parameter_rows {
 
+// One statement per row, in the README table's order: long because the table
+// is, and kept in one piece so that the order is visible.
 void addDetectionRows(std::vector<Row>* rows) {
   const std::string det = "detector";
   // --- Islands (Sec. III-D).

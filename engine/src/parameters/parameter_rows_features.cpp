@@ -7,6 +7,8 @@
 namespace bowg {
 namespace parameter_rows {
 
+// One statement per row, in the README table's order: long because the table
+// is, and kept in one piece so that the order is visible.
 void addFeatureRows(std::vector<Row>* rows) {
   const std::string fea = "features";
   // --- Features (Sec. III-A).
