@@ -27,18 +27,12 @@ LoopDetectorNodelet::~LoopDetectorNodelet() {
   }
 }
 
-void LoopDetectorNodelet::onInit() {
-  ros::NodeHandle& nh = getNodeHandle();
-  ros::NodeHandle& pnh = getPrivateNodeHandle();
-  if (!loadParameters(pnh)) {
-    NODELET_FATAL("bowg_ros: not started (fix the parameters above)");
-    return;
-  }
+bool LoopDetectorNodelet::startEngine() {
   if (vocabulary_path_.empty()) {
     NODELET_FATAL(
         "~vocabulary_path is not set: the loop detector needs a vocabulary "
         "(.bowgvoc, DBoW2/DBoW3 YAML, DBoW3 binary, ORBvoc.txt or VINS .bin)");
-    return;
+    return false;
   }
   try {
     const auto t0 = Clock::now();
@@ -54,7 +48,7 @@ void LoopDetectorNodelet::onInit() {
     detector_.reset(new bowg::LoopDetector(vocabulary_, options_.detector));
   } catch (const std::exception& e) {
     NODELET_FATAL("bowg_ros: not started: %s", e.what());
-    return;
+    return false;
   }
   if (!database_load_path_.empty()) {
     try {
@@ -66,10 +60,11 @@ void LoopDetectorNodelet::onInit() {
                     e.what());
     }
   }
-  gate_.setOptions(gate_options_);
-  gate_.setOdometer(lastOdometer(*detector_));
-  queue_.reset(new BoundedQueue<Frame>(static_cast<std::size_t>(queue_size_)));
+  return true;
+}
 
+// Outputs, services, diagnostics and live tuning.
+void LoopDetectorNodelet::advertiseInterfaces(ros::NodeHandle& nh, ros::NodeHandle& pnh) {
   // Outputs.
   loop_pub_ = nh.advertise<LoopClosure>("loop_closure", 10);
   status_pub_ = pnh.advertise<KeyframeStatus>("keyframe_status", 50);
@@ -94,11 +89,11 @@ void LoopDetectorNodelet::onInit() {
   reconfigure_server_.reset(new dynamic_reconfigure::Server<BoWGConfig>(config_mutex_, pnh));
   reconfigure_server_->setCallback(
       [this](BoWGConfig& config, uint32_t level) { reconfigure(config, level); });
+}
 
-  worker_ = std::thread(&LoopDetectorNodelet::workerLoop, this);
-  initialised_ = true;
-
-  // Inputs last, once everything they feed exists. The callbacks only gate
+// Image (raw or compressed) or upstream features, camera_info and odometry.
+void LoopDetectorNodelet::subscribeInputs(ros::NodeHandle& nh, ros::NodeHandle& pnh) {
+  // The callbacks only gate
   // and enqueue; the subscriber queues are at least ~queue_size deep so that a
   // large ~queue_size makes a fast bag replay lossless (drops then happen, and
   // are counted, only in our own queue).
@@ -130,6 +125,26 @@ void LoopDetectorNodelet::onInit() {
   // metres: recent_exclusion_m, alignment_window_m, max_island_distance_m);
   // without a publisher those fall back to keyframes.
   odom_sub_ = nh.subscribe("odom", 50, &LoopDetectorNodelet::odometryCallback, this);
+}
+
+void LoopDetectorNodelet::onInit() {
+  ros::NodeHandle& nh = getNodeHandle();
+  ros::NodeHandle& pnh = getPrivateNodeHandle();
+  if (!loadParameters(pnh)) {
+    NODELET_FATAL("bowg_ros: not started (fix the parameters above)");
+    return;
+  }
+  if (!startEngine()) return;
+  gate_.setOptions(gate_options_);
+  gate_.setOdometer(lastOdometer(*detector_));
+  queue_.reset(new BoundedQueue<Frame>(static_cast<std::size_t>(queue_size_)));
+
+  advertiseInterfaces(nh, pnh);
+  worker_ = std::thread(&LoopDetectorNodelet::workerLoop, this);
+  initialised_ = true;
+
+  // Inputs last, once everything they feed exists.
+  subscribeInputs(nh, pnh);
   NODELET_INFO("bowg_ros ready: input %s, keyframe interval %.3f s, distance %.3f m, queue %d",
                use_features_input_ ? nh.resolveName("keyframe_features").c_str()
                                    : nh.resolveName("image").c_str(),

@@ -111,6 +111,11 @@ class LoopDetectorNodelet : public nodelet::Nodelet {
 
  private:
   void onInit() override;
+  /// Vocabulary, feature extractor, detector and the database to resume
+  /// from; false (logged FATAL) when the nodelet cannot start.
+  bool startEngine();
+  void advertiseInterfaces(ros::NodeHandle& nh, ros::NodeHandle& pnh);
+  void subscribeInputs(ros::NodeHandle& nh, ros::NodeHandle& pnh);
   bool loadParameters(ros::NodeHandle& pnh);
 
   void imageCallback(const sensor_msgs::ImageConstPtr& msg);
