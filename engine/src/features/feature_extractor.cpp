@@ -73,6 +73,31 @@ Keypoint toKeypoint(const cv::KeyPoint& kp, bool oriented) {
   return out;
 }
 
+// GFTT corners (Shi-Tomasi or Harris) as keypoints of the configured size,
+// with their corner quality as the response.
+std::vector<cv::KeyPoint> detectGftt(const cv::Mat& image, const cv::Mat& mask,
+                                     const FeatureOptions& o) {
+  std::vector<cv::Point2f> corners;
+  std::vector<float> quality;
+  cv::goodFeaturesToTrack(image, corners, o.gftt_max_corners, o.gftt_quality_level,
+                          o.gftt_min_distance, mask, quality, o.gftt_block_size, kGfttGradientSize,
+                          o.gftt_use_harris, kHarrisK);
+  std::vector<cv::KeyPoint> detected;
+  detected.reserve(corners.size());
+  for (std::size_t i = 0; i < corners.size(); ++i) {
+    detected.emplace_back(corners[i], static_cast<float>(o.gftt_keypoint_size), -1.f,
+                          i < quality.size() ? quality[i] : 0.f, 0);
+  }
+  return detected;
+}
+
+// OpenCV's multi-scale ORB with the configured pyramid and FAST threshold.
+cv::Ptr<cv::ORB> makeOrb(const FeatureOptions& o) {
+  return cv::ORB::create(o.orb_max_features, static_cast<float>(o.orb_scale_factor), o.orb_levels,
+                         2 * kOrbHalfPatch + 1, 0, 2, cv::ORB::HARRIS_SCORE, 2 * kOrbHalfPatch + 1,
+                         o.orb_fast_threshold);
+}
+
 }  // namespace
 
 FeatureExtractor::FeatureExtractor(const FeatureOptions& options) : options_(options) {
@@ -115,21 +140,9 @@ ImageFeatures FeatureExtractor::extract(const cv::Mat& image) const {
   // 1. Detect.
   std::vector<cv::KeyPoint> detected;
   if (gftt) {
-    std::vector<cv::Point2f> corners;
-    std::vector<float> quality;
-    cv::goodFeaturesToTrack(image, corners, options_.gftt_max_corners, options_.gftt_quality_level,
-                            options_.gftt_min_distance, mask_, quality, options_.gftt_block_size,
-                            kGfttGradientSize, options_.gftt_use_harris, kHarrisK);
-    detected.reserve(corners.size());
-    for (std::size_t i = 0; i < corners.size(); ++i) {
-      detected.emplace_back(corners[i], static_cast<float>(options_.gftt_keypoint_size), -1.f,
-                            i < quality.size() ? quality[i] : 0.f, 0);
-    }
+    detected = detectGftt(image, mask_, options_);
   } else {
-    cv::Ptr<cv::ORB> orb =
-        cv::ORB::create(options_.orb_max_features, static_cast<float>(options_.orb_scale_factor),
-                        options_.orb_levels, 2 * kOrbHalfPatch + 1, 0, 2, cv::ORB::HARRIS_SCORE,
-                        2 * kOrbHalfPatch + 1, options_.orb_fast_threshold);
+    cv::Ptr<cv::ORB> orb = makeOrb(options_);
     if (oriented && !brief) {
       // ORB's own orientation and descriptors: one pass over one pyramid
       // (detect + compute would build it twice). ORB keeps its keypoints
