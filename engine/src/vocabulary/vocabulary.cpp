@@ -20,6 +20,9 @@ constexpr WordId Vocabulary::kNoWord;
 
 namespace {
 
+using Node = Vocabulary::Node;
+constexpr WordId kNoWord = Vocabulary::kNoWord;
+
 std::string nodeName(std::size_t i) { return "node " + std::to_string(i); }
 
 inline void putLe(unsigned char* out, std::uint64_t v, int bytes) {
@@ -79,32 +82,31 @@ void descendBatch(const Vocabulary::Node* nodes, const Descriptor* d, std::size_
   for (std::size_t g = 0; g < count; ++g) words[g] = nodes[current[g]].word;
 }
 
-}  // namespace
-
-Vocabulary::Vocabulary(int branching, int depth, WeightingType weighting, ScoringType scoring,
-                       std::vector<Node> nodes)
-    : k_(branching), L_(depth), weighting_(weighting), scoring_(scoring), nodes_(std::move(nodes)) {
-  index();
-}
-
-void Vocabulary::index() {
-  if (k_ < 2) throw FormatError("vocabulary: branching factor k = " + std::to_string(k_) + " < 2");
-  if (L_ < 1) throw FormatError("vocabulary: depth L = " + std::to_string(L_) + " < 1");
-  const int w = static_cast<int>(weighting_);
-  const int s = static_cast<int>(scoring_);
+// k, L, the weighting and scoring types, the node count and the root.
+void checkHeader(int k, int L, WeightingType weighting, ScoringType scoring,
+                 const std::vector<Node>& nodes) {
+  const int w = static_cast<int>(weighting);
+  const int s = static_cast<int>(scoring);
+  if (k < 2) throw FormatError("vocabulary: branching factor k = " + std::to_string(k) + " < 2");
+  if (L < 1) throw FormatError("vocabulary: depth L = " + std::to_string(L) + " < 1");
   if (w < 0 || w > 3) throw FormatError("vocabulary: unknown weighting type " + std::to_string(w));
   if (s < 0 || s > 5) throw FormatError("vocabulary: unknown scoring type " + std::to_string(s));
-  const std::size_t n = nodes_.size();
+  const std::size_t n = nodes.size();
   if (n < 2) throw FormatError("vocabulary: no node below the root");
   if (n >= kNoWord) throw FormatError("vocabulary: too many nodes (" + std::to_string(n) + ")");
 
-  const Node& root = nodes_[0];
+  const Node& root = nodes[0];
   if (root.level != 0)
     throw FormatError("vocabulary: root has level " + std::to_string(root.level));
   if (root.word != kNoWord)
     throw FormatError("vocabulary: root carries word " + std::to_string(root.word));
   if (root.num_children == 0) throw FormatError("vocabulary: root has no children");
+}
 
+// The tree's shape: weights, levels, child ranges and parents. Returns the
+// number of leaves.
+std::size_t checkTree(int k, int L, const std::vector<Node>& nodes) {
+  const std::size_t n = nodes.size();
   // Every non-root node must be claimed by exactly one child range: its
   // parent's. Because a child must name the range's owner as its parent,
   // two ranges can never claim the same node; `claimed` catches orphans.
@@ -113,7 +115,7 @@ void Vocabulary::index() {
   std::vector<char> claimed(n, 0);
   std::size_t leaves = 0;
   for (std::size_t i = 0; i < n; ++i) {
-    const Node& node = nodes_[i];
+    const Node& node = nodes[i];
     // Weights are IDF values (log N / N_i) or 1 (TF): never negative. A
     // negative one would make eq. 1's vectors and every score meaningless.
     if (!std::isfinite(node.weight))
@@ -122,17 +124,17 @@ void Vocabulary::index() {
       throw FormatError("vocabulary: " + nodeName(i) + " has a negative weight (" +
                         std::to_string(node.weight) + ")");
     }
-    if (node.level > static_cast<std::uint32_t>(L_)) {
+    if (node.level > static_cast<std::uint32_t>(L)) {
       throw FormatError("vocabulary: " + nodeName(i) + " is at level " +
-                        std::to_string(node.level) + ", deeper than L = " + std::to_string(L_));
+                        std::to_string(node.level) + ", deeper than L = " + std::to_string(L));
     }
     if (node.num_children == 0) {
       if (i != 0) ++leaves;
       continue;
     }
-    if (node.num_children > static_cast<std::uint32_t>(k_)) {
+    if (node.num_children > static_cast<std::uint32_t>(k)) {
       throw FormatError("vocabulary: " + nodeName(i) + " has " + std::to_string(node.num_children) +
-                        " children, more than k = " + std::to_string(k_));
+                        " children, more than k = " + std::to_string(k));
     }
     if (node.first_child <= i) {
       throw FormatError("vocabulary: " + nodeName(i) + " has its children at " +
@@ -149,7 +151,7 @@ void Vocabulary::index() {
                         std::to_string(node.word));
     }
     for (std::uint32_t c = node.first_child; c < node.first_child + node.num_children; ++c) {
-      const Node& child = nodes_[c];
+      const Node& child = nodes[c];
       if (child.parent != i) {
         throw FormatError("vocabulary: " + nodeName(c) + " lies in the child range of " +
                           nodeName(i) + " but names " + std::to_string(child.parent) +
@@ -166,14 +168,20 @@ void Vocabulary::index() {
   for (std::size_t i = 1; i < n; ++i) {
     if (!claimed[i]) {
       throw FormatError("vocabulary: " + nodeName(i) + " is in no child range (bad parent " +
-                        std::to_string(nodes_[i].parent) + ")");
+                        std::to_string(nodes[i].parent) + ")");
     }
   }
 
+  return leaves;
+}
+
+// Words 0..W-1, each on exactly one leaf: the word -> leaf table.
+std::vector<NodeId> wordsToNodes(const std::vector<Node>& nodes, std::size_t leaves) {
+  const std::size_t n = nodes.size();
+  std::vector<NodeId> word_to_node(leaves, kNoWord);
   // Words: 0..W-1, each on exactly one leaf, W = number of leaves.
-  word_to_node_.assign(leaves, kNoWord);
   for (std::size_t i = 1; i < n; ++i) {
-    const Node& node = nodes_[i];
+    const Node& node = nodes[i];
     if (node.num_children != 0) continue;
     if (node.word == kNoWord) throw FormatError("vocabulary: leaf " + nodeName(i) + " has no word");
     if (node.word >= leaves) {
@@ -181,30 +189,51 @@ void Vocabulary::index() {
                         std::to_string(node.word) + " but there are only " +
                         std::to_string(leaves) + " leaves (ids must be 0..W-1)");
     }
-    if (word_to_node_[node.word] != kNoWord) {
+    if (word_to_node[node.word] != kNoWord) {
       throw FormatError("vocabulary: word " + std::to_string(node.word) + " is on both " +
-                        nodeName(word_to_node_[node.word]) + " and " + nodeName(i));
+                        nodeName(word_to_node[node.word]) + " and " + nodeName(i));
     }
-    word_to_node_[node.word] = static_cast<NodeId>(i);
+    word_to_node[node.word] = static_cast<NodeId>(i);
   }
 
-  // Fingerprint: every field that changes what transform() returns, plus
-  // the weighting; not the scoring type (a run-time choice, setScoring()).
+  return word_to_node;
+}
+
+// Fingerprint: every field that changes what transform() returns, plus the
+// weighting; not the scoring type (a run-time choice, setScoring()).
+std::uint64_t fingerprintOf(int k, int L, WeightingType weighting, const std::vector<Node>& nodes) {
+  const int w = static_cast<int>(weighting);
+  const std::size_t n = nodes.size();
   Checksum64 h;
   // 40 header bytes (a multiple of 8, so the records stay word-aligned).
   h.update("BOWGFP01", 8);
-  h.updateU64(static_cast<std::uint64_t>(k_));
-  h.updateU64(static_cast<std::uint64_t>(L_));
+  h.updateU64(static_cast<std::uint64_t>(k));
+  h.updateU64(static_cast<std::uint64_t>(L));
   h.updateU64(static_cast<std::uint64_t>(w));
   h.updateU64(n);
   // Each node is hashed as one 64-byte little-endian record (the .bowgvoc
   // record layout), which keeps the checksum on its word-wise fast path.
   unsigned char record[64];
-  for (const Node& node : nodes_) {
+  for (const Node& node : nodes) {
     encodeRecord(node, record);
     h.update(record, sizeof(record));
   }
-  fingerprint_ = h.value();
+  return h.value();
+}
+
+}  // namespace
+
+Vocabulary::Vocabulary(int branching, int depth, WeightingType weighting, ScoringType scoring,
+                       std::vector<Node> nodes)
+    : k_(branching), L_(depth), weighting_(weighting), scoring_(scoring), nodes_(std::move(nodes)) {
+  index();
+}
+
+void Vocabulary::index() {
+  checkHeader(k_, L_, weighting_, scoring_, nodes_);
+  const std::size_t leaves = checkTree(k_, L_, nodes_);
+  word_to_node_ = wordsToNodes(nodes_, leaves);
+  fingerprint_ = fingerprintOf(k_, L_, weighting_, nodes_);
 }
 
 WordId Vocabulary::transform(const Descriptor& d, NodeId* node_at_level, int level) const {
