@@ -1,0 +1,121 @@
+// The bag writer of bowg_generate_pipe_sequence (bag_output.h): the three
+// messages of a frame and the image in each --bag-images format.
+#include "bag_output.h"
+
+#include <cstdint>
+#include <cstdio>
+#include <stdexcept>
+#include <string>
+
+#include <geometry_msgs/PoseStamped.h>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+#include <sensor_msgs/CompressedImage.h>
+#include <sensor_msgs/Image.h>
+#include <sensor_msgs/image_encodings.h>
+#include <std_msgs/Header.h>
+
+namespace bowg {
+namespace generate_pipe_sequence_app {
+namespace {
+
+// One frame into the bag in the chosen format (--bag-images); every format
+// holds the same grey image (bgr8: three equal channels, which OpenCV's luma
+// weights turn back into the same grey; jpeg: lossy, decoded alike live and
+// offline).
+void writeBagImage(rosbag::Bag* bag, const std_msgs::Header& header, const cv::Mat& grey,
+                   const std::string& format) {
+  if (format == "jpeg") {
+    sensor_msgs::CompressedImage msg;
+    msg.header = header;
+    msg.format = "mono8; jpeg compressed mono8";
+    if (!cv::imencode(".jpg", grey, msg.data, {cv::IMWRITE_JPEG_QUALITY, 95})) {
+      throw std::runtime_error("cannot encode frame " + std::to_string(header.seq) + " as JPEG");
+    }
+    bag->write("/camera/image_raw/compressed", header.stamp, msg);
+    return;
+  }
+  cv::Mat pixels = grey;
+  if (format == "bgr8") cv::cvtColor(grey, pixels, cv::COLOR_GRAY2BGR);
+  sensor_msgs::Image msg;
+  msg.header = header;
+  msg.height = pixels.rows;
+  msg.width = pixels.cols;
+  msg.encoding = format == "bgr8" ? sensor_msgs::image_encodings::BGR8
+                                  : sensor_msgs::image_encodings::MONO8;
+  msg.is_bigendian = 0;
+  msg.step = static_cast<std::uint32_t>(pixels.cols * pixels.elemSize());
+  const cv::Mat packed = pixels.isContinuous() ? pixels : pixels.clone();
+  msg.data.assign(packed.data, packed.data + packed.total() * packed.elemSize());
+  bag->write("/camera/image_raw", header.stamp, msg);
+}
+
+ros::Time stampOf(double seconds) {
+  ros::Time t;
+  t.fromSec(seconds);
+  return t;
+}
+
+sensor_msgs::CameraInfo cameraInfoOf(const pipe_sim::CameraModel& camera) {
+  sensor_msgs::CameraInfo info;
+  info.header.frame_id = "camera_optical_frame";
+  info.width = camera.width;
+  info.height = camera.height;
+  info.distortion_model = "plumb_bob";
+  info.D.assign(5, 0.0);
+  info.K = {camera.fx, 0, camera.cx, 0, camera.fy, camera.cy, 0, 0, 1};
+  info.R = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+  info.P = {camera.fx, 0, camera.cx, 0, 0, camera.fy, camera.cy, 0, 0, 0, 1, 0};
+  return info;
+}
+
+geometry_msgs::PoseStamped poseOf(const pipe_sim::FrameState& f, const cv::Vec4d& q,
+                                  const ros::Time& stamp) {
+  geometry_msgs::PoseStamped pose;
+  pose.header.seq = f.index;
+  pose.header.stamp = stamp;
+  pose.header.frame_id = "map";
+  pose.pose.position.x = f.pose.position[0];
+  pose.pose.position.y = f.pose.position[1];
+  pose.pose.position.z = f.pose.position[2];
+  pose.pose.orientation.x = q[0];
+  pose.pose.orientation.y = q[1];
+  pose.pose.orientation.z = q[2];
+  pose.pose.orientation.w = q[3];
+  return pose;
+}
+
+}  // namespace
+
+BagOutput::BagOutput(const std::string& path, const std::string& compression,
+                     const std::string& image_format, const pipe_sim::CameraModel& camera)
+    : path_(path), tmp_path_(path + ".tmp"), image_format_(image_format) {
+  bag_.open(tmp_path_, rosbag::bagmode::Write);
+  bag_.setCompression(compression == "lz4"   ? rosbag::compression::LZ4
+                      : compression == "bz2" ? rosbag::compression::BZ2
+                                             : rosbag::compression::Uncompressed);
+  info_ = cameraInfoOf(camera);
+}
+
+void BagOutput::write(const pipe_sim::FrameState& f, const cv::Mat& image, const cv::Vec4d& q) {
+  const ros::Time stamp = stampOf(f.stamp);
+  std_msgs::Header header;
+  header.seq = f.index;
+  header.stamp = stamp;
+  header.frame_id = info_.header.frame_id;
+  writeBagImage(&bag_, header, image, image_format_);
+  info_.header.seq = f.index;
+  info_.header.stamp = stamp;
+  bag_.write("/camera/camera_info", stamp, info_);
+  bag_.write("/ground_truth/pose", stamp, poseOf(f, q, stamp));
+}
+
+void BagOutput::finish() {
+  bag_.close();
+  if (std::rename(tmp_path_.c_str(), path_.c_str()) != 0) {
+    throw std::runtime_error("cannot rename " + tmp_path_ + " to " + path_);
+  }
+}
+
+}  // namespace generate_pipe_sequence_app
+}  // namespace bowg

@@ -1,0 +1,40 @@
+// The rosbag of bowg_generate_pipe_sequence (--bag): per frame the image in
+// the chosen format (--bag-images), the camera info and the ground-truth
+// pose. It is written to FILE.tmp and renamed to FILE once complete, so an
+// interrupted run leaves no bag that looks finished.
+#pragma once
+
+#include <string>
+
+#include <opencv2/core.hpp>
+#include <rosbag/bag.h>
+#include <sensor_msgs/CameraInfo.h>
+
+#include "bowg_pipe_sim/pipe_renderer.h"
+#include "bowg_pipe_sim/pipe_sequence.h"
+
+namespace bowg {
+namespace generate_pipe_sequence_app {
+
+class BagOutput {
+ public:
+  /// Opens `path`.tmp with `compression` (none, lz4 or bz2); `image_format`
+  /// is mono8, bgr8 or jpeg.
+  BagOutput(const std::string& path, const std::string& compression,
+            const std::string& image_format, const pipe_sim::CameraModel& camera);
+
+  /// Frame `f`'s image, camera info and pose (orientation quaternion `q`,
+  /// x y z w), stamped f.stamp.
+  void write(const pipe_sim::FrameState& f, const cv::Mat& image, const cv::Vec4d& q);
+
+  /// Closes the bag and renames it to its final path.
+  void finish();
+
+ private:
+  rosbag::Bag bag_;
+  std::string path_, tmp_path_, image_format_;
+  sensor_msgs::CameraInfo info_;
+};
+
+}  // namespace generate_pipe_sequence_app
+}  // namespace bowg

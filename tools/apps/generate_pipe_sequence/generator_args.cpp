@@ -1,0 +1,221 @@
+// bowg_generate_pipe_sequence's command line (generator_args.h): the usage
+// text, the number parsers that name the flag in their errors, and the
+// parser itself.
+#include "generator_args.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <iostream>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "bowg_pipe_sim/route_programs.h"
+
+namespace bowg {
+namespace generate_pipe_sequence_app {
+
+const char* const kUsage =
+    "usage: bowg_generate_pipe_sequence (--bag FILE | --images DIR) [options]\n"
+    "  --bag FILE             write a rosbag: /camera/image_raw (mono8), /camera/camera_info,\n"
+    "                         /ground_truth/pose (geometry_msgs/PoseStamped, frame map)\n"
+    "  --bag-images FORMAT    the bag's images: mono8, bgr8 (the grey image in three\n"
+    "                         channels) or jpeg (sensor_msgs/CompressedImage on\n"
+    "                         /camera/image_raw/compressed, quality 95) [mono8]\n"
+    "  --images DIR           write frame_000000.png ... (and poses.csv) into DIR\n"
+    "  --gt FILE              ground-truth loops (default: <bag>_gt.txt or DIR/ground_truth.txt)\n"
+    "  --route NAME           figure-eight, circuit, partial or no-revisit "
+    "(docs/pipe_sequence.md)\n"
+    "                         [figure-eight]\n"
+    "  --route-nodes LIST     a custom route instead: node indices 0-5, e.g. 0,1,4,5,0,1\n"
+    "  --laps N               laps of the route (figure-eight: 48 m of pipe each; circuit) [1]\n"
+    "  --network-width M --network-height M\n"
+    "                         size of the network's rectangle [4 3]\n"
+    "  --frames N             stop after N frames (0 = whole route) [0]\n"
+    "  --seed N               texture, roll, exposure and noise seed [1]\n"
+    "  --width W --height H   image size [640 480]\n"
+    "  --fx F                 focal length in px (fy = fx, principal point at the centre) [W/2]\n"
+    "  --roll-amplitude DEG   roll about the pipe axis in [-DEG, DEG] [60]\n"
+    "  --roll-knot-spacing M  metres of driving between the roll's random knots [3]\n"
+    "  --exposure-variation X --exposure-step X\n"
+    "                         auto exposure: smooth log-gain range and 8 s steps [0.2 0.15]\n"
+    "  --marks-per-metre X    unique wall marks per metre (texture repetitiveness) [1]\n"
+    "  --grain-repeat G       fraction of the wall grain repeated in every section, in [0, 1]\n"
+    "                         (1 = pixel-identical sections, 0 = no shared grain) [0.5]\n"
+    "  --texture-images DIR   quilt the wall grain from the PNG/JPG images in DIR [procedural]\n"
+    "  --texture-crop F       fraction of rows cut from the top and the bottom of those\n"
+    "                         images (text overlays) [0.15]\n"
+    "  --speed MPS --rate HZ  mean driving speed and frame rate [0.2 10]\n"
+    "  --speed-variation V    speed * (1 + V * smooth noise in [-1, 1]) [0 = constant]\n"
+    "  --speed-knot-seconds S seconds between the speed noise's knots [4]\n"
+    "  --allow-reverse        back up where the speed is negative (no value; default: stop)\n"
+    "  --gt-distance M --gt-heading DEG --gt-exclude M\n"
+    "                         ground-truth tolerances [0.15 30 3]\n"
+    "  --compression C        bag compression: none, lz4 or bz2 (noisy images hardly\n"
+    "                         compress) [none]\n";
+
+namespace {
+
+double toNumber(const std::string& flag, const std::string& value) {
+  char* end = nullptr;
+  const double v = std::strtod(value.c_str(), &end);
+  if (value.empty() || *end != '\0' || !std::isfinite(v)) {
+    throw std::invalid_argument(flag + ": '" + value + "' is not a number");
+  }
+  return v;
+}
+
+/// For the options without a field check of their own: the message names
+/// the flag, not the struct field.
+double atLeast(const std::string& flag, const std::string& value, double low, bool inclusive) {
+  const double v = toNumber(flag, value);
+  if (inclusive ? v < low : v <= low) {
+    std::ostringstream message;
+    message << flag << " must be " << (inclusive ? ">= " : "> ") << low << ", not " << value;
+    throw std::invalid_argument(message.str());
+  }
+  return v;
+}
+
+int toInt(const std::string& flag, const std::string& value) {
+  const double v = toNumber(flag, value);
+  if (v != std::floor(v) || std::abs(v) > 1e9) {
+    throw std::invalid_argument(flag + ": '" + value + "' is not an integer");
+  }
+  return static_cast<int>(v);
+}
+
+/// The options of the drive alone (route length, roll, exposure, speed);
+/// false for any other flag.
+bool setSequenceOption(pipe_sim::SequenceOptions* s, const std::string& flag,
+                       const std::string& v) {
+  if (flag == "--laps") s->laps = toInt(flag, v);
+  else if (flag == "--frames") s->max_frames = toInt(flag, v);
+  else if (flag == "--roll-amplitude") s->roll_amplitude_deg = toNumber(flag, v);
+  else if (flag == "--speed") s->speed_mps = toNumber(flag, v);
+  else if (flag == "--rate") s->frame_rate_hz = toNumber(flag, v);
+  else if (flag == "--speed-variation") s->speed_variation = atLeast(flag, v, 0, true);
+  else if (flag == "--speed-knot-seconds") s->speed_knot_s = atLeast(flag, v, 0, false);
+  else if (flag == "--network-width") s->network_width_m = atLeast(flag, v, 0, false);
+  else if (flag == "--network-height") s->network_height_m = atLeast(flag, v, 0, false);
+  else if (flag == "--roll-knot-spacing") s->roll_knot_spacing_m = atLeast(flag, v, 0, false);
+  else if (flag == "--exposure-variation") s->exposure_variation = atLeast(flag, v, 0, true);
+  else if (flag == "--exposure-step") s->exposure_step = atLeast(flag, v, 0, true);
+  else return false;
+  return true;
+}
+
+/// One option with its value; `fx` keeps --fx until the image size is known.
+void setOption(Args* a, double* fx, const std::string& flag, const std::string& v) {
+  if (setSequenceOption(&a->sequence, flag, v)) return;
+  if (flag == "--bag") a->bag = v;
+  else if (flag == "--images") a->images = v;
+  else if (flag == "--gt") a->gt = v;
+  else if (flag == "--compression") a->compression = v;
+  else if (flag == "--bag-images") {
+    if (v != "mono8" && v != "bgr8" && v != "jpeg") {
+      throw std::invalid_argument("--bag-images must be mono8, bgr8 or jpeg (got '" + v + "')");
+    }
+    a->bag_images = v;
+  } else if (flag == "--seed") {
+    const int seed = toInt(flag, v);
+    if (seed < 0) throw std::invalid_argument("--seed must be >= 0");
+    a->sequence.seed = a->texture.seed = static_cast<std::uint64_t>(seed);
+  } else if (flag == "--width") a->camera.width = toInt(flag, v);
+  else if (flag == "--height") a->camera.height = toInt(flag, v);
+  else if (flag == "--fx") *fx = toNumber(flag, v);
+  else if (flag == "--marks-per-metre") a->texture.marks_per_metre = toNumber(flag, v);
+  else if (flag == "--grain-repeat") a->texture.grain_repeat = toNumber(flag, v);
+  else if (flag == "--route") a->route = v, a->route_given = true;
+  else if (flag == "--route-nodes") a->route_nodes = v;
+  else if (flag == "--texture-images") a->texture_images = v;
+  else if (flag == "--texture-crop") {
+    a->texture_crop = toNumber(flag, v);
+    a->texture_crop_given = true;
+    if (!(a->texture_crop >= 0 && a->texture_crop <= 0.45)) {
+      throw std::invalid_argument("--texture-crop must be in [0, 0.45], not " + v);
+    }
+  } else if (flag == "--gt-distance") a->gt_options.max_distance_m = toNumber(flag, v);
+  else if (flag == "--gt-heading") a->gt_options.max_heading_deg = toNumber(flag, v);
+  else if (flag == "--gt-exclude") a->gt_options.exclude_recent_m = toNumber(flag, v);
+  else throw std::invalid_argument("unknown option " + flag + " (see --help)");
+}
+
+/// The checks across options, once all of them are read.
+void checkCombinations(const Args& a) {
+  if (a.bag.empty() && a.images.empty()) {
+    throw std::invalid_argument("give --bag FILE and/or --images DIR (see --help)");
+  }
+  if (a.compression != "lz4" && a.compression != "bz2" && a.compression != "none") {
+    throw std::invalid_argument("--compression must be lz4, bz2 or none, not " + a.compression);
+  }
+  const std::vector<std::string>& routes = pipe_sim::routeProgramNames();
+  if (std::find(routes.begin(), routes.end(), a.route) == routes.end()) {
+    throw std::invalid_argument(
+        "--route must be figure-eight, circuit, partial or no-revisit, not " + a.route);
+  }
+  if (!a.route_nodes.empty() && a.route_given) {
+    throw std::invalid_argument("give --route or --route-nodes, not both");
+  }
+  if (!a.route_nodes.empty() && a.sequence.laps != 1) {
+    throw std::invalid_argument("--route-nodes is the whole route: --laps must be 1");
+  }
+  if ((a.route == "partial" || a.route == "no-revisit") && a.sequence.laps != 1) {
+    throw std::invalid_argument("--route " + a.route + " is one mission: --laps must be 1");
+  }
+  if (a.texture_crop_given && a.texture_images.empty()) {
+    throw std::invalid_argument("--texture-crop needs --texture-images");
+  }
+}
+
+/// What follows from other options: the intrinsics from the image size (and
+/// --fx), the ground truth's path from the outputs.
+void deriveDefaults(Args* a, double fx) {
+  a->camera.fx = a->camera.fy = fx > 0 ? fx : a->camera.width / 2.0;
+  a->camera.cx = (a->camera.width - 1) / 2.0;
+  a->camera.cy = (a->camera.height - 1) / 2.0;
+  if (a->gt.empty()) {
+    if (!a->bag.empty()) {
+      const std::string& bag = a->bag;
+      const std::string stem = bag.size() > 4 && bag.substr(bag.size() - 4) == ".bag"
+                                   ? bag.substr(0, bag.size() - 4)
+                                   : bag;
+      a->gt = stem + "_gt.txt";
+    } else {
+      a->gt = a->images + "/ground_truth.txt";
+    }
+  }
+}
+
+}  // namespace
+
+Args parseArgs(int argc, char** argv) {
+  Args a;
+  double fx = 0;
+  for (int i = 1; i < argc; ++i) {
+    const std::string flag = argv[i];
+    if (flag == "-h" || flag == "--help") {
+      std::cout << kUsage;
+      std::exit(0);
+    }
+    if (flag == "--allow-reverse") {
+      a.sequence.allow_reverse = true;
+      continue;
+    }
+    if (i + 1 >= argc) throw std::invalid_argument(flag + ": missing value (see --help)");
+    setOption(&a, &fx, flag, argv[++i]);
+  }
+  checkCombinations(a);
+  deriveDefaults(&a, fx);
+  a.sequence.validate();
+  a.texture.validate();
+  a.camera.validate();
+  a.gt_options.validate();
+  return a;
+}
+
+}  // namespace generate_pipe_sequence_app
+}  // namespace bowg

@@ -1,0 +1,109 @@
+// The feature extraction of bowg_train_vocabulary (descriptor_extraction.h):
+// the strongest-first selection and the reading of files and bag runs.
+#include "descriptor_extraction.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <opencv2/core.hpp>
+#include <rosbag/bag.h>
+#include <rosbag/view.h>
+
+#include "bowg/core/errors.h"
+#include "bowg/features/feature_extractor.h"
+#include "bowg_evaluation/image_file.h"
+#include "bowg_ros/bag_images.h"
+#include "progress_bar.h"
+
+namespace bowg {
+namespace train_vocabulary_app {
+namespace {
+
+// Adds the descriptors of one image at a time.
+class DescriptorCollector {
+ public:
+  DescriptorCollector(const FeatureOptions& features, long max_features)
+      : extractor_(features), max_features_(max_features) {}
+
+  void add(const cv::Mat& image) {
+    ImageFeatures f = extractor_.extract(image);
+    std::vector<std::size_t> order(f.size());
+    for (std::size_t j = 0; j < order.size(); ++j) order[j] = j;
+    if (max_features_ > 0 && order.size() > static_cast<std::size_t>(max_features_)) {
+      // Strongest first; ties by index keep it deterministic.
+      std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+        return f.keypoints[a].response > f.keypoints[b].response;
+      });
+      order.resize(static_cast<std::size_t>(max_features_));
+      std::sort(order.begin(), order.end());
+    }
+    result_.per_image.emplace_back();
+    for (std::size_t j : order) result_.per_image.back().push_back(f.descriptors[j]);
+    result_.total += result_.per_image.back().size();
+  }
+
+  void skipUnreadable() { ++result_.unreadable; }
+
+  TrainingDescriptors& result() { return result_; }
+
+ private:
+  const FeatureExtractor extractor_;
+  const long max_features_;
+  TrainingDescriptors result_;
+};
+
+void addFile(const std::string& path, DescriptorCollector* collector) {
+  std::string why;
+  const cv::Mat image = eval::readGreyImage(path, &why);
+  if (image.empty()) {
+    std::fprintf(stderr, "\nwarning: image '%s' skipped (%s)\n", path.c_str(), why.c_str());
+    collector->skipUnreadable();
+  } else {
+    collector->add(image);
+  }
+}
+
+/// The run of sources from images[*i] on that are messages of the same bag,
+/// read in one pass; *i ends after the run.
+void addBagRun(const std::vector<ImageSource>& images, std::size_t* i, const Args& a,
+               DescriptorCollector* collector) {
+  const int b = images[*i].bag;
+  rosbag::Bag bag = openBag(a.bags[b]);
+  rosbag::View view(bag, rosbag::TopicQuery(a.image_topic));
+  std::size_t index = 0;
+  for (const rosbag::MessageInstance& m : view) {
+    if (*i >= images.size() || images[*i].bag != b) break;
+    if (index++ != images[*i].index) continue;
+    collector->add(bowg_ros::readBagImage(m, a.bags[b]).grey);
+    ++*i;
+    progressBar(0.2 * *i / images.size(), "extracting features");
+  }
+  if (*i < images.size() && images[*i].bag == b) {
+    throw FormatError("the bag '" + a.bags[b] + "' changed while it was read");
+  }
+}
+
+}  // namespace
+
+TrainingDescriptors extractDescriptors(const std::vector<ImageSource>& images, const Args& a) {
+  DescriptorCollector collector(a.features, a.max_features);
+  // Sources are ordered folders first, then bag by bag in message order:
+  // each bag is read once, front to back.
+  std::size_t i = 0;
+  while (i < images.size()) {
+    progressBar(0.2 * i / images.size(), "extracting features");
+    if (images[i].bag < 0) {
+      addFile(images[i].path, &collector);
+      ++i;
+    } else {
+      addBagRun(images, &i, a, &collector);
+    }
+  }
+  return std::move(collector.result());
+}
+
+}  // namespace train_vocabulary_app
+}  // namespace bowg
