@@ -121,11 +121,7 @@ int dumpCandidates(const Args& a, std::shared_ptr<const Vocabulary> vocabulary,
   std::vector<double> word_norm, group_norm, dist_norm, feature_counts;
   ProgressBar bar("dump-candidates", a.quiet);
   for (std::size_t i = 0; i < frames.size(); ++i) {
-    KeyframeInput input;
-    input.stamp = frames[i].stamp;
-    input.features = frames[i].features;
-    input.intrinsics = frames[i].intrinsics;
-    input.odometer = frames[i].odometer;
+    const KeyframeInput input = toKeyframeInput(frames[i]);
     const LoopResult r = detector.process(input);
     bar(i + 1, frames.size());
     feature_counts.push_back(static_cast<double>(frames[i].features.size()));

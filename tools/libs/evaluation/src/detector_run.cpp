@@ -9,6 +9,15 @@
 namespace bowg {
 namespace eval {
 
+KeyframeInput toKeyframeInput(const FrameInput& frame) {
+  KeyframeInput input;
+  input.stamp = frame.stamp;
+  input.features = frame.features;
+  input.intrinsics = frame.intrinsics;
+  input.odometer = frame.odometer;
+  return input;
+}
+
 DetectorRun runDetector(std::shared_ptr<const Vocabulary> vocabulary,
                         const LoopDetectorOptions& options, const std::vector<FrameInput>& frames,
                         const std::string& name, const ProgressCallback& progress) {
@@ -19,11 +28,7 @@ DetectorRun runDetector(std::shared_ptr<const Vocabulary> vocabulary,
   run.keyframes.reserve(frames.size());
   const auto t0 = std::chrono::steady_clock::now();
   for (std::size_t i = 0; i < frames.size(); ++i) {
-    KeyframeInput input;
-    input.stamp = frames[i].stamp;
-    input.features = frames[i].features;
-    input.intrinsics = frames[i].intrinsics;
-    input.odometer = frames[i].odometer;
+    const KeyframeInput input = toKeyframeInput(frames[i]);
     KeyframeRecord k;
     k.frame = static_cast<int>(i);
     k.stamp = frames[i].stamp;

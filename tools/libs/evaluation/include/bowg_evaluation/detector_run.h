@@ -32,6 +32,9 @@ struct FrameInput {
   double odometer = std::numeric_limits<double>::quiet_NaN();
 };
 
+/// The detector's input for one frame (a copy of its features).
+KeyframeInput toKeyframeInput(const FrameInput& frame);
+
 /// The per-keyframe outcome (LoopResult without the correspondences).
 struct KeyframeRecord {
   int frame = 0;
