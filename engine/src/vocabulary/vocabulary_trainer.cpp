@@ -12,8 +12,10 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <functional>
 #include <random>
 #include <stdexcept>
+#include <string>
 #include <thread>
 
 #include "bowg/core/errors.h"
@@ -137,28 +139,13 @@ struct Split {
   std::vector<std::size_t> bounds;  // child c owns items [bounds[c], bounds[c+1])
 };
 
-// Clusters items[begin, end) (at least 2 items) into at most k children and
-// reorders the range so that each child's items are contiguous.
-Split clusterNode(const Descriptor* all, std::uint32_t* items, std::size_t begin, std::size_t end,
-                  const TrainingOptions& options, NodeId node, int threads) {
-  const std::size_t m = end - begin;
-  std::uint32_t* const it = items + begin;
-  Split split;
-  const std::size_t k = static_cast<std::size_t>(options.k);
-  if (m <= k) {
-    // DBoW2: with at most k descriptors, each is its own cluster.
-    for (std::size_t i = 0; i < m; ++i) {
-      split.centres.push_back(all[it[i]]);
-      split.bounds.push_back(begin + i);
-    }
-    split.bounds.push_back(end);
-    return split;
-  }
-
-  // k-means++ seeding.
-  std::mt19937 rng(static_cast<std::uint32_t>(mix64(options.seed ^ mix64(node))));
-  std::vector<Descriptor>& centres = split.centres;
-  centres.push_back(all[it[draw64(rng) % m]]);
+// k-means++ seeding: the first centre drawn uniformly, each next one with
+// probability proportional to its squared Hamming distance to the nearest
+// centre so far; stops early when every descriptor coincides with a centre.
+std::vector<Descriptor> seedCentres(const Descriptor* all, const std::uint32_t* it, std::size_t m,
+                                    std::size_t k, std::mt19937* rng, int threads) {
+  std::vector<Descriptor> centres;
+  centres.push_back(all[it[draw64(*rng) % m]]);
   std::vector<std::uint32_t> d2(m);
   parallelRanges(m, threads, [&](std::size_t b, std::size_t e) {
     for (std::size_t i = b; i < e; ++i) {
@@ -170,7 +157,7 @@ Split clusterNode(const Descriptor* all, std::uint32_t* items, std::size_t begin
     std::uint64_t total = 0;
     for (std::uint32_t v : d2) total += v;
     if (total == 0) break;  // every descriptor coincides with a centre
-    const std::uint64_t r = draw64(rng) % total;
+    const std::uint64_t r = draw64(*rng) % total;
     std::uint64_t acc = 0;
     std::size_t pick = 0;
     for (; pick < m; ++pick) {
@@ -186,18 +173,31 @@ Split clusterNode(const Descriptor* all, std::uint32_t* items, std::size_t begin
       }
     });
   }
-  std::vector<std::uint32_t>().swap(d2);
-  const std::size_t kc = centres.size();
+  return centres;
+}
 
-  // k-medians iterations with incremental bit counts: after the first
-  // assignment only the descriptors that change cluster are recounted.
-  std::vector<std::uint32_t> assign(m);
+// The cluster of every item and the size of every cluster.
+struct Assignment {
+  std::vector<std::uint32_t> cluster;
+  std::vector<std::int32_t> sizes;
+};
+
+// k-medians iterations with incremental bit counts: after the first
+// assignment only the descriptors that change cluster are recounted. Moves
+// `centres` to the bitwise majority of their members.
+Assignment kMedians(const Descriptor* all, const std::uint32_t* it, std::size_t m,
+                    int max_iterations, int threads, std::vector<Descriptor>* centres) {
+  const std::size_t kc = centres->size();
+  Assignment a;
+  a.cluster.resize(m);
+  a.sizes.assign(kc, 0);
+  std::vector<std::uint32_t>& assign = a.cluster;
+  std::vector<std::int32_t>& sizes = a.sizes;
   std::vector<std::uint32_t> next(m);
   std::vector<std::int32_t> counts(kc * 256, 0);
-  std::vector<std::int32_t> sizes(kc, 0);
-  for (int iteration = 0; iteration < options.max_iterations; ++iteration) {
+  for (int iteration = 0; iteration < max_iterations; ++iteration) {
     parallelRanges(m, threads, [&](std::size_t b, std::size_t e) {
-      for (std::size_t i = b; i < e; ++i) next[i] = nearest(all[it[i]], centres);
+      for (std::size_t i = b; i < e; ++i) next[i] = nearest(all[it[i]], *centres);
     });
     bool changed = false;
     for (std::size_t i = 0; i < m; ++i) {
@@ -216,29 +216,59 @@ Split clusterNode(const Descriptor* all, std::uint32_t* items, std::size_t begin
     assign.swap(next);
     if (!changed) break;
     for (std::size_t c = 0; c < kc; ++c) {
-      if (sizes[c] > 0) centres[c] = majority(&counts[c * 256], sizes[c]);
+      if (sizes[c] > 0) (*centres)[c] = majority(&counts[c * 256], sizes[c]);
     }
   }
+  return a;
+}
 
-  // Drop empty clusters; stable counting sort of the items by cluster.
+// Drops empty clusters and sorts items[begin, end) by cluster (stable
+// counting sort): the split's centres and child ranges.
+Split sortByCluster(const Assignment& a, const std::vector<Descriptor>& centres,
+                    std::uint32_t* items, std::size_t begin, std::size_t end) {
+  const std::size_t m = end - begin;
+  std::uint32_t* const it = items + begin;
+  const std::size_t kc = centres.size();
   std::vector<std::uint32_t> remap(kc, 0xffffffffu);
-  std::vector<Descriptor> kept;
   std::vector<std::size_t> offset;
+  Split split;
   std::size_t pos = begin;
   for (std::size_t c = 0; c < kc; ++c) {
-    if (sizes[c] == 0) continue;
-    remap[c] = static_cast<std::uint32_t>(kept.size());
-    kept.push_back(centres[c]);
+    if (a.sizes[c] == 0) continue;
+    remap[c] = static_cast<std::uint32_t>(split.centres.size());
+    split.centres.push_back(centres[c]);
     offset.push_back(pos);
-    pos += static_cast<std::size_t>(sizes[c]);
+    pos += static_cast<std::size_t>(a.sizes[c]);
   }
   split.bounds = offset;
   split.bounds.push_back(end);
   std::vector<std::uint32_t> sorted(m);
-  for (std::size_t i = 0; i < m; ++i) sorted[offset[remap[assign[i]]]++ - begin] = it[i];
+  for (std::size_t i = 0; i < m; ++i) sorted[offset[remap[a.cluster[i]]]++ - begin] = it[i];
   std::copy(sorted.begin(), sorted.end(), it);
-  split.centres.swap(kept);
   return split;
+}
+
+// Clusters items[begin, end) (at least 2 items) into at most k children and
+// reorders the range so that each child's items are contiguous.
+Split clusterNode(const Descriptor* all, std::uint32_t* items, std::size_t begin, std::size_t end,
+                  const TrainingOptions& options, NodeId node, int threads) {
+  const std::size_t m = end - begin;
+  std::uint32_t* const it = items + begin;
+  const std::size_t k = static_cast<std::size_t>(options.k);
+  if (m <= k) {
+    // DBoW2: with at most k descriptors, each is its own cluster.
+    Split split;
+    for (std::size_t i = 0; i < m; ++i) {
+      split.centres.push_back(all[it[i]]);
+      split.bounds.push_back(begin + i);
+    }
+    split.bounds.push_back(end);
+    return split;
+  }
+  std::mt19937 rng(static_cast<std::uint32_t>(mix64(options.seed ^ mix64(node))));
+  std::vector<Descriptor> centres = seedCentres(all, it, m, k, &rng, threads);
+  const Assignment a = kMedians(all, it, m, options.max_iterations, threads, &centres);
+  return sortByCluster(a, centres, items, begin, end);
 }
 
 bool allIdentical(const Descriptor* all, const std::uint32_t* items, std::size_t begin,
@@ -249,31 +279,14 @@ bool allIdentical(const Descriptor* all, const std::uint32_t* items, std::size_t
   return true;
 }
 
-}  // namespace
-
-Vocabulary trainVocabulary(const std::vector<std::vector<Descriptor>>& per_image,
-                           const TrainingOptions& options, const TrainingProgress& progress) {
-  options.validate();
-  std::size_t total = 0;
-  for (const auto& image : per_image) total += image.size();
-  if (total == 0) throw std::invalid_argument("trainVocabulary: no training descriptors");
-  if (total >= (1ull << 31)) {
-    throw std::invalid_argument("trainVocabulary: too many training descriptors (" +
-                                std::to_string(total) + ", at most 2^31 - 1)");
-  }
-  auto report = [&](double fraction, const std::string& stage) {
-    if (progress) progress(std::min(1.0, std::max(0.0, fraction)), stage);
-  };
-
-  // One flat copy so that clustering indexes a single array.
-  std::vector<Descriptor> all;
-  all.reserve(total);
-  for (const auto& image : per_image) all.insert(all.end(), image.begin(), image.end());
-  std::vector<std::uint32_t> items(total);
-  for (std::size_t i = 0; i < total; ++i) items[i] = static_cast<std::uint32_t>(i);
-
-  // Training takes L clustering levels plus one pass for the weights.
-  const double steps = options.L + 1.0;
+// The tree's nodes level by level: every node of the previous level with
+// more than one distinct descriptor is clustered into at most k children.
+std::vector<Node> clusterLevels(const std::vector<Descriptor>& all,
+                                std::vector<std::uint32_t>* item_order,
+                                const TrainingOptions& options, double steps,
+                                const std::function<void(double, const std::string&)>& report) {
+  std::vector<std::uint32_t>& items = *item_order;
+  const std::size_t total = items.size();
   std::vector<Node> nodes(1);
   std::vector<Pending> pending{{0, 0, total}};
   for (int level = 1; level <= options.L && !pending.empty(); ++level) {
@@ -312,17 +325,15 @@ Vocabulary trainVocabulary(const std::vector<std::vector<Descriptor>>& per_image
     }
     pending.swap(next);
   }
-  std::vector<std::uint32_t>().swap(items);
+  return nodes;
+}
 
-  // Words in leaf (= breadth-first) order.
-  WordId words = 0;
-  for (std::size_t i = 1; i < nodes.size(); ++i) {
-    if (nodes[i].num_children == 0) nodes[i].word = words++;
-  }
-  report(options.L / steps, "weighting words");
-
-  // IDF weights as DBoW2's setNodeWeights: descend every training
-  // descriptor with the final tree, count the images containing each word.
+// IDF weights as DBoW2's setNodeWeights: descend every training descriptor
+// with the final tree, count the images containing each word. Other
+// weightings: 1.
+void weightWords(const std::vector<std::vector<Descriptor>>& per_image,
+                 const TrainingOptions& options, WordId words, std::vector<Node>* tree_nodes) {
+  std::vector<Node>& nodes = *tree_nodes;
   Vocabulary tree(options.k, options.L, options.weighting, options.scoring, nodes);
   const bool idf =
       options.weighting == WeightingType::kTfIdf || options.weighting == WeightingType::kIdf;
@@ -358,6 +369,44 @@ Vocabulary trainVocabulary(const std::vector<std::vector<Descriptor>>& per_image
     for (std::size_t w = 0; w < words; ++w)
       nodes[tree.nodeOfWord(static_cast<WordId>(w))].weight = 1.0;
   }
+}
+
+}  // namespace
+
+Vocabulary trainVocabulary(const std::vector<std::vector<Descriptor>>& per_image,
+                           const TrainingOptions& options, const TrainingProgress& progress) {
+  options.validate();
+  std::size_t total = 0;
+  for (const auto& image : per_image) total += image.size();
+  if (total == 0) throw std::invalid_argument("trainVocabulary: no training descriptors");
+  if (total >= (1ull << 31)) {
+    throw std::invalid_argument("trainVocabulary: too many training descriptors (" +
+                                std::to_string(total) + ", at most 2^31 - 1)");
+  }
+  auto report = [&](double fraction, const std::string& stage) {
+    if (progress) progress(std::min(1.0, std::max(0.0, fraction)), stage);
+  };
+
+  // One flat copy so that clustering indexes a single array.
+  std::vector<Descriptor> all;
+  all.reserve(total);
+  for (const auto& image : per_image) all.insert(all.end(), image.begin(), image.end());
+  std::vector<std::uint32_t> items(total);
+  for (std::size_t i = 0; i < total; ++i) items[i] = static_cast<std::uint32_t>(i);
+
+  // Training takes L clustering levels plus one pass for the weights.
+  const double steps = options.L + 1.0;
+  std::vector<Node> nodes = clusterLevels(all, &items, options, steps, report);
+  std::vector<std::uint32_t>().swap(items);
+
+  // Words in leaf (= breadth-first) order.
+  WordId words = 0;
+  for (std::size_t i = 1; i < nodes.size(); ++i) {
+    if (nodes[i].num_children == 0) nodes[i].word = words++;
+  }
+  report(options.L / steps, "weighting words");
+
+  weightWords(per_image, options, words, &nodes);
   report(1.0, "done");
   return Vocabulary(options.k, options.L, options.weighting, options.scoring, std::move(nodes));
 }
