@@ -61,10 +61,43 @@ RouteLeg Route::makeLeg(const PipeNetwork& network, int edge, bool forward) cons
   return leg;
 }
 
+namespace {
+
+// The straightest edge at `node` to continue `dir` through it (leaving the node when outward,
+// else entering it), or -1: a render leg beyond an end of the route.
+int continuation(const PipeNetwork& network, int node, int exclude_edge, const cv::Vec3d& dir,
+                 bool outward) {
+  int best = -1;
+  double best_cos = -0.5;  // reject continuations sharper than 120 degrees
+  for (std::size_t e = 0; e < network.edges.size(); ++e) {
+    if (static_cast<int>(e) == exclude_edge) continue;
+    const PipeEdge& pe = network.edges[e];
+    if (pe.from != node && pe.to != node) continue;
+    // Direction of travel along e when leaving (outward) or entering node.
+    cv::Vec3d d = network.edgeDirection(static_cast<int>(e)) * (pe.from == node ? 1.0 : -1.0);
+    if (!outward) d = -d;
+    const double c = d.dot(dir);
+    if (c > best_cos) {
+      best_cos = c;
+      best = static_cast<int>(e);
+    }
+  }
+  return best;
+}
+
+}  // namespace
+
 Route::Route(const PipeNetwork& network, const std::vector<int>& nodes, double bend_radius) {
   network.validate();
   if (nodes.size() < 2) throw std::invalid_argument("Route: needs at least two nodes");
   if (!(bend_radius >= 0)) throw std::invalid_argument("Route: bend_radius must be >= 0");
+  buildLegs(network, nodes);
+  buildPieces(nodes, bend_radius);
+  buildRenderLegs(network, nodes);
+}
+
+// One leg per pair of consecutive nodes; throws when the pair is not joined by a pipe.
+void Route::buildLegs(const PipeNetwork& network, const std::vector<int>& nodes) {
   for (std::size_t i = 0; i + 1 < nodes.size(); ++i) {
     const int e = network.findEdge(nodes[i], nodes[i + 1]);
     if (e < 0) {
@@ -73,11 +106,33 @@ Route::Route(const PipeNetwork& network, const std::vector<int>& nodes, double b
     }
     legs_.push_back(makeLeg(network, e, network.edges[e].from == nodes[i]));
   }
+}
 
+// The filleted centreline as pieces with their start distances, and its total length.
+void Route::buildPieces(const std::vector<int>& nodes, double bend_radius) {
   // Straight pieces shortened by the fillet tangent lengths T = R tan(theta/2)
   // at both ends, arcs in between.
   std::vector<double> tangent_length(legs_.size() + 1, 0.0);
   std::vector<double> turn_angle(legs_.size() + 1, 0.0);
+  computeTurns(nodes, bend_radius, turn_angle, tangent_length);
+  double s = 0;
+  for (std::size_t i = 0; i < legs_.size(); ++i) {
+    const Piece straight = straightPiece(i, s, tangent_length[i], tangent_length[i + 1]);
+    pieces_.push_back(straight);
+    s += straight.length;
+    if (i + 1 < legs_.size() && turn_angle[i + 1] > 1e-9) {
+      const Piece arc = arcPiece(i, s, bend_radius, turn_angle[i + 1], tangent_length[i + 1]);
+      pieces_.push_back(arc);
+      s += arc.length;
+    }
+  }
+  total_length_ = s;
+}
+
+// Turn angle and fillet tangent length at every inner node i (between legs i - 1 and i).
+void Route::computeTurns(const std::vector<int>& nodes, double bend_radius,
+                         std::vector<double>& turn_angle,
+                         std::vector<double>& tangent_length) const {
   for (std::size_t i = 1; i < legs_.size(); ++i) {
     const double c = legs_[i - 1].direction.dot(legs_[i].direction);
     if (c < -0.999) {
@@ -86,65 +141,56 @@ Route::Route(const PipeNetwork& network, const std::vector<int>& nodes, double b
     turn_angle[i] = std::acos(std::max(-1.0, std::min(1.0, c)));
     tangent_length[i] = bend_radius * std::tan(turn_angle[i] / 2);
   }
-  double s = 0;
-  for (std::size_t i = 0; i < legs_.size(); ++i) {
-    const RouteLeg& leg = legs_[i];
-    const double leg_length = cv::norm(leg.end - leg.start);
-    Piece straight;
-    straight.start_distance = s;
-    straight.length = leg_length - tangent_length[i] - tangent_length[i + 1];
-    if (straight.length < 0) {
-      throw std::invalid_argument("Route: pipe " + std::to_string(leg.edge) +
-                                  " is too short for the bend radius");
-    }
-    straight.p0 = leg.start + leg.direction * tangent_length[i];
-    straight.d0 = leg.direction;
-    straight.leg = static_cast<int>(i);
-    pieces_.push_back(straight);
-    s += straight.length;
-    if (i + 1 < legs_.size() && turn_angle[i + 1] > 1e-9) {
-      const cv::Vec3d d1 = leg.direction, d2 = legs_[i + 1].direction;
-      Piece arc;
-      arc.arc = true;
-      arc.start_distance = s;
-      arc.radius = bend_radius;
-      arc.length = bend_radius * turn_angle[i + 1];
-      arc.corner = leg.end;
-      arc.p0 = leg.end - d1 * tangent_length[i + 1];
-      arc.d0 = d1;
-      arc.n1 = cv::normalize(d2 - d1 * d2.dot(d1));
-      arc.d1_plus_d2 = d1 + d2;
-      arc.leg = static_cast<int>(i);
-      pieces_.push_back(arc);
-      s += arc.length;
-    }
-  }
-  total_length_ = s;
+}
 
+// Leg i's straight piece from distance s: the leg less the fillet tangents at its two ends.
+Route::Piece Route::straightPiece(std::size_t i, double s, double tangent_start,
+                                  double tangent_end) const {
+  const RouteLeg& leg = legs_[i];
+  const double leg_length = cv::norm(leg.end - leg.start);
+  Piece straight;
+  straight.start_distance = s;
+  straight.length = leg_length - tangent_start - tangent_end;
+  if (straight.length < 0) {
+    throw std::invalid_argument("Route: pipe " + std::to_string(leg.edge) +
+                                " is too short for the bend radius");
+  }
+  straight.p0 = leg.start + leg.direction * tangent_start;
+  straight.d0 = leg.direction;
+  straight.leg = static_cast<int>(i);
+  return straight;
+}
+
+// The fillet arc from leg i into leg i + 1, from distance s, tangent to both pipes.
+Route::Piece Route::arcPiece(std::size_t i, double s, double bend_radius, double turn_angle,
+                             double tangent_length) const {
+  const RouteLeg& leg = legs_[i];
+  const cv::Vec3d d1 = leg.direction, d2 = legs_[i + 1].direction;
+  Piece arc;
+  arc.arc = true;
+  arc.start_distance = s;
+  arc.radius = bend_radius;
+  arc.length = bend_radius * turn_angle;
+  arc.corner = leg.end;
+  arc.p0 = leg.end - d1 * tangent_length;
+  arc.d0 = d1;
+  arc.n1 = cv::normalize(d2 - d1 * d2.dot(d1));
+  arc.d1_plus_d2 = d1 + d2;
+  arc.leg = static_cast<int>(i);
+  return arc;
+}
+
+// The legs plus a render leg before and after them, so the camera's regions never run out.
+void Route::buildRenderLegs(const PipeNetwork& network, const std::vector<int>& nodes) {
   // Render legs: the straightest continuation before the first and after the
   // last node, so that the camera sees the elbow and not a blind end.
-  auto continuation = [&](int node, int exclude_edge, const cv::Vec3d& dir, bool outward) {
-    int best = -1;
-    double best_cos = -0.5;  // reject continuations sharper than 120 degrees
-    for (std::size_t e = 0; e < network.edges.size(); ++e) {
-      if (static_cast<int>(e) == exclude_edge) continue;
-      const PipeEdge& pe = network.edges[e];
-      if (pe.from != node && pe.to != node) continue;
-      // Direction of travel along e when leaving (outward) or entering node.
-      cv::Vec3d d = network.edgeDirection(static_cast<int>(e)) * (pe.from == node ? 1.0 : -1.0);
-      if (!outward) d = -d;
-      const double c = d.dot(dir);
-      if (c > best_cos) {
-        best_cos = c;
-        best = static_cast<int>(e);
-      }
-    }
-    return best;
-  };
-  const int before = continuation(nodes.front(), legs_.front().edge, legs_.front().direction, false);
-  const int after = continuation(nodes.back(), legs_.back().edge, legs_.back().direction, true);
-  render_legs_.push_back(before >= 0 ? makeLeg(network, before, network.edges[before].to == nodes.front())
-                                     : RouteLeg());
+  const int before =
+      continuation(network, nodes.front(), legs_.front().edge, legs_.front().direction, false);
+  const int after =
+      continuation(network, nodes.back(), legs_.back().edge, legs_.back().direction, true);
+  render_legs_.push_back(before >= 0
+                             ? makeLeg(network, before, network.edges[before].to == nodes.front())
+                             : RouteLeg());
   if (before < 0) {  // no continuation: a straight virtual extension
     render_legs_.back().edge = legs_.front().edge;
     render_legs_.back().forward = legs_.front().forward;

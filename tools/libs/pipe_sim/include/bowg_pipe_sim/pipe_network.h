@@ -4,10 +4,9 @@
 // the default network lies in the horizontal plane z = 0.
 #pragma once
 
+#include <opencv2/core.hpp>
 #include <string>
 #include <vector>
-
-#include <opencv2/core.hpp>
 
 namespace bowg {
 namespace pipe_sim {
@@ -44,7 +43,7 @@ struct PipeNetwork {
 /// One traversal of one edge.
 struct RouteLeg {
   int edge = 0;
-  bool forward = true;  ///< driven from edge.from to edge.to
+  bool forward = true;              ///< driven from edge.from to edge.to
   cv::Vec3d start, end, direction;  ///< direction of travel (unit)
 };
 
@@ -82,12 +81,21 @@ class Route {
   struct Piece {
     bool arc = false;
     double start_distance = 0, length = 0;
-    cv::Vec3d p0, d0;  ///< straight: start and direction; arc: fillet start, d1
+    cv::Vec3d p0, d0;                  ///< straight: start and direction; arc: fillet start, d1
     cv::Vec3d n1, corner, d1_plus_d2;  ///< arc only
     double radius = 0;
     int leg = 0;  ///< straight: its leg; arc: the incoming leg
   };
   RouteLeg makeLeg(const PipeNetwork& network, int edge, bool forward) const;
+  // The steps of the constructor (pipe_network.cpp).
+  void buildLegs(const PipeNetwork& network, const std::vector<int>& nodes);
+  void buildPieces(const std::vector<int>& nodes, double bend_radius);
+  void computeTurns(const std::vector<int>& nodes, double bend_radius,
+                    std::vector<double>& turn_angle, std::vector<double>& tangent_length) const;
+  Piece straightPiece(std::size_t i, double s, double tangent_start, double tangent_end) const;
+  Piece arcPiece(std::size_t i, double s, double bend_radius, double turn_angle,
+                 double tangent_length) const;
+  void buildRenderLegs(const PipeNetwork& network, const std::vector<int>& nodes);
 
   std::vector<RouteLeg> legs_, render_legs_;
   std::vector<Piece> pieces_;

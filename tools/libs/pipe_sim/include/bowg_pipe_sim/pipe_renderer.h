@@ -7,9 +7,8 @@
 #pragma once
 
 #include <cstdint>
-#include <vector>
-
 #include <opencv2/core.hpp>
+#include <vector>
 
 #include "bowg_pipe_sim/pipe_network.h"
 #include "bowg_pipe_sim/wall_texture.h"
@@ -37,11 +36,11 @@ struct LightModel {
 
 /// Sensor: linear signal -> shot noise -> gamma -> read noise -> 8 bit.
 struct SensorModel {
-  double shot_noise = 0.0005;  ///< photon noise: variance per unit of linear signal (1 = white)
-  double read_noise = 2.0;     ///< std dev of the additive noise after the response curve (DN)
-  double gamma = 1 / 2.6;      ///< output = 255 * linear^gamma (a log-like camera response)
-  double blur_sigma_px = 0.6;  ///< optics blur, applied before the noise
-  double max_distance_m = 4.0; ///< rays travelling farther return black
+  double shot_noise = 0.0005;   ///< photon noise: variance per unit of linear signal (1 = white)
+  double read_noise = 2.0;      ///< std dev of the additive noise after the response curve (DN)
+  double gamma = 1 / 2.6;       ///< output = 255 * linear^gamma (a log-like camera response)
+  double blur_sigma_px = 0.6;   ///< optics blur, applied before the noise
+  double max_distance_m = 4.0;  ///< rays travelling farther return black
   void validate() const;
 };
 
@@ -73,6 +72,7 @@ class PipeRenderer {
 
  private:
   struct Region;
+  class RayCaster;  // renderLinear's per-frame state and per-pixel steps (pipe_ray_caster.cpp)
   void buildRegions(int leg, std::vector<Region>& regions, int& current) const;
 
   const PipeNetwork& network_;
@@ -85,7 +85,7 @@ class PipeRenderer {
   std::vector<float> beam_;              // cos(off-axis)^beam_exponent per pixel
   std::vector<float> noise_table_;       // standard normal samples
   static constexpr int kResponseSize = 4096;
-  std::vector<float> response_;          // 8-bit output over sqrt(linear)
+  std::vector<float> response_;  // 8-bit output over sqrt(linear)
   std::vector<std::vector<int>> node_edges_;
 };
 
