@@ -49,7 +49,7 @@ TEST(ImageConversion, ColourOrderIsRespected) {
   EXPECT_EQ(toMono8(bgra, "rgba8").at<std::uint8_t>(0, 0), 29);
 }
 
-TEST(ImageConversion, BadImagesNameTheEncoding) {
+TEST(ImageConversion, UnsupportedEncodingsNameTheEncoding) {
   for (const char* e : {"bayer_rggb8", "32FC1", "yuv422", "16UC3", ""}) {
     EXPECT_FALSE(isSupportedEncoding(e)) << e;
     try {

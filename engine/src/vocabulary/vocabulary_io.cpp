@@ -59,23 +59,34 @@ std::string readFile(const std::string& path, std::uint64_t max_size) {
 
 void checkReadable(const std::string& path) { openRegularFile(path); }
 
-Vocabulary buildFromForeign(const std::string& path, std::int64_t k, std::int64_t L,
-                            std::int64_t scoring, std::int64_t weighting,
-                            const std::vector<ForeignNode>& nodes,
-                            const std::vector<ForeignWord>& words) {
-  // Plausibility first: these also bound every later allocation.
+namespace {
+
+// Children lists in file order, as compressed rows (no per-node allocation):
+// the children of file id p are children[row[p] .. row[p + 1]).
+struct ChildRows {
+  std::vector<std::uint32_t> count, row, children;
+};
+
+// Plausibility of the header values first: they also bound every later
+// allocation.
+void checkForeignHeader(const std::string& path, std::int64_t k, std::int64_t L,
+                        std::int64_t scoring, std::int64_t weighting, std::size_t nodes) {
   if (k < 2 || k > 1000)
     fail(path, "branching factor k = " + std::to_string(k) + " out of range [2, 1000]");
   if (L < 1 || L > 100) fail(path, "depth L = " + std::to_string(L) + " out of range [1, 100]");
   if (scoring < 0 || scoring > 5) fail(path, "unknown scoring type " + std::to_string(scoring));
   if (weighting < 0 || weighting > 3)
     fail(path, "unknown weighting type " + std::to_string(weighting));
-  const std::size_t n = nodes.size() + 1;  // + root
-  if (nodes.empty()) fail(path, "the vocabulary has no nodes");
-  if (n >= Vocabulary::kNoWord) fail(path, "too many nodes");
+  if (nodes == 0) fail(path, "the vocabulary has no nodes");
+  if (nodes + 1 >= Vocabulary::kNoWord) fail(path, "too many nodes");
+}
 
-  // Index nodes by id; ids must be exactly 1..N.
-  std::vector<std::uint32_t> slot(n, Vocabulary::kNoWord);  // id -> position in `nodes`
+// Position in `nodes` of every file id; ids must be exactly 1..N, parents
+// valid ids other than the node's own.
+std::vector<std::uint32_t> slotsById(const std::string& path,
+                                     const std::vector<ForeignNode>& nodes) {
+  const std::size_t n = nodes.size() + 1;  // + root
+  std::vector<std::uint32_t> slot(n, Vocabulary::kNoWord);
   for (std::size_t i = 0; i < nodes.size(); ++i) {
     const ForeignNode& f = nodes[i];
     if (f.id < 1 || f.id >= static_cast<std::int64_t>(n)) {
@@ -90,43 +101,53 @@ Vocabulary buildFromForeign(const std::string& path, std::int64_t k, std::int64_
     }
     slot[f.id] = static_cast<std::uint32_t>(i);
   }
+  return slot;
+}
 
-  // Children lists in file order (compressed rows: no per-node allocation).
-  std::vector<std::uint32_t> child_count(n, 0);
-  for (const ForeignNode& f : nodes) ++child_count[f.parent];
-  std::vector<std::uint32_t> row(n + 1, 0);
-  for (std::size_t i = 0; i < n; ++i) row[i + 1] = row[i] + child_count[i];
-  std::vector<std::uint32_t> children(nodes.size());
-  {
-    std::vector<std::uint32_t> fill(row.begin(), row.end() - 1);
-    for (const ForeignNode& f : nodes)
-      children[fill[f.parent]++] = static_cast<std::uint32_t>(f.id);
-  }
+ChildRows childRows(const std::vector<ForeignNode>& nodes) {
+  const std::size_t n = nodes.size() + 1;
+  ChildRows c;
+  c.count.assign(n, 0);
+  for (const ForeignNode& f : nodes) ++c.count[f.parent];
+  c.row.assign(n + 1, 0);
+  for (std::size_t i = 0; i < n; ++i) c.row[i + 1] = c.row[i] + c.count[i];
+  c.children.resize(nodes.size());
+  std::vector<std::uint32_t> fill(c.row.begin(), c.row.end() - 1);
+  for (const ForeignNode& f : nodes)
+    c.children[fill[f.parent]++] = static_cast<std::uint32_t>(f.id);
+  return c;
+}
 
-  // Keep the file's ids when they already are our layout.
+// The new index of every file id: the file's own ids when they already are
+// our layout (children contiguous, after their parent), else breadth-first
+// order from the root. Also the level of every node; nodes never reached
+// hang off a cycle.
+std::vector<std::uint32_t> newIndices(const std::string& path, std::int64_t L, const ChildRows& c,
+                                      std::vector<std::uint32_t>* level) {
+  const std::size_t n = c.count.size();
+  const std::vector<std::uint32_t>& row = c.row;
+  const std::vector<std::uint32_t>& children = c.children;
   bool identity = true;
   for (std::size_t p = 0; p < n && identity; ++p) {
-    for (std::uint32_t c = row[p]; c < row[p + 1]; ++c) {
-      if (children[c] != children[row[p]] + (c - row[p]) || children[row[p]] <= p) {
+    for (std::uint32_t i = row[p]; i < row[p + 1]; ++i) {
+      if (children[i] != children[row[p]] + (i - row[p]) || children[row[p]] <= p) {
         identity = false;
         break;
       }
     }
   }
-  // Breadth-first order from the root: the new index of every file id (the
-  // identity when kept). Nodes never reached hang off a cycle.
   std::vector<std::uint32_t> order;  // new index -> file id
   order.reserve(n);
   order.push_back(0);
-  std::vector<std::uint32_t> level(n, 0);
+  level->assign(n, 0);
   for (std::size_t head = 0; head < order.size(); ++head) {
     const std::uint32_t p = order[head];
-    for (std::uint32_t c = row[p]; c < row[p + 1]; ++c) {
-      level[children[c]] = level[p] + 1;
-      order.push_back(children[c]);
-      if (level[children[c]] > static_cast<std::uint32_t>(L)) {
+    for (std::uint32_t i = row[p]; i < row[p + 1]; ++i) {
+      (*level)[children[i]] = (*level)[p] + 1;
+      order.push_back(children[i]);
+      if ((*level)[children[i]] > static_cast<std::uint32_t>(L)) {
         fail(path,
-             "node " + std::to_string(children[c]) + " is deeper than L = " + std::to_string(L));
+             "node " + std::to_string(children[i]) + " is deeper than L = " + std::to_string(L));
       }
     }
   }
@@ -139,20 +160,13 @@ Vocabulary buildFromForeign(const std::string& path, std::int64_t k, std::int64_
   } else {
     for (std::size_t i = 0; i < n; ++i) new_index[order[i]] = static_cast<std::uint32_t>(i);
   }
+  return new_index;
+}
 
-  std::vector<Vocabulary::Node> out(n);
-  for (std::size_t id = 0; id < n; ++id) {
-    Vocabulary::Node& node = out[new_index[id]];
-    node.level = level[id];
-    node.num_children = child_count[id];
-    node.first_child = child_count[id] ? new_index[children[row[id]]] : 0;
-    if (id != 0) {
-      const ForeignNode& f = nodes[slot[id]];
-      node.parent = new_index[f.parent];
-      node.weight = f.weight;
-      node.descriptor = f.descriptor;
-    }
-  }
+// Each word on its node; ids 0..W-1, one word per node.
+void placeWords(const std::string& path, const std::vector<ForeignWord>& words,
+                const std::vector<std::uint32_t>& new_index, std::vector<Vocabulary::Node>* out) {
+  const std::size_t n = new_index.size();
   for (const ForeignWord& w : words) {
     if (w.word < 0 || w.word >= static_cast<std::int64_t>(words.size())) {
       fail(path, "word id " + std::to_string(w.word) + " out of range [0, " +
@@ -162,12 +176,40 @@ Vocabulary buildFromForeign(const std::string& path, std::int64_t k, std::int64_
       fail(path,
            "word " + std::to_string(w.word) + " is on unknown node " + std::to_string(w.node));
     }
-    Vocabulary::Node& node = out[new_index[w.node]];
+    Vocabulary::Node& node = (*out)[new_index[w.node]];
     if (node.word != Vocabulary::kNoWord) {
       fail(path, "node " + std::to_string(w.node) + " carries two words");
     }
     node.word = static_cast<WordId>(w.word);
   }
+}
+
+}  // namespace
+
+Vocabulary buildFromForeign(const std::string& path, std::int64_t k, std::int64_t L,
+                            std::int64_t scoring, std::int64_t weighting,
+                            const std::vector<ForeignNode>& nodes,
+                            const std::vector<ForeignWord>& words) {
+  checkForeignHeader(path, k, L, scoring, weighting, nodes.size());
+  const std::size_t n = nodes.size() + 1;  // + root
+  const std::vector<std::uint32_t> slot = slotsById(path, nodes);
+  const ChildRows c = childRows(nodes);
+  std::vector<std::uint32_t> level;
+  const std::vector<std::uint32_t> new_index = newIndices(path, L, c, &level);
+  std::vector<Vocabulary::Node> out(n);
+  for (std::size_t id = 0; id < n; ++id) {
+    Vocabulary::Node& node = out[new_index[id]];
+    node.level = level[id];
+    node.num_children = c.count[id];
+    node.first_child = c.count[id] ? new_index[c.children[c.row[id]]] : 0;
+    if (id != 0) {
+      const ForeignNode& f = nodes[slot[id]];
+      node.parent = new_index[f.parent];
+      node.weight = f.weight;
+      node.descriptor = f.descriptor;
+    }
+  }
+  placeWords(path, words, new_index, &out);
   try {
     return Vocabulary(static_cast<int>(k), static_cast<int>(L),
                       static_cast<WeightingType>(weighting), static_cast<ScoringType>(scoring),

@@ -1,0 +1,194 @@
+// End-to-end tests of LoopDetectorNodelet's live tuning and persistence
+// (dynamic_reconfigure and dynparam, the database services, saving at
+// shutdown and loading at start); the harness is nodelet_harness.h and
+// main() is loop_detector_rostest.cpp's (one test executable).
+#include "nodelet_harness.h"
+
+namespace bowg_ros {
+namespace {
+
+// One scenario, long because each step depends on the state the previous
+// one left: the database must survive every change for the last step.
+TEST(LoopDetectorNodelet, LiveParametersTakeEffectAndInvalidValuesAreCorrected) {
+  Detector d("/tuning", {});
+  ASSERT_TRUE(d.loaded());
+  const cv::Mat world = test::makeWorld(kForward * kStep + kViewWidth + kOffset, kViewHeight, 4);
+  const std::vector<int> xs = test::trajectory(kForward, kRevisit, kStep, kOffset);
+
+  BoWGConfig c = BoWGConfig::__getDefault__();
+  c.lambda_1 = 0.65;
+  c.lambda_2 = 0.25;
+  c.w_max = 0.4;
+  c.alpha = 0.3;
+  c.fan_bins = 12;
+  c.min_score = 0.25;
+  c.temporal_k = 2;
+  c.min_inliers = 20;
+  c.direct_index_level = 2;
+  c.word_groups = false;
+  c.distribution = true;
+  c.temporal_score = false;
+  c.geometric_verification = true;
+  c.exhaustive_matching = true;
+  ASSERT_TRUE(setConfig(d.name(), &c));
+  d.publish(test::viewAt(world, 0, kViewWidth), 1000.0);
+  ASSERT_TRUE(d.waitForStatuses(1, 20.0));
+  KeyframeStatus s = d.statuses().back();
+  // Each live parameter is in force from the next keyframe.
+  EXPECT_EQ(s.lambda_1, 0.65);
+  EXPECT_EQ(s.lambda_2, 0.25);
+  EXPECT_EQ(s.w_max, 0.4);
+  EXPECT_EQ(s.alpha, 0.3);
+  EXPECT_EQ(s.fan_bins, 12);
+  EXPECT_EQ(s.min_score, 0.25);
+  EXPECT_EQ(s.temporal_k, 2);
+  EXPECT_EQ(s.min_inliers, 20);
+  EXPECT_EQ(s.direct_index_level, 2);
+  EXPECT_FALSE(s.word_groups);
+  EXPECT_TRUE(s.distribution);
+  EXPECT_FALSE(s.temporal_score);
+  EXPECT_TRUE(s.geometric_verification);
+  EXPECT_TRUE(s.exhaustive_matching);
+
+  // Invalid combinations are corrected and the client gets the corrected
+  // values: 0.8 + 0.5 > 1 -> lambda_2 = 1 - 0.8 = 0.2; level 9 deeper than
+  // the test vocabulary's L = 3 -> 3.
+  c.lambda_1 = 0.8;
+  c.lambda_2 = 0.5;
+  c.direct_index_level = 9;
+  ASSERT_TRUE(setConfig(d.name(), &c));
+  EXPECT_NEAR(c.lambda_2, 0.2, 1e-12);
+  EXPECT_EQ(c.direct_index_level, 3);
+  d.publish(test::viewAt(world, kStep, kViewWidth), 1000.1);
+  ASSERT_TRUE(d.waitForStatuses(2, 20.0));
+  s = d.statuses().back();
+  EXPECT_NEAR(s.lambda_2, 0.2, 1e-12);
+  EXPECT_EQ(s.direct_index_level, 3);
+
+  // The same through the command line users type (dynparam set).
+  const std::string cmd = "rosrun dynamic_reconfigure dynparam set " + d.name() +
+                          " \"{'lambda_1': 0.9, 'lambda_2': 0.9}\" > /dev/null 2>&1";
+  EXPECT_EQ(std::system(cmd.c_str()), 0) << cmd;
+  d.publish(test::viewAt(world, 2 * kStep, kViewWidth), 1000.2);
+  ASSERT_TRUE(d.waitForStatuses(3, 20.0));
+  s = d.statuses().back();
+  EXPECT_NEAR(s.lambda_1, 0.9, 1e-12);
+  EXPECT_NEAR(s.lambda_2, 0.1, 1e-9);
+
+  // Effects on the scores: with the distribution score off, eq. 5 with
+  // lambda_1 = 1 gives eta_sim = eta_w; with the temporal score off
+  // eta = eta_sim; with min_score = 10 no loop is accepted on a revisit.
+  c = BoWGConfig::__getDefault__();
+  c.distribution = false;
+  c.lambda_1 = 1.0;
+  c.temporal_score = false;
+  c.min_score = 10.0;
+  ASSERT_TRUE(setConfig(d.name(), &c));
+  d.clear();
+  const std::vector<int> rest(xs.begin() + 3, xs.end());
+  const std::vector<int> light = revisitBrightness();
+  ASSERT_TRUE(d.run(world, rest, 1000.3, std::vector<int>(light.begin() + 3, light.end())));
+  std::size_t with_candidate = 0;
+  for (const KeyframeStatus& k : d.statuses()) {
+    EXPECT_NE(k.status, KeyframeStatus::LOOP_DETECTED) << "min_score = 10 accepted a loop";
+    if (!k.has_candidate) continue;
+    ++with_candidate;
+    EXPECT_NEAR(k.best_score_sim, k.best_score_word, 1e-9);
+    EXPECT_NEAR(k.best_score, k.best_score_sim, 1e-9);
+  }
+  EXPECT_GT(with_candidate, 10u);
+  EXPECT_TRUE(d.loops().empty());
+
+  // Back to an accepting threshold: the database survived every change, so
+  // revisiting the first places again finds loops at once.
+  c.min_score = 0.3;
+  c.lambda_1 = 0.5;
+  c.temporal_score = true;
+  ASSERT_TRUE(setConfig(d.name(), &c));
+  d.clear();
+  std::vector<int> again;
+  for (int j = 0; j < 20; ++j) again.push_back(j * kStep + 2);
+  ASSERT_TRUE(d.run(world, again, 1020.0));
+  ros::WallDuration(0.3).sleep();
+  EXPECT_FALSE(d.loops().empty()) << "database lost after reconfiguration";
+}
+
+TEST(LoopDetectorNodelet, SaveResetLoadRestoresDetectionAndCorruptLoadKeepsTheDatabase) {
+  Detector d("/persistence", {});
+  ASSERT_TRUE(d.loaded());
+  const cv::Mat world = test::makeWorld(kForward * kStep + kViewWidth + kOffset, kViewHeight, 5);
+  const std::vector<int> xs = test::trajectory(kForward, kRevisit, kStep, kOffset);
+  const std::vector<int> first(xs.begin(), xs.begin() + kForward);
+  const std::vector<int> second(xs.begin() + kForward, xs.end());
+  ASSERT_TRUE(d.run(world, first, 1000.0));
+
+  const std::string path = std::string(BOWG_TEST_OUTPUT_DIR) + "/bowg_rostest_database.bin";
+  std::remove(path.c_str());
+  SaveDatabase save;
+  save.request.path = path;
+  ASSERT_TRUE(ros::service::call(d.name() + "/save_database", save));
+  EXPECT_TRUE(save.response.success) << save.response.message;
+  EXPECT_EQ(access(path.c_str(), R_OK), 0);
+
+  std_srvs::Trigger reset;
+  ASSERT_TRUE(ros::service::call(d.name() + "/reset", reset));
+  EXPECT_TRUE(reset.response.success);
+  // After the reset the revisit finds nothing: the first pass is forgotten.
+  d.clear();
+  ASSERT_TRUE(d.run(world, second, 2000.0, std::vector<int>(kRevisit, 12)));
+  ros::WallDuration(0.3).sleep();
+  EXPECT_TRUE(d.loops().empty());
+  EXPECT_EQ(d.statuses().front().database_size, 1u);
+
+  // A corrupt file fails with a message and keeps the running database.
+  const std::string corrupt = std::string(BOWG_TEST_OUTPUT_DIR) + "/bowg_rostest_corrupt.bin";
+  std::ofstream(corrupt) << "this is not a BoWG database";
+  LoadDatabase load;
+  load.request.path = corrupt;
+  ASSERT_TRUE(ros::service::call(d.name() + "/load_database", load));
+  EXPECT_FALSE(load.response.success);
+  EXPECT_NE(load.response.message.find(corrupt), std::string::npos) << load.response.message;
+  d.clear();
+  d.publish(test::viewAt(world, 0, kViewWidth), 2100.0);
+  ASSERT_TRUE(d.waitForStatuses(1, 20.0));
+  EXPECT_EQ(d.statuses().back().database_size, static_cast<std::uint32_t>(kRevisit + 1));
+
+  // Loading the saved file restores the first pass: the revisit finds loops
+  // with the first pass's ids again.
+  reset = std_srvs::Trigger();
+  ASSERT_TRUE(ros::service::call(d.name() + "/reset", reset));
+  load.request.path = path;
+  ASSERT_TRUE(ros::service::call(d.name() + "/load_database", load));
+  EXPECT_TRUE(load.response.success) << load.response.message;
+  d.clear();
+  ASSERT_TRUE(d.run(world, second, 3000.0, std::vector<int>(kRevisit, 12)));
+  ros::WallDuration(0.3).sleep();
+  const std::vector<KeyframeStatus> s = d.statuses();
+  ASSERT_FALSE(s.empty());
+  EXPECT_EQ(s.front().id, static_cast<std::uint32_t>(kForward));  // ids continue the file's
+  const std::vector<LoopClosure> loops = d.loops();
+  EXPECT_GE(loops.size(), 5u) << "no detection after load";
+  expectRightIds(loops);
+}
+
+TEST(LoopDetectorNodelet, DatabaseIsSavedAtShutdownAndLoadedAtStart) {
+  const std::string path = std::string(BOWG_TEST_OUTPUT_DIR) + "/bowg_rostest_shutdown.bin";
+  std::remove(path.c_str());
+  const cv::Mat world = test::makeWorld(kViewWidth + 10 * kStep, kViewHeight, 8);
+  {
+    Detector d("/shutdown", {{"database_save_path", XmlRpc::XmlRpcValue(path)}});
+    ASSERT_TRUE(d.loaded());
+    for (int i = 0; i < 3; ++i) d.publish(test::viewAt(world, i * kStep, kViewWidth), 1000.0 + i);
+    ASSERT_TRUE(d.waitForStatuses(3, 20.0));
+  }  // unloading the nodelet saves
+  EXPECT_EQ(access(path.c_str(), R_OK), 0) << "not saved at shutdown";
+  Detector d("/startup", {{"database_load_path", XmlRpc::XmlRpcValue(path)}});
+  ASSERT_TRUE(d.loaded());
+  d.publish(test::viewAt(world, 5 * kStep, kViewWidth), 2000.0);
+  ASSERT_TRUE(d.waitForStatuses(1, 20.0));
+  EXPECT_EQ(d.statuses()[0].id, 3u);
+  EXPECT_EQ(d.statuses()[0].database_size, 4u);
+}
+
+}  // namespace
+}  // namespace bowg_ros
