@@ -1,7 +1,6 @@
 // Vocabulary files: round trips through every format (same fingerprint),
-// format detection, bit orders of the foreign formats, clear errors, and a
-// fuzz of truncations and byte flips that must end in a clean exception or a
-// valid vocabulary (run it under -DBOWG_SANITIZE=ON too).
+// format detection, bit orders of the foreign formats, clear errors. Bad
+// input: vocabulary_io_bad_input_test.cpp.
 #include "bowg/vocabulary/vocabulary_io.h"
 
 #include <gtest/gtest.h>
@@ -15,80 +14,17 @@
 
 #include "bowg/core/errors.h"
 #include "synthetic_vocabulary.h"
+#include "vocabulary/vocabulary_files.h"
 
 namespace bowg {
 namespace {
 
-std::string outPath(const std::string& name) {
-  return std::string(BOWG_TEST_OUTPUT_DIR) + "/vocio_" + name;
-}
-
-std::string readAll(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-void writeAll(const std::string& path, const std::string& bytes) {
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-}
-
-struct FormatCase {
-  VocabularyFormat format;
-  const char* file;
-};
-const FormatCase kCases[] = {
-    {VocabularyFormat::kBowg, "v.bowgvoc"},
-    {VocabularyFormat::kDbow2Yaml, "v_dbow2.yml"},
-    {VocabularyFormat::kDbow2Yaml, "v_dbow2.yml.gz"},
-    {VocabularyFormat::kDbow2BriefYaml, "v_brief.yml"},
-    {VocabularyFormat::kDbow3Yaml, "v_dbow3.yml.gz"},
-    {VocabularyFormat::kDbow3Binary, "v.dbow3"},
-    {VocabularyFormat::kOrbSlamText, "v_ORBvoc.txt"},
-    {VocabularyFormat::kVinsBinary, "v_brief.bin"},
-};
-
-// An unbalanced trained-like tree: k = 3, L = 3, with one shallow leaf.
-Vocabulary unbalanced(WeightingType w = WeightingType::kIdf,
-                      ScoringType s = ScoringType::kChiSquare) {
-  const Vocabulary full = testing::makeSyntheticVocabulary(3, 3, 11, w, s);
-  // Cut the subtree of node 1 (level 1): keep its first child only... simpler:
-  // rebuild with node 2 turned into a leaf by dropping its children.
-  std::vector<Vocabulary::Node> nodes;
-  const auto& src = full.nodes();
-  std::vector<NodeId> map(src.size(), Vocabulary::kNoWord);
-  // Breadth-first copy skipping the descendants of node 2.
-  std::vector<NodeId> queue{0};
-  map[0] = 0;
-  nodes.push_back(src[0]);
-  for (std::size_t head = 0; head < queue.size(); ++head) {
-    const NodeId old = queue[head];
-    const NodeId now = map[old];
-    if (old == 2) {
-      nodes[now].num_children = 0;
-      nodes[now].first_child = 0;
-      continue;
-    }
-    if (src[old].num_children == 0) continue;
-    nodes[now].first_child = static_cast<std::uint32_t>(nodes.size());
-    for (std::uint32_t c = src[old].first_child; c < src[old].first_child + src[old].num_children;
-         ++c) {
-      map[c] = static_cast<NodeId>(nodes.size());
-      Vocabulary::Node child = src[c];
-      child.parent = now;
-      nodes.push_back(child);
-      queue.push_back(c);
-    }
-  }
-  WordId word = 0;
-  for (std::size_t i = 1; i < nodes.size(); ++i) {
-    nodes[i].word = nodes[i].num_children == 0 ? word++ : Vocabulary::kNoWord;
-    if (nodes[i].num_children == 0 && nodes[i].weight == 0.0) nodes[i].weight = 0.25 * i;
-  }
-  return Vocabulary(3, 3, w, s, std::move(nodes));
-}
+using testing::FormatCase;
+using testing::kCases;
+using testing::outPath;
+using testing::readAll;
+using testing::unbalanced;
+using testing::writeAll;
 
 TEST(VocabularyIo, FormatNames) {
   for (const auto& c : kCases) EXPECT_EQ(vocabularyFormatFromString(toString(c.format)), c.format);
@@ -262,217 +198,6 @@ TEST(VocabularyIo, RefusesCompressedDbow3AndHugeCounts) {
 
 // Every mutation must give a clean FormatError/IoError or a vocabulary that
 // is usable (the constructor validated it).
-void expectCleanOutcome(const std::string& path, const std::string& what, int* ok, int* rejected) {
-  try {
-    const Vocabulary v = loadVocabulary(path);
-    ASSERT_FALSE(v.empty()) << what;
-    BowVector bow;
-    v.transform(testing::randomDescriptors(5, 3), &bow);
-    ++*ok;
-  } catch (const FormatError&) {
-    ++*rejected;
-  } catch (const IoError&) {
-    ++*rejected;
-  } catch (const std::exception& e) {
-    ADD_FAILURE() << what << ": unexpected exception " << e.what();
-  }
-}
-
-TEST(VocabularyIo, TruncatedAndCorruptedFilesFailCleanly) {
-  const Vocabulary v = unbalanced(WeightingType::kTfIdf, ScoringType::kL1);
-  std::mt19937 rng(42);
-  for (const auto& c : kCases) {
-    SCOPED_TRACE(c.file);
-    const std::string good = outPath(c.file);
-    saveVocabulary(v, good, c.format);
-    const std::string bytes = readAll(good);
-    // Keep the extension: detection falls back on it for VINS.
-    const std::string bad = outPath(std::string("fuzz_") + c.file);
-    int ok = 0, rejected = 0;
-    const std::size_t step = std::max<std::size_t>(1, bytes.size() / 150);
-    for (std::size_t cut = 0; cut < bytes.size(); cut += step) {
-      writeAll(bad, bytes.substr(0, cut));
-      expectCleanOutcome(bad, "truncated at " + std::to_string(cut), &ok, &rejected);
-    }
-    for (int trial = 0; trial < 150; ++trial) {
-      std::string flipped = bytes;
-      const std::size_t at = rng() % flipped.size();
-      flipped[at] = static_cast<char>(flipped[at] ^ static_cast<char>(1 + rng() % 255));
-      writeAll(bad, flipped);
-      expectCleanOutcome(bad, "byte " + std::to_string(at) + " flipped", &ok, &rejected);
-    }
-    EXPECT_GT(rejected, 0);
-    // Every truncation of our checksummed format is rejected; so is every flip.
-    if (c.format == VocabularyFormat::kBowg) EXPECT_EQ(ok, 0);
-  }
-}
-
-// Files that cv::FileStorage could not read safely, as the project writes
-// them itself: the loader must refuse each with a FormatError naming the file
-// and the line, never hang (OpenCV's parser spun for ever on the first) and
-// never let another exception out (the second made OpenCV throw
-// std::length_error).
-void expectRefusedNaming(const std::string& name, const std::string& bytes,
-                         const std::string& why) {
-  const std::string path = outPath(name);
-  writeAll(path, bytes);
-  try {
-    loadVocabulary(path);
-    ADD_FAILURE() << name << " accepted";
-  } catch (const FormatError& e) {
-    EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
-    EXPECT_NE(std::string(e.what()).find(why), std::string::npos) << e.what();
-  }
-}
-
-TEST(VocabularyIo, MalformedYamlIsRefusedWithTheFileAndLine) {
-  // 98 bytes found by fuzzing: OpenCV's parser never returned on them.
-  const char hang[] =
-      "%YAML:1.0\n weightingType:(0\ne\0   nodes:\n            - { nodeIdtIiptor:dbw3 0 32 33 7 "
-      ":01 2[ nodeI }\n";
-  expectRefusedNaming("hang.yml", std::string(hang, sizeof(hang) - 1), "no 'vocabulary' map");
-  // An inline map with an empty key.
-  expectRefusedNaming("empty_key.yml",
-                      "%YAML:1.0\n---\nvocabulary:\n   k: 3\n   L: 2\n   scoringType: 0\n"
-                      "   weightingType: 0\n   nodes:\n      - { :rdIdwo6, nodeId:10 }\n",
-                      "line 9: expected a key in 'nodes', found ':'");
-  const std::string head =
-      "%YAML:1.0\n---\nvocabulary:\n   k: 2\n   L: 1\n   scoringType: 0\n   weightingType: 0\n";
-  const std::string d = "\"dbw3 0 32" + std::string(32 * 2, ' ') + "\"";
-  expectRefusedNaming("unterminated.yml", head + "   nodes:\n      - { nodeId:1, descriptor:\"1 2",
-                      "line 9: unterminated quoted string");
-  expectRefusedNaming("unknown_key.yml", head + "   colour: 3\n", "line 8: unknown key 'colour'");
-  expectRefusedNaming("twice.yml", head + "   k: 2\n", "line 8: 'k' appears twice");
-  expectRefusedNaming("not_integer.yml",
-                      head + "   nodes:\n      - { nodeId:1x, parentId:0, weight:0., descriptor:" +
-                          d + " }\n   words: []\n",
-                      "'nodes[0].nodeId' is not an integer");
-  expectRefusedNaming("missing_field.yml",
-                      head + "   nodes:\n      - { nodeId:1, weight:0., descriptor:" + d +
-                          " }\n   words: []\n",
-                      "line 9: missing 'nodes[0].parentId'");
-  expectRefusedNaming("no_words.yml", head + "   nodes: []\n", "missing 'words' sequence");
-  expectRefusedNaming("deep.yml", head + "   nodes:\n      - { nodeId:{ a:1 } }\n",
-                      "'nodeId' has no value");
-  // Not a single byte of a vocabulary: still named, still a FormatError.
-  expectRefusedNaming("binary.yml", std::string("%YAML\0\1\2{{{[[[", 14), "no 'vocabulary' map");
-}
-
-TEST(VocabularyIo, FlowSequencesAndQuotedDescriptorsAreRead) {
-  // The same tree as a block sequence with unquoted descriptors (OpenCV's
-  // output) and as flow sequences with quoted ones: one vocabulary.
-  const Vocabulary v = testing::makeSyntheticVocabulary(2, 1);
-  saveVocabulary(v, outPath("block.yml"), VocabularyFormat::kDbow3Yaml);
-  std::string text = readAll(outPath("block.yml"));
-  // Rewrite "- { ... descriptor:dbw3 ... }" items into a flow sequence with
-  // quoted descriptors by hand.
-  std::istringstream in(text);
-  std::string line, out, items;
-  bool in_nodes = false;
-  while (std::getline(in, line)) {
-    if (line.find("nodes:") != std::string::npos) {
-      in_nodes = true;
-      out += "   nodes: [\n";
-      continue;
-    }
-    if (line.find("words:") != std::string::npos) {
-      in_nodes = false;
-      out += "   ]\n" + line + "\n";
-      continue;
-    }
-    if (in_nodes) {
-      const std::size_t at = line.find("descriptor:");
-      if (at != std::string::npos) {
-        const std::size_t close = line.rfind('}');
-        line = line.substr(0, at) + "descriptor:\"" + line.substr(at + 11, close - at - 11) +
-               "\" },";
-      }
-      const std::size_t dash = line.find("- {");
-      if (dash != std::string::npos) line.replace(dash, 1, " ");
-    }
-    out += line + "\n";
-  }
-  writeAll(outPath("flow.yml"), out);
-  const Vocabulary block = loadVocabulary(outPath("block.yml"));
-  const Vocabulary flowed = loadVocabulary(outPath("flow.yml"));
-  EXPECT_EQ(block.fingerprint(), v.fingerprint());
-  EXPECT_EQ(flowed.fingerprint(), v.fingerprint()) << out;
-}
-
-// --- Third-party vocabularies in /work/shared/data (skipped when absent) ---
-
-std::string sharedVocabulary(const std::string& name) {
-  return std::string(BOWG_SHARED_DATA_DIR) + "/vocabularies/" + name;
-}
-
-bool exists(const std::string& path) { return std::ifstream(path).good(); }
-
-void checkForeign(const std::string& name, int k, int L, std::size_t words) {
-  const std::string path = sharedVocabulary(name);
-  if (!exists(path)) GTEST_SKIP() << path << " is absent (shared third-party data)";
-  const Vocabulary v = loadVocabulary(path);
-  EXPECT_EQ(v.branching(), k);
-  EXPECT_EQ(v.depth(), L);
-  EXPECT_EQ(v.wordCount(), words);
-  EXPECT_EQ(v.scoring(), ScoringType::kL1);
-  EXPECT_EQ(v.weighting(), WeightingType::kTfIdf);
-  // A word's own descriptor descends to that word unless the centre of a
-  // sibling of one of its ancestors is closer on the way down (a k-medians
-  // tree gives no guarantee). Measured: 608/722 (84 %) for the DBoW2 file,
-  // 4067/4983 (82 %) for the DBoW3 file; a wrong byte order or node
-  // relabelling would drop this to ~0.
-  std::size_t own = 0;
-  for (WordId w = 0; w < v.wordCount(); ++w) {
-    if (v.transform(v.nodes()[v.nodeOfWord(w)].descriptor) == w) ++own;
-  }
-  EXPECT_GT(own, v.wordCount() * 3 / 4) << own << " of " << v.wordCount();
-  // Among its siblings, a leaf's own descriptor is always the nearest
-  // (distance 0), so the last step of the descent must find it.
-  for (WordId w = 0; w < v.wordCount(); ++w) {
-    const auto& leaf = v.nodes()[v.nodeOfWord(w)];
-    const auto& parent = v.nodes()[leaf.parent];
-    int best = 257;
-    for (std::uint32_t c = parent.first_child; c < parent.first_child + parent.num_children; ++c) {
-      best = std::min(best, hammingDistance(leaf.descriptor, v.nodes()[c].descriptor));
-    }
-    ASSERT_EQ(best, 0) << "word " << w;
-  }
-  // Every format keeps everything (the files' words are numbered in leaf
-  // order, which is all ORB-SLAM's text can express).
-  for (const auto& c : kCases) {
-    const std::string out = outPath(name + "." + c.file);
-    saveVocabulary(v, out, c.format);
-    EXPECT_EQ(loadVocabulary(out).fingerprint(), v.fingerprint()) << c.file;
-  }
-}
-
-TEST(VocabularyIoSharedData, Dbow2SmallVocabulary) {
-  // k = 9, L = 3, words 0..721 (the file's last word entry is wordId 721).
-  checkForeign("dbow2_orb_k9L3_small_voc.yml.gz", 9, 3, 722);
-  if (HasFatalFailure() || IsSkipped()) return;
-  // DBoW2 numbers children consecutively, so the file's node ids are kept:
-  // the file lists "{ wordId:0, nodeId:19 }".
-  EXPECT_EQ(loadVocabulary(sharedVocabulary("dbow2_orb_k9L3_small_voc.yml.gz")).nodeOfWord(0), 19u);
-}
-
-TEST(VocabularyIoSharedData, Dbow3Vocabulary) {
-  // k = 10, L = 5, words 0..4982.
-  checkForeign("dbow3_orb_k10L5_vocabulary.yml.gz", 10, 5, 4983);
-}
-
-TEST(VocabularyIoSharedData, BadInputsAreRefusedNamingTheFile) {
-  const std::string dir = std::string(BOWG_SHARED_DATA_DIR) + "/bad_inputs/";
-  if (!exists(dir + "hang_98.yml")) GTEST_SKIP() << dir << " is absent (shared data)";
-  for (const char* name : {"hang_98.yml", "empty_key.yml", "negative_idf_vins.bin"}) {
-    SCOPED_TRACE(name);
-    try {
-      loadVocabulary(dir + name);
-      ADD_FAILURE() << "accepted";
-    } catch (const FormatError& e) {
-      EXPECT_NE(std::string(e.what()).find(name), std::string::npos) << e.what();
-    }
-  }
-}
 
 }  // namespace
 }  // namespace bowg
