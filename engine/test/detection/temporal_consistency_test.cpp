@@ -18,8 +18,6 @@
 namespace bowg {
 namespace {
 
-using Candidates = std::vector<std::pair<EntryId, double>>;
-
 Island island(EntryId first, EntryId last) {
   Island i;
   i.first = first;
