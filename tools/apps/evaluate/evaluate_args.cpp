@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "bowg/detection/detection_options.h"
+#include "bowg_evaluation/command_line.h"
 
 namespace bowg {
 namespace evaluate_app {
@@ -63,15 +64,6 @@ const char* const kUsage =
 
 namespace {
 
-double toNumber(const std::string& flag, const std::string& v) {
-  char* end = nullptr;
-  const double x = std::strtod(v.c_str(), &end);
-  if (v.empty() || *end != '\0' || !std::isfinite(x)) {
-    throw std::invalid_argument(flag + ": '" + v + "' is not a number");
-  }
-  return x;
-}
-
 std::vector<double> parseThresholds(const std::string& v) {
   std::vector<double> out;
   if (v.find(':') != std::string::npos) {
@@ -80,8 +72,8 @@ std::vector<double> parseThresholds(const std::string& v) {
     if (!std::getline(in, a, ':') || !std::getline(in, b, ':') || !std::getline(in, c, ':')) {
       throw std::invalid_argument("--thresholds: expected LO:STEP:HI, got " + v);
     }
-    const double lo = toNumber("--thresholds", a), step = toNumber("--thresholds", b),
-                 hi = toNumber("--thresholds", c);
+    const double lo = eval::numberArgument("--thresholds", a), step = eval::numberArgument("--thresholds", b),
+                 hi = eval::numberArgument("--thresholds", c);
     if (!(step > 0) || hi < lo || (hi - lo) / step > 1000) {
       throw std::invalid_argument("--thresholds: need STEP > 0, HI >= LO, at most 1000 values");
     }
@@ -89,7 +81,7 @@ std::vector<double> parseThresholds(const std::string& v) {
   } else {
     std::istringstream in(v);
     std::string item;
-    while (std::getline(in, item, ',')) out.push_back(toNumber("--thresholds", item));
+    while (std::getline(in, item, ',')) out.push_back(eval::numberArgument("--thresholds", item));
   }
   for (double t : out) {
     if (t < 0) throw std::invalid_argument("--thresholds: min_score values must be >= 0");
@@ -140,9 +132,9 @@ Args parseArgs(int argc, char** argv) {
     else if (flag == "--images")
       a.images = v;
     else if (flag == "--rate")
-      a.rate = toNumber(flag, v);
+      a.rate = eval::numberArgument(flag, v);
     else if (flag == "--max-frames")
-      a.max_frames = static_cast<long>(toNumber(flag, v));
+      a.max_frames = static_cast<long>(eval::numberArgument(flag, v));
     else if (flag == "--vocabulary")
       a.vocabulary = v;
     else if (flag == "--config")
@@ -166,7 +158,7 @@ Args parseArgs(int argc, char** argv) {
         LoopDetectorOptions::ablation(row, LoopDetectorOptions());
       a.ablation = true;
     } else if (flag == "--jobs") {
-      const double j = toNumber(flag, v);
+      const double j = eval::numberArgument(flag, v);
       if (j < 0 || j > 256 || j != static_cast<int>(j)) {
         throw std::invalid_argument("--jobs must be an integer in [0, 256]");
       }

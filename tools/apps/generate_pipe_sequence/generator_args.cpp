@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "bowg_evaluation/command_line.h"
 #include "bowg_pipe_sim/route_programs.h"
 
 namespace bowg {
@@ -59,19 +60,10 @@ const char* const kUsage =
 
 namespace {
 
-double toNumber(const std::string& flag, const std::string& value) {
-  char* end = nullptr;
-  const double v = std::strtod(value.c_str(), &end);
-  if (value.empty() || *end != '\0' || !std::isfinite(v)) {
-    throw std::invalid_argument(flag + ": '" + value + "' is not a number");
-  }
-  return v;
-}
-
 /// For the options without a field check of their own: the message names
 /// the flag, not the struct field.
 double atLeast(const std::string& flag, const std::string& value, double low, bool inclusive) {
-  const double v = toNumber(flag, value);
+  const double v = eval::numberArgument(flag, value);
   if (inclusive ? v < low : v <= low) {
     std::ostringstream message;
     message << flag << " must be " << (inclusive ? ">= " : "> ") << low << ", not " << value;
@@ -81,7 +73,7 @@ double atLeast(const std::string& flag, const std::string& value, double low, bo
 }
 
 int toInt(const std::string& flag, const std::string& value) {
-  const double v = toNumber(flag, value);
+  const double v = eval::numberArgument(flag, value);
   if (v != std::floor(v) || std::abs(v) > 1e9) {
     throw std::invalid_argument(flag + ": '" + value + "' is not an integer");
   }
@@ -94,9 +86,9 @@ bool setSequenceOption(pipe_sim::SequenceOptions* s, const std::string& flag,
                        const std::string& v) {
   if (flag == "--laps") s->laps = toInt(flag, v);
   else if (flag == "--frames") s->max_frames = toInt(flag, v);
-  else if (flag == "--roll-amplitude") s->roll_amplitude_deg = toNumber(flag, v);
-  else if (flag == "--speed") s->speed_mps = toNumber(flag, v);
-  else if (flag == "--rate") s->frame_rate_hz = toNumber(flag, v);
+  else if (flag == "--roll-amplitude") s->roll_amplitude_deg = eval::numberArgument(flag, v);
+  else if (flag == "--speed") s->speed_mps = eval::numberArgument(flag, v);
+  else if (flag == "--rate") s->frame_rate_hz = eval::numberArgument(flag, v);
   else if (flag == "--speed-variation") s->speed_variation = atLeast(flag, v, 0, true);
   else if (flag == "--speed-knot-seconds") s->speed_knot_s = atLeast(flag, v, 0, false);
   else if (flag == "--network-width") s->network_width_m = atLeast(flag, v, 0, false);
@@ -126,21 +118,21 @@ void setOption(Args* a, double* fx, const std::string& flag, const std::string& 
     a->sequence.seed = a->texture.seed = static_cast<std::uint64_t>(seed);
   } else if (flag == "--width") a->camera.width = toInt(flag, v);
   else if (flag == "--height") a->camera.height = toInt(flag, v);
-  else if (flag == "--fx") *fx = toNumber(flag, v);
-  else if (flag == "--marks-per-metre") a->texture.marks_per_metre = toNumber(flag, v);
-  else if (flag == "--grain-repeat") a->texture.grain_repeat = toNumber(flag, v);
+  else if (flag == "--fx") *fx = eval::numberArgument(flag, v);
+  else if (flag == "--marks-per-metre") a->texture.marks_per_metre = eval::numberArgument(flag, v);
+  else if (flag == "--grain-repeat") a->texture.grain_repeat = eval::numberArgument(flag, v);
   else if (flag == "--route") a->route = v, a->route_given = true;
   else if (flag == "--route-nodes") a->route_nodes = v;
   else if (flag == "--texture-images") a->texture_images = v;
   else if (flag == "--texture-crop") {
-    a->texture_crop = toNumber(flag, v);
+    a->texture_crop = eval::numberArgument(flag, v);
     a->texture_crop_given = true;
     if (!(a->texture_crop >= 0 && a->texture_crop <= 0.45)) {
       throw std::invalid_argument("--texture-crop must be in [0, 0.45], not " + v);
     }
-  } else if (flag == "--gt-distance") a->gt_options.max_distance_m = toNumber(flag, v);
-  else if (flag == "--gt-heading") a->gt_options.max_heading_deg = toNumber(flag, v);
-  else if (flag == "--gt-exclude") a->gt_options.exclude_recent_m = toNumber(flag, v);
+  } else if (flag == "--gt-distance") a->gt_options.max_distance_m = eval::numberArgument(flag, v);
+  else if (flag == "--gt-heading") a->gt_options.max_heading_deg = eval::numberArgument(flag, v);
+  else if (flag == "--gt-exclude") a->gt_options.exclude_recent_m = eval::numberArgument(flag, v);
   else throw std::invalid_argument("unknown option " + flag + " (see --help)");
 }
 
