@@ -1,0 +1,165 @@
+// LoopDetector::load of bad files: clean FormatError/IoError on truncation,
+// byte flips, another vocabulary, forged content or a missing file, and the
+// strong guarantee (a failed load keeps the old state).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <string>
+
+#include "bowg/core/checksum.h"
+#include "bowg/core/errors.h"
+#include "detection/detector_file_runs.h"
+
+namespace bowg {
+namespace {
+
+using testing::expectSameCandidates;
+using testing::expectSameResult;
+using testing::keyframes;
+using testing::options;
+using testing::outPath;
+using testing::readBytes;
+using testing::vocabulary;
+using testing::writeBytes;
+
+TEST(DatabaseIo, CorruptFilesGiveCleanErrorsAndKeepTheOldState) {
+  const auto voc = vocabulary();
+  const auto kfs = keyframes();
+  LoopDetector saved(voc, options());
+  for (int i = 0; i < 20; ++i) saved.process(kfs[i]);
+  const std::string good = outPath("good.bowgdb");
+  saved.save(good);
+  const std::string bytes = readBytes(good);
+  ASSERT_GT(bytes.size(), 1000u);
+
+  // `victim` holds another state (30 keyframes); `twin` is its reference.
+  LoopDetector victim(voc, options()), twin(voc, options());
+  for (int i = 0; i < 30; ++i) {
+    victim.process(kfs[i]);
+    twin.process(kfs[i]);
+  }
+  const std::string bad = outPath("bad.bowgdb");
+  int failures = 0;
+  // Truncations: every offset in the header, then ~80 spread over the file.
+  std::vector<std::size_t> cuts;
+  for (std::size_t i = 0; i < 64; ++i) cuts.push_back(i);
+  for (std::size_t i = 64; i < bytes.size(); i += bytes.size() / 80) cuts.push_back(i);
+  cuts.push_back(bytes.size() - 1);
+  for (std::size_t cut : cuts) {
+    writeBytes(bad, bytes.substr(0, cut));
+    EXPECT_THROW(victim.load(bad), FormatError) << "truncated at " << cut;
+    ++failures;
+  }
+  // Byte flips over the whole file (header, payload, checksum).
+  for (std::size_t at = 0; at < bytes.size(); at += bytes.size() / 97 + 1) {
+    std::string flipped = bytes;
+    flipped[at] = static_cast<char>(flipped[at] ^ 0x5a);
+    writeBytes(bad, flipped);
+    EXPECT_THROW(victim.load(bad), FormatError) << "flip at " << at;
+    ++failures;
+  }
+  // Appended garbage.
+  writeBytes(bad, bytes + "x");
+  EXPECT_THROW(victim.load(bad), FormatError);
+  EXPECT_THROW(victim.load(outPath("does_not_exist.bowgdb")), IoError);
+  EXPECT_GT(failures, 100);
+
+  // Strong guarantee: the victim still behaves exactly like its twin.
+  EXPECT_EQ(victim.database().size(), 30u);
+  for (std::size_t i = 30; i < 45; ++i) {
+    expectSameResult(victim.process(kfs[i]), twin.process(kfs[i]));
+    expectSameCandidates(victim, twin);
+  }
+  std::remove(good.c_str());
+  std::remove(bad.c_str());
+}
+
+TEST(DatabaseIo, AnotherVocabularyIsRejectedByName) {
+  const auto kfs = keyframes();
+  LoopDetector a(vocabulary(7), options());
+  for (int i = 0; i < 5; ++i) a.process(kfs[i]);
+  const std::string path = outPath("other_vocabulary.bowgdb");
+  a.save(path);
+  LoopDetector b(vocabulary(8), options());
+  try {
+    b.load(path);
+    FAIL() << "loaded a database built with another vocabulary";
+  } catch (const FormatError& e) {
+    EXPECT_NE(std::string(e.what()).find("vocabulary"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(b.database().size(), 0u);
+  std::remove(path.c_str());
+}
+
+TEST(DatabaseIo, SaveToAnUnwritablePathThrowsIoError) {
+  LoopDetector a(vocabulary(), options());
+  EXPECT_THROW(a.save("/nonexistent_dir_bowg/x.bowgdb"), IoError);
+}
+
+TEST(DatabaseIo, ForgedContentIsRefusedByName) {
+  const auto voc = vocabulary();
+  auto kfs = keyframes();
+  for (auto& kf : kfs) {
+    kf.intrinsics.valid = true;
+    kf.intrinsics.fx = kf.intrinsics.fy = 400.0;
+    kf.intrinsics.cx = 320.0;
+    kf.intrinsics.cy = 240.0;
+  }
+  LoopDetector a(voc, options());
+  for (int i = 0; i < 52; ++i) a.process(kfs[i]);
+  const std::string path = outPath("forged_source.bowgdb");
+  a.save(path);
+  const std::string good = readBytes(path);
+  ASSERT_EQ(good[60], 1) << "entry 0's intrinsics-valid byte";
+  const auto forge = [&](const std::string& name, std::size_t at, const void* value,
+                         std::size_t bytes, const std::string& why) {
+    SCOPED_TRACE(name);
+    std::string b = good;
+    std::memcpy(&b[at], value, bytes);
+    const std::uint64_t sum = checksum64(b.data(), b.size() - 8);
+    for (int i = 0; i < 8; ++i) b[b.size() - 8 + i] = static_cast<char>((sum >> (8 * i)) & 0xff);
+    const std::string forged = outPath(name);
+    writeBytes(forged, b);
+    LoopDetector c(voc, options());
+    try {
+      c.load(forged);
+      ADD_FAILURE() << "accepted";
+    } catch (const FormatError& e) {
+      EXPECT_NE(std::string(e.what()).find(forged), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find(why), std::string::npos) << e.what();
+    }
+    EXPECT_EQ(c.database().size(), 0u);
+    std::remove(forged.c_str());
+  };
+  const double nan = std::nan(""), negative = -5.0;
+  const float fnan = std::nanf("");
+  forge("fx.bowgdb", 61, &nan, 8, "entry 0 has invalid intrinsics");
+  forge("fy.bowgdb", 69, &negative, 8, "entry 0 has invalid intrinsics");
+  forge("x.bowgdb", 97, &fnan, 4, "entry 0 keypoint 0 has a non-finite");
+  const float minus_one = -1.0f;
+  forge("size.bowgdb", 105, &minus_one, 4, "invalid size");
+  forge("angle.bowgdb", 109, &fnan, 4, "entry 0 keypoint 0 has a non-finite");
+  // Entry 0's BoW vector follows its features: u32 count, then (u32 word,
+  // f64 weight) pairs.
+  std::uint32_t nf = 0;
+  std::memcpy(&nf, &good[93], 4);
+  const std::size_t bow = 97 + nf * (6 * 4 + 32 + 4);
+  std::uint32_t words = 0;
+  std::memcpy(&words, &good[bow], 4);
+  ASSERT_GT(words, 0u);
+  for (const double w : {-5.0, 1e300, 0.0}) {
+    forge("bow.bowgdb", bow + 4 + 4, &w, 8, "entry 0 has a BoW weight");
+  }
+  // The chain length: before the normaliser history (u32 + 50 x 24), the
+  // two missed-query counters (8), the odometers (u32 + 52 x 8), the two
+  // query odometers (16), the hypothesis count (4) and the checksum (8).
+  const std::size_t chain = good.size() - (8 + 4 + 16 + 4 + 52 * 8 + 8 + 4 + 50 * 24 + 4);
+  const std::int32_t forever = 0x7fffffff;
+  forge("chain.bowgdb", chain, &forever, 4, "chain length 2147483647 outside 0..52");
+  std::remove(path.c_str());
+}
+
+}  // namespace
+}  // namespace bowg
