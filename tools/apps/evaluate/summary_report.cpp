@@ -41,9 +41,10 @@ void accuracyTable(const Args& a, const std::vector<RowResult>& results, const G
         detectionsOf(r.run).size());
     s << line;
   }
-  if (a.ablation) {
-    // The comparison the ablation is for, in one line (rows: bow first,
-    // the full method last).
+  if (a.ablation && results.front().run.name == "bow" &&
+      results.back().run.name == "distribution") {
+    // The comparison the paper's ablation is for, in one line (bow first,
+    // the full method last); other row lists have no such pair.
     const PrPoint& bow = results.front().full_precision;
     const PrPoint& full = results.back().full_precision;
     s << "\nrecall at 100 % precision: full BoWG " << fmt("%.3f", full.recall)
