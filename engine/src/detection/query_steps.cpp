@@ -55,6 +55,17 @@ EntryId normaliserEntry(const Database& database, const SimilarityOptions& optio
   return static_cast<EntryId>(behind - 1);
 }
 
+// True when a normaliser of an enabled component is 0 or below its minimum.
+bool lowNormaliser(const Normalisers& tested, const SimilarityOptions& so, bool with_groups,
+                   bool with_distribution) {
+  const auto low = [](double normaliser, double minimum) {
+    return !(normaliser > 0.0) || normaliser < minimum;
+  };
+  return low(tested.word, so.min_word_normaliser) ||
+         (with_groups && low(tested.group, so.min_group_normaliser)) ||
+         (with_distribution && low(tested.distribution, so.min_distribution_normaliser));
+}
+
 // The query's final scores of every candidate (and the step's outcome): false
 // when the query stops before its candidates are scored (database too small,
 // low normaliser); `r` then has its status. Updates the temporal memory.
@@ -97,12 +108,7 @@ bool scoreCandidates(const QueryContext& ctx, const DatabaseQuery& q,
   // query while the recent keyframes scored normally; an image too poor to
   // score still gets scores too small for any island.
   const Normalisers& tested = so.normaliser_floor > 0.0 ? divisor : previous;
-  const auto low = [](double normaliser, double minimum) {
-    return !(normaliser > 0.0) || normaliser < minimum;
-  };
-  if (low(tested.word, so.min_word_normaliser) ||
-      (with_groups && low(tested.group, so.min_group_normaliser)) ||
-      (with_distribution && low(tested.distribution, so.min_distribution_normaliser))) {
+  if (lowNormaliser(tested, so, with_groups, with_distribution)) {
     return finish(LoopStatus::kLowNormaliser);
   }
   r->word_divisor = divisor.word;

@@ -98,6 +98,18 @@ cv::Ptr<cv::ORB> makeOrb(const FeatureOptions& o) {
                          o.orb_fast_threshold);
 }
 
+// The keypoints whose patch of `radius` level pixels lies inside the image at
+// their pyramid level.
+std::vector<cv::KeyPoint> keepInside(const std::vector<cv::KeyPoint>& detected, cv::Size size,
+                                     const OrbPyramid& pyramid, int radius) {
+  std::vector<cv::KeyPoint> kept;
+  kept.reserve(detected.size());
+  for (const cv::KeyPoint& kp : detected) {
+    if (insideOrbLevel(kp, size, pyramid, radius)) kept.push_back(kp);
+  }
+  return kept;
+}
+
 }  // namespace
 
 FeatureExtractor::FeatureExtractor(const FeatureOptions& options) : options_(options) {
@@ -161,14 +173,10 @@ ImageFeatures FeatureExtractor::extract(const cv::Mat& image) const {
     orb->detect(image, detected, mask_);
   }
 
-  // 2. Drop keypoints whose descriptor patch leaves the image.
-  std::vector<cv::KeyPoint> kept;
-  kept.reserve(detected.size());
-  for (const cv::KeyPoint& kp : detected) {
-    const bool inside = brief ? insideOrbLevel(kp, image.size(), OrbPyramid{1.0, 1}, radius)
-                              : insideOrbLevel(kp, image.size(), pyramid, radius);
-    if (inside) kept.push_back(kp);
-  }
+  // 2. Drop keypoints whose descriptor patch leaves the image (BRIEF always
+  // samples level 0).
+  std::vector<cv::KeyPoint> kept =
+      keepInside(detected, image.size(), brief ? OrbPyramid{1.0, 1} : pyramid, radius);
 
   // 3. Orientation: ORB's detector already measured it (intensity centroid at
   // the keypoint's level); GFTT corners get it here on the unsmoothed image,

@@ -221,6 +221,39 @@ std::uint64_t fingerprintOf(int k, int L, WeightingType weighting, const std::ve
   return h.value();
 }
 
+// The BoW value of a word seen `count` times among the image's features
+// (inv_n = 1 / their number), with the word's weight `idf`.
+double wordValue(WeightingType weighting, double count, double inv_n, double idf) {
+  switch (weighting) {
+    case WeightingType::kTfIdf:
+      return count * inv_n * idf;
+    case WeightingType::kTf:
+      return count * inv_n;
+    case WeightingType::kIdf:
+      return idf;
+    case WeightingType::kBinary:
+      return 1.0;
+  }
+  return 0.0;
+}
+
+// The direct index: the features of each node, nodes in increasing order.
+void groupByNode(std::vector<std::pair<NodeId, std::uint32_t>>* node_of, DirectIndex* direct) {
+  std::sort(node_of->begin(), node_of->end());
+  const std::size_t n = node_of->size();
+  for (std::size_t i = 0; i < n;) {
+    const NodeId node = (*node_of)[i].first;
+    std::size_t j = i;
+    while (j < n && (*node_of)[j].first == node) ++j;
+    DirectIndexEntry entry;
+    entry.first = node;
+    entry.second.reserve(j - i);
+    for (std::size_t m = i; m < j; ++m) entry.second.push_back((*node_of)[m].second);
+    direct->push_back(std::move(entry));
+    i = j;
+  }
+}
+
 }  // namespace
 
 Vocabulary::Vocabulary(int branching, int depth, WeightingType weighting, ScoringType scoring,
@@ -317,42 +350,14 @@ void Vocabulary::transform(const std::vector<Descriptor>& descriptors, BowVector
     const WordId w = word_of[i].first;
     std::size_t j = i;
     while (j < n && word_of[j].first == w) ++j;
-    const double count = static_cast<double>(j - i);
-    const double idf = nodes_[word_to_node_[w]].weight;
-    double value = 0.0;
-    switch (weighting_) {
-      case WeightingType::kTfIdf:
-        value = count * inv_n * idf;
-        break;
-      case WeightingType::kTf:
-        value = count * inv_n;
-        break;
-      case WeightingType::kIdf:
-        value = idf;
-        break;
-      case WeightingType::kBinary:
-        value = 1.0;
-        break;
-    }
+    const double value =
+        wordValue(weighting_, static_cast<double>(j - i), inv_n, nodes_[word_to_node_[w]].weight);
     if (value > 0.0) bow->emplace_back(w, value);
     i = j;
   }
   normaliseBowVector(scoring_, bow);
 
-  if (direct != nullptr) {
-    std::sort(node_of.begin(), node_of.end());
-    for (std::size_t i = 0; i < n;) {
-      const NodeId node = node_of[i].first;
-      std::size_t j = i;
-      while (j < n && node_of[j].first == node) ++j;
-      DirectIndexEntry entry;
-      entry.first = node;
-      entry.second.reserve(j - i);
-      for (std::size_t m = i; m < j; ++m) entry.second.push_back(node_of[m].second);
-      direct->push_back(std::move(entry));
-      i = j;
-    }
-  }
+  if (direct != nullptr) groupByNode(&node_of, direct);
 }
 
 }  // namespace bowg
