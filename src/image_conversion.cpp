@@ -36,6 +36,15 @@ const EncodingInfo* find(const std::string& encoding) {
 
 bool isSupportedEncoding(const std::string& encoding) { return find(encoding) != nullptr; }
 
+const std::string& supportedEncodings() {
+  static const std::string list = [] {
+    std::string l;
+    for (const EncodingInfo& e : kEncodings) l += (l.empty() ? "" : ", ") + std::string(e.name);
+    return l;
+  }();
+  return list;
+}
+
 std::string imageLayoutProblem(std::uint32_t width, std::uint32_t height, std::uint32_t step,
                                std::size_t data_size, const std::string& encoding) {
   const EncodingInfo* e = find(encoding);
@@ -60,7 +69,7 @@ cv::Mat toMono8(const cv::Mat& image, const std::string& encoding) {
   const EncodingInfo* e = find(encoding);
   if (!e) {
     throw BadImage("unsupported image encoding '" + encoding +
-                              "' (supported: mono8, mono16, bgr8, rgb8, bgra8, rgba8, 8UC1, 16UC1)");
+                   "' (supported: " + supportedEncodings() + ")");
   }
   if (image.empty()) throw BadImage("empty image with encoding '" + encoding + "'");
   if (image.type() != e->type) {

@@ -6,11 +6,12 @@
 // Needs message headers only (no master): unit-tested as plain functions.
 #pragma once
 
+#include <sensor_msgs/CompressedImage.h>
+#include <sensor_msgs/Image.h>
+
 #include <cstddef>
 #include <cstdint>
 #include <opencv2/core.hpp>
-#include <sensor_msgs/CompressedImage.h>
-#include <sensor_msgs/Image.h>
 #include <stdexcept>
 #include <string>
 
@@ -26,6 +27,9 @@ class BadImage : public std::invalid_argument {
 
 /// mono8, mono16, bgr8, rgb8, bgra8, rgba8, 8UC1 (as mono8), 16UC1 (as mono16).
 bool isSupportedEncoding(const std::string& encoding);
+
+/// The supported encodings as a list for messages: "mono8, mono16, ...".
+const std::string& supportedEncodings();
 
 /// Why an image message's layout cannot be read safely ("" when it can):
 /// an unsupported encoding, a zero width or height, a step shorter than a

@@ -34,10 +34,8 @@ void LoopDetectorNodelet::imageCallback(const sensor_msgs::ImageConstPtr& msg) {
       std::lock_guard<std::mutex> lock(stats_mutex_);
       ++stats_.bad_encoding;
     }
-    NODELET_ERROR_THROTTLE(5.0,
-                           "unsupported image encoding '%s' (supported: mono8, mono16, "
-                           "bgr8, rgb8, bgra8, rgba8, 8UC1, 16UC1): frame dropped",
-                           msg->encoding.c_str());
+    NODELET_ERROR_THROTTLE(5.0, "unsupported image encoding '%s' (supported: %s): frame dropped",
+                           msg->encoding.c_str(), supportedEncodings().c_str());
     return;
   }
   // The layout is checked here, where the drop is counted; the worker
