@@ -44,6 +44,30 @@ void Checksum64::update(const void* data, std::size_t size) {
   }
 }
 
+void updateBoth(Checksum64* a, Checksum64* b, const void* data, std::size_t size) {
+  if (a->pending_bytes_ != 0 || b->pending_bytes_ != 0) {
+    a->update(data, size);
+    b->update(data, size);
+    return;
+  }
+  // Both at a word boundary: the word loops run side by side.
+  const unsigned char* p = static_cast<const unsigned char*>(data);
+  const std::size_t words = size / 8;
+  std::uint64_t ha = a->hash_, hb = b->hash_;
+  for (std::size_t i = 0; i < words; ++i, p += 8) {
+    const std::uint64_t w = loadLe64(p);
+    ha = mixWord(ha, w);
+    hb = mixWord(hb, w);
+  }
+  a->hash_ = ha;
+  b->hash_ = hb;
+  a->length_ += words * 8;
+  b->length_ += words * 8;
+  const std::size_t tail = size - words * 8;
+  a->update(p, tail);
+  b->update(p, tail);
+}
+
 void Checksum64::updateU32(std::uint32_t v) {
   unsigned char b[4];
   for (int i = 0; i < 4; ++i) b[i] = static_cast<unsigned char>(v >> (8 * i));

@@ -12,6 +12,7 @@
 
 #include "bowg/core/checksum.h"
 #include "bowg/core/errors.h"
+#include "vocabulary/vocabulary_records.h"
 
 namespace bowg {
 
@@ -84,7 +85,7 @@ void descendBatch(const Vocabulary::Node* nodes, const Descriptor* d, std::size_
 
 // k, L, the weighting and scoring types, the node count and the root.
 void checkHeader(int k, int L, WeightingType weighting, ScoringType scoring,
-                 const std::vector<Node>& nodes) {
+                 const Vocabulary::NodeArray& nodes) {
   const int w = static_cast<int>(weighting);
   const int s = static_cast<int>(scoring);
   if (k < 2) throw FormatError("vocabulary: branching factor k = " + std::to_string(k) + " < 2");
@@ -105,7 +106,7 @@ void checkHeader(int k, int L, WeightingType weighting, ScoringType scoring,
 
 // The tree's shape: weights, levels, child ranges and parents. Returns the
 // number of leaves.
-std::size_t checkTree(int k, int L, const std::vector<Node>& nodes) {
+std::size_t checkTree(int k, int L, const Vocabulary::NodeArray& nodes) {
   const std::size_t n = nodes.size();
   // Every non-root node must be claimed by exactly one child range: its
   // parent's. Because a child must name the range's owner as its parent,
@@ -176,7 +177,7 @@ std::size_t checkTree(int k, int L, const std::vector<Node>& nodes) {
 }
 
 // Words 0..W-1, each on exactly one leaf: the word -> leaf table.
-std::vector<NodeId> wordsToNodes(const std::vector<Node>& nodes, std::size_t leaves) {
+std::vector<NodeId> wordsToNodes(const Vocabulary::NodeArray& nodes, std::size_t leaves) {
   const std::size_t n = nodes.size();
   std::vector<NodeId> word_to_node(leaves, kNoWord);
   // Words: 0..W-1, each on exactly one leaf, W = number of leaves.
@@ -201,16 +202,9 @@ std::vector<NodeId> wordsToNodes(const std::vector<Node>& nodes, std::size_t lea
 
 // Fingerprint: every field that changes what transform() returns, plus the
 // weighting; not the scoring type (a run-time choice, setScoring()).
-std::uint64_t fingerprintOf(int k, int L, WeightingType weighting, const std::vector<Node>& nodes) {
-  const int w = static_cast<int>(weighting);
-  const std::size_t n = nodes.size();
-  Checksum64 h;
-  // 40 header bytes (a multiple of 8, so the records stay word-aligned).
-  h.update("BOWGFP01", 8);
-  h.updateU64(static_cast<std::uint64_t>(k));
-  h.updateU64(static_cast<std::uint64_t>(L));
-  h.updateU64(static_cast<std::uint64_t>(w));
-  h.updateU64(n);
+std::uint64_t fingerprintOf(int k, int L, WeightingType weighting,
+                            const Vocabulary::NodeArray& nodes) {
+  Checksum64 h = VocabularyRecords::fingerprintStart(k, L, weighting, nodes.size());
   // Each node is hashed as one 64-byte little-endian record (the .bowgvoc
   // record layout), which keeps the checksum on its word-wise fast path.
   unsigned char record[64];
@@ -257,8 +251,24 @@ void groupByNode(std::vector<std::pair<NodeId, std::uint32_t>>* node_of, DirectI
 }  // namespace
 
 Vocabulary::Vocabulary(int branching, int depth, WeightingType weighting, ScoringType scoring,
-                       std::vector<Node> nodes)
+                       NodeArray nodes)
     : k_(branching), L_(depth), weighting_(weighting), scoring_(scoring), nodes_(std::move(nodes)) {
+  index();
+  fingerprint_ = fingerprintOf(k_, L_, weighting_, nodes_);
+}
+
+Vocabulary::Vocabulary(int branching, int depth, WeightingType weighting, ScoringType scoring,
+                       const std::vector<Node>& nodes)
+    : Vocabulary(branching, depth, weighting, scoring, NodeArray(nodes.begin(), nodes.end())) {}
+
+Vocabulary::Vocabulary(int branching, int depth, WeightingType weighting, ScoringType scoring,
+                       NodeArray nodes, std::uint64_t fingerprint)
+    : k_(branching),
+      L_(depth),
+      weighting_(weighting),
+      scoring_(scoring),
+      nodes_(std::move(nodes)),
+      fingerprint_(fingerprint) {
   index();
 }
 
@@ -266,7 +276,23 @@ void Vocabulary::index() {
   checkHeader(k_, L_, weighting_, scoring_, nodes_);
   const std::size_t leaves = checkTree(k_, L_, nodes_);
   word_to_node_ = wordsToNodes(nodes_, leaves);
-  fingerprint_ = fingerprintOf(k_, L_, weighting_, nodes_);
+}
+
+// 40 header bytes (a multiple of 8, so the records stay word-aligned).
+Checksum64 VocabularyRecords::fingerprintStart(int k, int L, WeightingType weighting,
+                                               std::size_t nodes) {
+  Checksum64 h;
+  h.update("BOWGFP01", 8);
+  h.updateU64(static_cast<std::uint64_t>(k));
+  h.updateU64(static_cast<std::uint64_t>(L));
+  h.updateU64(static_cast<std::uint64_t>(static_cast<int>(weighting)));
+  h.updateU64(nodes);
+  return h;
+}
+
+Vocabulary VocabularyRecords::build(int k, int L, WeightingType weighting, ScoringType scoring,
+                                    Vocabulary::NodeArray nodes, std::uint64_t fingerprint) {
+  return Vocabulary(k, L, weighting, scoring, std::move(nodes), fingerprint);
 }
 
 WordId Vocabulary::transform(const Descriptor& d, NodeId* node_at_level, int level) const {

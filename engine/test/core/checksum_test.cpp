@@ -92,5 +92,32 @@ TEST(Checksum64, FixedWidthUpdatesAreLittleEndian) {
   EXPECT_EQ(c.value(), d.value());
 }
 
+TEST(Checksum64, UpdateBothEqualsTwoSeparateUpdates) {
+  std::string s;
+  for (int i = 0; i < 203; ++i) s.push_back(static_cast<char>(i * 91 + 5));
+  // Every split of the prefixes, so that either hash may start mid-word (the
+  // one-pass loop) or both at a word boundary, and every tail length.
+  for (std::size_t pa : {0, 3, 8, 13}) {
+    for (std::size_t pb : {0, 5, 16}) {
+      for (std::size_t size : {0, 1, 7, 8, 64, 190}) {
+        Checksum64 a, b, ra, rb;
+        a.update(s.data(), pa);
+        ra.update(s.data(), pa);
+        b.update(s.data() + 1, pb);
+        rb.update(s.data() + 1, pb);
+        updateBoth(&a, &b, s.data() + 13, size);
+        ra.update(s.data() + 13, size);
+        rb.update(s.data() + 13, size);
+        EXPECT_EQ(a.value(), ra.value()) << pa << " " << pb << " " << size;
+        EXPECT_EQ(b.value(), rb.value()) << pa << " " << pb << " " << size;
+        // And both go on as if fed separately.
+        a.update("xyz", 3);
+        ra.update("xyz", 3);
+        EXPECT_EQ(a.value(), ra.value());
+      }
+    }
+  }
+}
+
 }  // namespace
 }  // namespace bowg

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "bowg/core/checksum.h"
 #include "bowg/core/errors.h"
 #include "bowg/vocabulary/vocabulary_io.h"
 #include "synthetic_vocabulary.h"
@@ -69,6 +70,50 @@ TEST(VocabularyIo, TruncatedAndCorruptedFilesFailCleanly) {
     EXPECT_GT(rejected, 0);
     // Every truncation of our checksummed format is rejected; so is every flip.
     if (c.format == VocabularyFormat::kBowg) EXPECT_EQ(ok, 0);
+  }
+}
+
+// A .bowgvoc with `edit` applied to its bytes and its checksum (the last 8
+// bytes, checksum64 of everything before) recomputed: only the loader's own
+// checks can refuse it.
+std::string resealed(std::string bytes, std::size_t at, char value) {
+  bytes[at] = value;
+  const std::uint64_t sum = checksum64(bytes.data(), bytes.size() - 8);
+  for (int i = 0; i < 8; ++i) bytes[bytes.size() - 8 + i] = static_cast<char>(sum >> (8 * i));
+  return bytes;
+}
+
+TEST(VocabularyIo, BowgReservedWordsMustBeZeroInEveryChunk) {
+  // 111,111 nodes: the loader reads 16,384 records at a time, so this file
+  // spans seven reads; the fingerprint must not depend on the chunking.
+  const Vocabulary v = testing::makeSyntheticVocabulary(10, 5, 3);
+  const std::string good = outPath("chunks.bowgvoc");
+  saveVocabulary(v, good, VocabularyFormat::kBowg);
+  EXPECT_EQ(loadVocabulary(good).fingerprint(), v.fingerprint());
+  const std::string bytes = readAll(good);
+  // Node i's record starts at 48 + 64 i; its reserved word at + 20.
+  for (const std::size_t node : {std::size_t{1}, std::size_t{16384}, std::size_t{111110}}) {
+    const std::string bad = outPath("reserved.bowgvoc");
+    writeAll(bad, resealed(bytes, 48 + 64 * node + 21, 1));
+    try {
+      loadVocabulary(bad);
+      ADD_FAILURE() << "node " << node << ": a non-zero reserved word was accepted";
+    } catch (const FormatError& e) {
+      EXPECT_NE(std::string(e.what()).find(bad + ": node " + std::to_string(node) +
+                                           ": reserved field is not zero"),
+                std::string::npos)
+          << e.what();
+    }
+  }
+  // Without the resealed checksum the same byte is a corrupt file.
+  std::string flipped = bytes;
+  flipped[48 + 64 * 16384 + 21] = 1;
+  writeAll(outPath("flipped.bowgvoc"), flipped);
+  try {
+    loadVocabulary(outPath("flipped.bowgvoc"));
+    ADD_FAILURE() << "a corrupt file was accepted";
+  } catch (const FormatError& e) {
+    EXPECT_NE(std::string(e.what()).find("checksum mismatch"), std::string::npos) << e.what();
   }
 }
 

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "bowg/core/huge_page_allocator.h"
 #include "bowg/core/types.h"
 #include "bowg/vocabulary/bow_vector.h"
 
@@ -32,22 +33,29 @@ class Vocabulary {
     Descriptor descriptor;
   };
 
+  /// The node array: one block, in huge pages where it is large (a k=10
+  /// L=6 tree is 71 MB; huge_page_allocator.h).
+  using NodeArray = std::vector<Node, HugePageAllocator<Node>>;
+
   Vocabulary() = default;
 
   /// Builds from nodes in the layout above; validates the structure
   /// (parents, child ranges, words 0..W-1 each on exactly one leaf) and
   /// throws FormatError naming the first inconsistency.
   Vocabulary(int branching, int depth, WeightingType weighting, ScoringType scoring,
-             std::vector<Node> nodes);
+             NodeArray nodes);
+  /// Same, from a plain vector (copied into a NodeArray).
+  Vocabulary(int branching, int depth, WeightingType weighting, ScoringType scoring,
+             const std::vector<Node>& nodes);
 
   bool empty() const { return nodes_.size() <= 1; }
-  int branching() const { return k_; }       ///< k
-  int depth() const { return L_; }           ///< L
+  int branching() const { return k_; }  ///< k
+  int depth() const { return L_; }      ///< L
   std::size_t wordCount() const { return word_to_node_.size(); }
   std::size_t nodeCount() const { return nodes_.size(); }
   WeightingType weighting() const { return weighting_; }
   ScoringType scoring() const { return scoring_; }
-  const std::vector<Node>& nodes() const { return nodes_; }
+  const NodeArray& nodes() const { return nodes_; }
   NodeId nodeOfWord(WordId w) const { return word_to_node_[w]; }
   double wordWeight(WordId w) const { return nodes_[word_to_node_[w]].weight; }
 
@@ -75,13 +83,19 @@ class Vocabulary {
   void setScoring(ScoringType s) { scoring_ = s; }
 
  private:
-  void index();  // builds word_to_node_, computes fingerprint_, validates
+  // The .bowgvoc loader hashes its node block once for its file checksum
+  // and the fingerprint together (engine/src/vocabulary/vocabulary_records.h).
+  friend struct VocabularyRecords;
+  Vocabulary(int branching, int depth, WeightingType weighting, ScoringType scoring,
+             NodeArray nodes, std::uint64_t fingerprint);
+
+  void index();  // validates, builds word_to_node_
 
   int k_ = 0;
   int L_ = 0;
   WeightingType weighting_ = WeightingType::kTfIdf;
   ScoringType scoring_ = ScoringType::kL1;
-  std::vector<Node> nodes_;
+  NodeArray nodes_;
   std::vector<NodeId> word_to_node_;
   std::uint64_t fingerprint_ = 0;
 };

@@ -23,14 +23,17 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstddef>
 #include <cstring>
+#include <vector>
 
 #include "bowg/core/atomic_file.h"
 #include "bowg/core/checksum.h"
 #include "bowg/core/errors.h"
 #include "vocabulary/formats/vocabulary_io_internal.h"
+#include "vocabulary/vocabulary_records.h"
 
 #if !defined(__BYTE_ORDER__) || __BYTE_ORDER__ != __ORDER_LITTLE_ENDIAN__
 #error "vocabulary_io_bowg.cpp reads node records in place and needs a little-endian host"
@@ -43,6 +46,8 @@ namespace {
 const std::uint32_t kVersion = 1;
 const std::size_t kHeaderSize = 48;
 const std::size_t kRecordSize = 64;
+// Records read at a time (1 MB): hashed and checked while in the cache.
+const std::size_t kChunkRecords = 16384;
 using Node = Vocabulary::Node;
 static_assert(sizeof(Node) == kRecordSize, "Node must match the 64-byte record");
 static_assert(offsetof(Node, parent) == 0 && offsetof(Node, first_child) == 4 &&
@@ -100,26 +105,44 @@ Vocabulary loadBowg(const std::string& path) {
   if (word_count >= node_count)
     fail(path, "word count " + std::to_string(word_count) + " >= node count");
 
-  std::vector<Node> nodes(static_cast<std::size_t>(node_count));
-  const std::size_t block = static_cast<std::size_t>(node_count) * kRecordSize;
-  readFully(fd.get(), nodes.data(), block, kHeaderSize, path);
-  unsigned char stored_bytes[8];
-  readFully(fd.get(), stored_bytes, 8, kHeaderSize + block, path);
-  std::uint64_t stored = 0;
-  for (int i = 7; i >= 0; --i) stored = (stored << 8) | stored_bytes[i];
+  // The block is the file checksum's tail and, with its reserved words zero,
+  // the fingerprint's records: it is read in chunks that stay in the cache
+  // while they are hashed for both (one pass), checked and appended.
   Checksum64 sum;
   sum.update(header, kHeaderSize);
-  sum.update(nodes.data(), block);
+  Checksum64 fingerprint = VocabularyRecords::fingerprintStart(
+      static_cast<int>(k), static_cast<int>(L), static_cast<WeightingType>(weighting),
+      static_cast<std::size_t>(node_count));
+  const std::size_t count = static_cast<std::size_t>(node_count);
+  Vocabulary::NodeArray nodes;
+  nodes.reserve(count);
+  std::vector<Node> chunk(std::min<std::size_t>(count, kChunkRecords));
+  std::size_t first_bad_reserved = count;
+  for (std::size_t done = 0; done < count;) {
+    const std::size_t n = std::min(chunk.size(), count - done);
+    readFully(fd.get(), chunk.data(), n * kRecordSize, kHeaderSize + done * kRecordSize, path);
+    updateBoth(&sum, &fingerprint, chunk.data(), n * kRecordSize);
+    for (std::size_t i = 0; i < n && first_bad_reserved == count; ++i) {
+      // The reserved word sits in Node's padding; it must be zero in files.
+      std::uint32_t reserved;
+      std::memcpy(&reserved, reinterpret_cast<const char*>(&chunk[i]) + 20, 4);
+      if (reserved != 0) first_bad_reserved = done + i;
+    }
+    nodes.insert(nodes.end(), chunk.begin(), chunk.begin() + static_cast<std::ptrdiff_t>(n));
+    done += n;
+  }
+  unsigned char stored_bytes[8];
+  readFully(fd.get(), stored_bytes, 8, kHeaderSize + count * kRecordSize, path);
+  std::uint64_t stored = 0;
+  for (int i = 7; i >= 0; --i) stored = (stored << 8) | stored_bytes[i];
   if (sum.value() != stored) fail(path, "checksum mismatch (the file is corrupt)");
-  for (std::size_t i = 0; i < nodes.size(); ++i) {
-    // The reserved word sits in Node's padding; it must be zero in files.
-    std::uint32_t reserved;
-    std::memcpy(&reserved, reinterpret_cast<const char*>(&nodes[i]) + 20, 4);
-    if (reserved != 0) fail(path, "node " + std::to_string(i) + ": reserved field is not zero");
+  if (first_bad_reserved != count) {
+    fail(path, "node " + std::to_string(first_bad_reserved) + ": reserved field is not zero");
   }
   try {
-    Vocabulary v(static_cast<int>(k), static_cast<int>(L), static_cast<WeightingType>(weighting),
-                 static_cast<ScoringType>(scoring), std::move(nodes));
+    Vocabulary v = VocabularyRecords::build(
+        static_cast<int>(k), static_cast<int>(L), static_cast<WeightingType>(weighting),
+        static_cast<ScoringType>(scoring), std::move(nodes), fingerprint.value());
     if (v.wordCount() != word_count) {
       fail(path, "header says " + std::to_string(word_count) + " words, the tree has " +
                      std::to_string(v.wordCount()));
