@@ -11,19 +11,36 @@ namespace {
 
 using Pair = std::pair<std::uint32_t, std::uint32_t>;
 
+// The per-group best matches of matchGroup, kept across the groups of one
+// image pair so that a node of the direct index costs no allocation.
+struct MatchScratch {
+  std::vector<int> best_q_dist;       // per match feature of the group
+  std::vector<std::uint32_t> best_q;  // per match feature
+  std::vector<int> best_m_dist;       // per query feature of the group
+  std::vector<int> second_m_dist;     // per query feature
+  std::vector<std::size_t> best_m;    // per query feature
+};
+
 // Matches the query features `qs` against the match features `ms` (one node of
 // the direct index, or everything when exhaustive) and appends the pairs that
 // pass the distance, ratio and mutual tests.
 void matchGroup(const std::vector<Descriptor>& qd, const std::vector<std::uint32_t>& qs,
                 const std::vector<Descriptor>& md, const std::vector<std::uint32_t>& ms,
-                const GeometricVerificationOptions& options, std::vector<Pair>* out) {
+                const GeometricVerificationOptions& options, MatchScratch* scratch,
+                std::vector<Pair>* out) {
   if (qs.empty() || ms.empty()) return;
   const int kInf = std::numeric_limits<int>::max();
   // Best query feature (and its distance) for every match feature of the group.
-  std::vector<int> best_q_dist(ms.size(), kInf);
-  std::vector<std::uint32_t> best_q(ms.size(), 0);
-  std::vector<int> best_m_dist(qs.size(), kInf), second_m_dist(qs.size(), kInf);
-  std::vector<std::size_t> best_m(qs.size(), 0);
+  std::vector<int>& best_q_dist = scratch->best_q_dist;
+  std::vector<std::uint32_t>& best_q = scratch->best_q;
+  std::vector<int>& best_m_dist = scratch->best_m_dist;
+  std::vector<int>& second_m_dist = scratch->second_m_dist;
+  std::vector<std::size_t>& best_m = scratch->best_m;
+  best_q_dist.assign(ms.size(), kInf);
+  best_q.assign(ms.size(), 0);
+  best_m_dist.assign(qs.size(), kInf);
+  second_m_dist.assign(qs.size(), kInf);
+  best_m.assign(qs.size(), 0);
   for (std::size_t a = 0; a < qs.size(); ++a) {
     const Descriptor& d = qd[qs[a]];
     for (std::size_t b = 0; b < ms.size(); ++b) {
@@ -70,11 +87,12 @@ std::vector<Pair> findCorrespondences(const VerificationView& query, const Verif
   checkView(query, "query", !options.exhaustive);
   checkView(match, "match", !options.exhaustive);
   std::vector<Pair> out;
+  MatchScratch scratch;
   if (options.exhaustive) {
     std::vector<std::uint32_t> qs(query.descriptors->size()), ms(match.descriptors->size());
     for (std::uint32_t i = 0; i < qs.size(); ++i) qs[i] = i;
     for (std::uint32_t i = 0; i < ms.size(); ++i) ms[i] = i;
-    matchGroup(*query.descriptors, qs, *match.descriptors, ms, options, &out);
+    matchGroup(*query.descriptors, qs, *match.descriptors, ms, options, &scratch, &out);
   } else {
     // Both direct indexes are sorted by node id: walk them together.
     auto qi = query.direct->begin();
@@ -85,7 +103,8 @@ std::vector<Pair> findCorrespondences(const VerificationView& query, const Verif
       } else if (mi->first < qi->first) {
         ++mi;
       } else {
-        matchGroup(*query.descriptors, qi->second, *match.descriptors, mi->second, options, &out);
+        matchGroup(*query.descriptors, qi->second, *match.descriptors, mi->second, options,
+                   &scratch, &out);
         ++qi;
         ++mi;
       }
@@ -132,8 +151,8 @@ GeometricVerificationResult verifyGeometry(const VerificationView& query,
                                            const VerificationView& match,
                                            const CameraIntrinsics& intrinsics,
                                            const GeometricVerificationOptions& options) {
-  return verifyCorrespondences(findCorrespondences(query, match, options), query, match,
-                               intrinsics, options);
+  return verifyCorrespondences(findCorrespondences(query, match, options), query, match, intrinsics,
+                               options);
 }
 
 GeometricVerificationResult verifyCorrespondences(

@@ -201,18 +201,32 @@ IslandChoice chooseIsland(const std::vector<Island>& islands,
   if (reranked <= 1) return c;
   const auto t_rerank = Clock::now();
   const VerificationView qv = verifier->query();
+  std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>> pairs(reranked);
+  std::vector<std::size_t> order(reranked);
   for (std::size_t i = 0; i < reranked; ++i) {
-    const VerificationView mv = verifier->match(islands[i].best_entry);
-    const auto pairs = findCorrespondences(qv, mv, go);
-    // Inliers are a subset of the correspondences: a candidate with no
-    // more correspondences than the best inlier count so far cannot win,
-    // so its RANSAC is skipped (the choice is the same).
-    if (i > 0 && static_cast<int>(pairs.size()) <= c.g.inliers) continue;
-    GeometricVerificationResult gi =
-        verifyCorrespondences(pairs, qv, mv, verifier->intrinsics(), go);
-    if (i == 0 || gi.inliers > c.g.inliers) {
+    pairs[i] = findCorrespondences(qv, verifier->match(islands[i].best_entry), go);
+    order[i] = i;
+  }
+  // RANSAC (the cost) in decreasing number of correspondences. Inliers are a
+  // subset of the correspondences, so once a candidate has fewer
+  // correspondences than the best inlier count so far (or as many, and a
+  // worse score: ties go to the better-scored island) neither it nor any
+  // later one can win: the choice is the one of trying all, with fewer
+  // RANSACs.
+  std::stable_sort(order.begin(), order.end(), [&pairs](std::size_t a, std::size_t b) {
+    return pairs[a].size() > pairs[b].size();
+  });
+  bool have = false;
+  for (const std::size_t i : order) {
+    const int n = static_cast<int>(pairs[i].size());
+    if (have && n < c.g.inliers) break;
+    if (have && n == c.g.inliers && i > c.chosen) continue;
+    GeometricVerificationResult gi = verifyCorrespondences(
+        pairs[i], qv, verifier->match(islands[i].best_entry), verifier->intrinsics(), go);
+    if (!have || gi.inliers > c.g.inliers || (gi.inliers == c.g.inliers && i < c.chosen)) {
       c.g = std::move(gi);
       c.chosen = i;
+      have = true;
     }
   }
   c.verified = true;

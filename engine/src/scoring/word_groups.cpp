@@ -91,6 +91,19 @@ class PointGrid {
   std::vector<double> xs_, ys_;
 };
 
+// The median of the positive radii radius_scale * size (there is one:
+// the largest radius is > 0).
+double medianPositiveRadius(const std::vector<Keypoint>& keypoints, double radius_scale) {
+  std::vector<double> radii;
+  radii.reserve(keypoints.size());
+  for (const Keypoint& k : keypoints) {
+    const double r = radius_scale * k.size;
+    if (r > 0.0) radii.push_back(r);
+  }
+  std::nth_element(radii.begin(), radii.begin() + radii.size() / 2, radii.end());
+  return radii[radii.size() / 2];
+}
+
 }  // namespace
 
 GroupVector buildWordGroups(const std::vector<Keypoint>& keypoints,
@@ -129,14 +142,16 @@ GroupVector buildWordGroups(const std::vector<Keypoint>& keypoints,
   }
   if (!(max_radius > 0.0)) return {};  // all sizes 0: nothing is closer than 0
 
-  // A larger cell stays correct (radius <= cell): it bounds the number of
-  // cells by O(n) when the radii are small against the spacing of the points.
+  // Any cell size is correct (a point scans the cells its disc's bounding
+  // box touches). The median radius keeps the scan of most points to about
+  // 3x3 cells: multi-scale features have radii 1-8x apart, and cells of the
+  // largest radius made every small feature compare itself with a third of
+  // the image. The budget bounds the number of cells by O(n) when the radii
+  // are small against the spacing of the points.
   const double ex = max_x - min_x, ey = max_y - min_y;
   const double budget = kCellsPerPoint * static_cast<double>(keypoints.size()) + kMinCells;
-  // The 1e-9 margin keeps pairs at a distance just below the radius within
-  // adjacent cells whatever the rounding of (v - origin) / cell.
-  const double cell =
-      std::max({max_radius * (1.0 + 1e-9), ex / budget, ey / budget, std::sqrt(ex * ey / budget)});
+  const double cell = std::max({medianPositiveRadius(keypoints, options.radius_scale), ex / budget,
+                                ey / budget, std::sqrt(ex * ey / budget)});
   const std::int64_t nx = static_cast<std::int64_t>(std::floor(ex / cell)) + 1;
   const std::int64_t ny = static_cast<std::int64_t>(std::floor(ey / cell)) + 1;
   const PointGrid grid(keypoints, min_x, min_y, cell, nx, ny);
