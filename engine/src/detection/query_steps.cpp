@@ -191,8 +191,12 @@ struct IslandChoice {
 
 // Geometric re-ranking (GeometricVerificationOptions::candidates): the
 // query's island is the one of the top `candidates` whose best entry has the
-// most inliers (ties: the better-scored island). With 1 it is the
-// best-scored island, verified after the temporal verification (the paper).
+// most inliers (ties: the better-scored island), among those with at least
+// min_inliers correspondences: only they can be loops. When none has that
+// many, or with 1 candidate, it is the best-scored island, verified after the
+// temporal verification (the paper). The correspondences are cheap; RANSAC
+// is the cost, and in an aliased pipe most queries have no candidate that
+// could pass (up to 10 RANSACs of ~9 ms each for nothing).
 IslandChoice chooseIsland(const std::vector<Island>& islands,
                           const GeometricVerificationOptions& go, Verifier* verifier) {
   IslandChoice c;
@@ -219,7 +223,7 @@ IslandChoice chooseIsland(const std::vector<Island>& islands,
   bool have = false;
   for (const std::size_t i : order) {
     const int n = static_cast<int>(pairs[i].size());
-    if (have && n < c.g.inliers) break;
+    if (n < go.min_inliers || (have && n < c.g.inliers)) break;
     if (have && n == c.g.inliers && i > c.chosen) continue;
     GeometricVerificationResult gi = verifyCorrespondences(
         pairs[i], qv, verifier->match(islands[i].best_entry), verifier->intrinsics(), go);
@@ -229,7 +233,7 @@ IslandChoice chooseIsland(const std::vector<Island>& islands,
       have = true;
     }
   }
-  c.verified = true;
+  c.verified = have;
   c.rerank_ms = msBetween(t_rerank, Clock::now());
   return c;
 }

@@ -87,7 +87,8 @@ void addDetectionRows(std::vector<Row>* rows) {
   rows->push_back(intRow("verified_candidates", det, "geometric.candidates", 1, 100, false,
                          BOWG_FIELD(int, detector.geometric.candidates),
                          "Geometric re-ranking: verify the best entries of this many top islands "
-                         "and keep the one with the most inliers (1 = the paper)"));
+                         "and keep the one with the most inliers among those with at least "
+                         "min_inliers correspondences (1 = the paper)"));
 }
 
 }  // namespace parameter_rows

@@ -38,7 +38,7 @@ using testing::vocabulary;
 // word score beats the true place while no epipolar geometry explains it.
 // Only the best-scored island verified (the paper), the query yields no loop;
 // with geometric re-ranking the true place wins.
-LoopResult queryBehindALookAlike(int candidates) {
+LoopResult queryBehindALookAlike(int candidates, int min_inliers = 40) {
   const testing::Corridor c = testing::makeCorridor(70, 50, 5);
   std::mt19937_64 rng(11);
   LoopDetectorOptions o = defaultOptions();
@@ -51,7 +51,7 @@ LoopResult queryBehindALookAlike(int candidates) {
   o.geometric.candidates = candidates;
   // ~400 random correspondences give RANSAC ~15 chance inliers (one line
   // constraint per point); the true place gives hundreds.
-  o.geometric.min_inliers = 40;
+  o.geometric.min_inliers = min_inliers;
   LoopDetector det(vocabulary(), o);
   double stamp = 1.0;
   for (int i = 0; i < 40; ++i) det.process(testing::observeCorridor(c, i, stamp++, rng, 2, 0.5));
@@ -95,6 +95,17 @@ TEST(LoopDetector, GeometricReRankingFindsTheTruePlaceBehindALookAlike) {
   EXPECT_EQ(r.island_first, r.match_id);
   EXPECT_GE(r.inliers, 40);
   EXPECT_GT(r.timings.verification_ms, 0.0);
+}
+
+TEST(LoopDetector, ReRankingOnlyWeighsCandidatesThatCouldBeLoops) {
+  // No candidate has 2,000 correspondences (each image has ~400 features),
+  // so none could pass: RANSAC is not run on them and the query's island
+  // is the best-scored one, the look-alike, as without re-ranking (with
+  // min_inliers 40 the true place wins, above).
+  const LoopResult r = queryBehindALookAlike(5, 2000);
+  EXPECT_EQ(r.island_first, 40u);
+  EXPECT_EQ(r.status, LoopStatus::kTooFewInliers) << toString(r.status);
+  EXPECT_LT(r.correspondences, 2000);
 }
 
 // Keyframes every 0.5 m forward (x = 0.5 i), then back over the same wall:

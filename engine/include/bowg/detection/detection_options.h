@@ -92,8 +92,10 @@ struct GeometricVerificationOptions {
   /// Accept with at least this many inliers. >= 8.
   int min_inliers = 15;
   /// Geometric re-ranking: the best entries of the top `candidates` islands
-  /// are verified and the one with the most inliers is the query's island
-  /// (for the temporal verification and the loop). Under aliasing the
+  /// are verified and, among those with at least min_inliers
+  /// correspondences, the one with the most inliers is the query's island
+  /// (for the temporal verification and the loop; none: the best-scored
+  /// island). Under aliasing the
   /// best-scored island is often a look-alike while the true place is among
   /// the next few; geometry separates them better than the word scores.
   /// 1 = the paper (only the best island is verified). >= 1.
