@@ -4,6 +4,13 @@
 // load_nodelet service (as bowg_nodelet.launch does), publishes a synthetic
 // sequence and watches the outputs. Which tests run is chosen with
 // --gtest_filter in the .test file.
+#include <diagnostic_msgs/DiagnosticArray.h>
+
+#include <atomic>
+#include <mutex>
+#include <set>
+#include <string>
+
 #include "nodelet_harness.h"
 
 namespace bowg_ros {
@@ -104,6 +111,53 @@ TEST(LoopDetectorNodelet, MalformedImagesAreReportedAndTheNodeletKeepsRunning) {
   const cv::Mat world = test::makeWorld(kViewWidth + 10 * kStep, kViewHeight, 3);
   d.publish(test::viewAt(world, 0, kViewWidth), 501.0);
   EXPECT_TRUE(d.waitForStatuses(1, 20.0)) << "the nodelet stopped after a malformed image";
+}
+
+TEST(LoopDetectorNodelet, OversizeImagesAreDroppedCountedAndTheNodeletKeepsRunning) {
+  ErrorLog log;
+  // The diagnostics' count of images above max_image_pixels.
+  std::atomic<int> too_large{-1};
+  std::mutex names_mutex;
+  std::set<std::string> names;  // for the failure message
+  ros::NodeHandle nh;
+  const ros::Subscriber diag = nh.subscribe<diagnostic_msgs::DiagnosticArray>(
+      "/diagnostics", 20, [&](const diagnostic_msgs::DiagnosticArray::ConstPtr& msg) {
+        for (const auto& st : msg->status) {
+          {
+            std::lock_guard<std::mutex> lock(names_mutex);
+            names.insert(st.name);
+          }
+          if (st.name.find("oversize/bowg") == std::string::npos) continue;
+          for (const auto& kv : st.values) {
+            if (kv.key == "dropped frames (more than max_image_pixels)") {
+              too_large = std::stoi(kv.value);
+            }
+          }
+        }
+      });
+  // The views are 320 x 240 = 76,800 pixels: one pixel more than allowed.
+  Detector d("/oversize", {{"max_image_pixels", kViewWidth * kViewHeight - 1}});
+  ASSERT_TRUE(d.loaded());
+  ros::WallDuration(0.5).sleep();  // /rosout connection
+  const cv::Mat world = test::makeWorld(kViewWidth + 10 * kStep, kViewHeight, 3);
+  d.publish(test::viewAt(world, 0, kViewWidth), 700.0);
+  EXPECT_TRUE(
+      log.waitFor("image at 700.000000 too large: 320 x 240 = 76800 pixels, more than "
+                  "max_image_pixels 76799",
+                  10.0))
+      << "no error for the image";
+  const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(10.0);
+  while (too_large != 1 && ros::WallTime::now() < end) ros::WallDuration(0.1).sleep();
+  {
+    std::lock_guard<std::mutex> lock(names_mutex);
+    std::string seen;
+    for (const std::string& n : names) seen += " '" + n + "'";
+    EXPECT_EQ(too_large, 1) << "the diagnostics do not count the dropped image; statuses:" << seen;
+  }
+  // Still alive: a smaller image is processed.
+  d.publish(test::viewAt(world, 0, kViewWidth).rowRange(0, kViewHeight - 1).clone(), 701.0);
+  EXPECT_TRUE(d.waitForStatuses(1, 20.0)) << "the nodelet stopped after a too large image";
+  EXPECT_EQ(d.statusCount(), 1u);
 }
 
 TEST(LoopDetectorNodelet, UnsupportedEncodingIsReportedAndTheNodeletKeepsRunning) {

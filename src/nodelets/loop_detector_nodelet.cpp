@@ -45,6 +45,7 @@ bool LoopDetectorNodelet::startEngine() {
       NODELET_WARN("%s", c.c_str());
     }
     extractor_.reset(new bowg::FeatureExtractor(options_.features));
+    size_limit_ = options_.features;
     detector_.reset(new bowg::LoopDetector(vocabulary_, options_.detector));
   } catch (const std::exception& e) {
     NODELET_FATAL("bowg_ros: not started: %s", e.what());

@@ -96,6 +96,7 @@ struct Stats {
   std::size_t skipped_out_of_order = 0;
   std::size_t bad_encoding = 0;
   std::size_t malformed = 0;  ///< image messages whose layout cannot be read
+  std::size_t too_large = 0;  ///< images above max_image_pixels
   std::size_t errors = 0;
   // Sums since the last diagnostics update (for means per window).
   std::size_t window_keyframes = 0;
@@ -139,6 +140,9 @@ class LoopDetectorNodelet : public nodelet::Nodelet {
   bool loadDatabase(LoadDatabase::Request& req, LoadDatabase::Response& res);
   bool resetDatabase(std_srvs::Trigger::Request& req, std_srvs::Trigger::Response& res);
   void diagnose(diagnostic_updater::DiagnosticStatusWrapper& status);
+  /// False (counted, logged) when a width x height image exceeds
+  /// max_image_pixels.
+  bool imageSizeAccepted(std::uint32_t width, std::uint32_t height, const ros::Time& stamp);
 
   // Parameters.
   std::string vocabulary_path_, database_load_path_, database_save_path_;
@@ -153,6 +157,9 @@ class LoopDetectorNodelet : public nodelet::Nodelet {
   std::shared_ptr<const bowg::Vocabulary> vocabulary_;
   std::unique_ptr<bowg::FeatureExtractor> extractor_;
   std::unique_ptr<bowg::LoopDetector> detector_;
+  /// The feature options at start-up, for their image size limit (not a
+  /// live parameter): read by the callbacks without the detector lock.
+  bowg::FeatureOptions size_limit_;
   std::map<bowg::EntryId, cv::Mat> debug_cache_;  // keyframe images while debugging
 
   // Camera callback side.

@@ -52,10 +52,24 @@ void LoopDetectorNodelet::imageCallback(const sensor_msgs::ImageConstPtr& msg) {
                            msg->header.stamp.toSec(), msg->encoding.c_str(), problem.c_str());
     return;
   }
+  if (!imageSizeAccepted(msg->width, msg->height, msg->header.stamp)) return;
   Frame frame;
   frame.header = msg->header;
   frame.image = msg;
   offer(std::move(frame));
+}
+
+bool LoopDetectorNodelet::imageSizeAccepted(std::uint32_t width, std::uint32_t height,
+                                            const ros::Time& stamp) {
+  const std::string problem = bowg::imageSizeProblem(width, height, size_limit_);
+  if (problem.empty()) return true;
+  {
+    std::lock_guard<std::mutex> lock(stats_mutex_);
+    ++stats_.too_large;
+  }
+  NODELET_ERROR_THROTTLE(5.0, "image at %.6f too large: %s: frame dropped", stamp.toSec(),
+                         problem.c_str());
+  return false;
 }
 
 void LoopDetectorNodelet::compressedCallback(const sensor_msgs::CompressedImageConstPtr& msg) {

@@ -72,6 +72,7 @@ void LoopDetectorNodelet::diagnose(diagnostic_updater::DiagnosticStatusWrapper& 
   status.add("skipped frames (stamp order)", s.skipped_out_of_order);
   status.add("dropped frames (unsupported encoding)", s.bad_encoding);
   status.add("dropped frames (malformed image)", s.malformed);
+  status.add("dropped frames (more than max_image_pixels)", s.too_large);
   status.add("keyframe errors", s.errors);
   status.add("camera intrinsics known", has_intrinsics);
   status.add("ms convert", s.window_convert_ms / n);
@@ -84,10 +85,10 @@ void LoopDetectorNodelet::diagnose(diagnostic_updater::DiagnosticStatusWrapper& 
   status.add("ms total", s.window_total_ms / n);
   if (!initialised_) {
     status.summary(diagnostic_msgs::DiagnosticStatus::ERROR, "not started (see the log)");
-  } else if (s.bad_encoding > 0 || s.malformed > 0 || s.errors > 0) {
+  } else if (s.bad_encoding > 0 || s.malformed > 0 || s.too_large > 0 || s.errors > 0) {
     status.summary(diagnostic_msgs::DiagnosticStatus::WARN,
-                   "frames rejected (unsupported encoding, malformed images or processing "
-                   "errors)");
+                   "frames rejected (unsupported encoding, malformed or too large images, or "
+                   "processing errors)");
   } else if (dropped > 0) {
     status.summary(diagnostic_msgs::DiagnosticStatus::WARN,
                    "keyframes dropped: the detector is slower than the keyframe rate");

@@ -28,7 +28,10 @@ void LoopDetectorNodelet::processFrame(const Frame& frame) {
   if (frame.image) {
     grey = greyFromImage(*frame.image);
   } else if (frame.compressed) {
+    // The size is known after decoding only (OpenCV's decoder has its own
+    // limit of 2^30 pixels).
     grey = greyFromCompressed(*frame.compressed);
+    if (!imageSizeAccepted(grey.cols, grey.rows, frame.header.stamp)) return;
   }
   const double convert_ms = msSince(t0);
 

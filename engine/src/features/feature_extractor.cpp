@@ -48,8 +48,10 @@ cv::Mat loadMask(const std::string& path) {
   return binary;
 }
 
-void checkImage(const cv::Mat& image) {
+void checkImage(const cv::Mat& image, const FeatureOptions& options) {
   if (image.empty()) throw std::invalid_argument("FeatureExtractor::extract: image is empty");
+  const std::string size = imageSizeProblem(image.cols, image.rows, options);
+  if (!size.empty()) throw std::invalid_argument("FeatureExtractor::extract: image of " + size);
   if (image.channels() != 1) {
     throw std::invalid_argument(
         "FeatureExtractor::extract: image must be single-channel (grey), got " +
@@ -121,7 +123,7 @@ FeatureExtractor::FeatureExtractor(const FeatureOptions& options) : options_(opt
 }
 
 ImageFeatures FeatureExtractor::extract(const cv::Mat& image) const {
-  checkImage(image);
+  checkImage(image, options_);
   if (!mask_.empty() && mask_.size() != image.size()) {
     throw std::invalid_argument("FeatureExtractor::extract: mask " + options_.mask_path + " is " +
                                 std::to_string(mask_.cols) + "x" + std::to_string(mask_.rows) +

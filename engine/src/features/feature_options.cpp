@@ -39,10 +39,18 @@ void FeatureOptions::validate() const {
   }
   requireIntAtLeast("features.orb_levels", orb_levels, 1);
   requireIntInRange("features.orb_fast_threshold", orb_fast_threshold, 1, kMaxFastThreshold);
+  requireIntAtLeast("features.max_image_pixels", max_image_pixels, 1);
   if (descriptor == DescriptorType::kBrief && brief_pattern_path.empty()) {
-    fail("features.brief_pattern_path", "must name a pattern file when features.descriptor is brief",
-         "an empty path");
+    fail("features.brief_pattern_path",
+         "must name a pattern file when features.descriptor is brief", "an empty path");
   }
+}
+
+std::string imageSizeProblem(long long width, long long height, const FeatureOptions& options) {
+  const long long pixels = width * height;
+  if (pixels <= options.max_image_pixels) return "";
+  return std::to_string(width) + " x " + std::to_string(height) + " = " + std::to_string(pixels) +
+         " pixels, more than max_image_pixels " + std::to_string(options.max_image_pixels);
 }
 
 }  // namespace bowg

@@ -53,6 +53,10 @@ void addFeatureRows(std::vector<Row>* rows) {
                             BOWG_FIELD(double, features.gftt_keypoint_size),
                             "Size given to GFTT corners (px): word-group radius and descriptor "
                             "patch"));
+  rows->push_back(intRow("max_image_pixels", fea, "max_image_pixels", 1, 1 << 30, false,
+                         BOWG_FIELD(int, features.max_image_pixels),
+                         "Largest image accepted (width x height); larger frames are dropped "
+                         "and counted (nodelet) or skipped with a warning (tools)"));
   rows->push_back(intRow("orb_max_features", fea, "orb_max_features", 1, 100000, false,
                          BOWG_FIELD(int, features.orb_max_features),
                          "ORB: most features per image"));

@@ -73,6 +73,7 @@ TEST(FeatureOptions, EachInvalidValueNamesItsField) {
   expectInvalid([](FeatureOptions& o) { o.orb_levels = 0; }, "orb_levels");
   expectInvalid([](FeatureOptions& o) { o.orb_fast_threshold = 0; }, "orb_fast_threshold");
   expectInvalid([](FeatureOptions& o) { o.orb_fast_threshold = 255; }, "orb_fast_threshold");
+  expectInvalid([](FeatureOptions& o) { o.max_image_pixels = 0; }, "max_image_pixels");
   expectInvalid([](FeatureOptions& o) { o.descriptor = FeatureOptions::DescriptorType::kBrief; },
                 "brief_pattern_path");
   expectInvalid([](FeatureOptions& o) { o.detector = static_cast<FeatureOptions::Detector>(7); },
@@ -105,6 +106,20 @@ TEST(FeatureExtractor, BadImagesAreRejectedWithTheProblem) {
                                                "8-bit");
   expectThrowContaining<std::invalid_argument>([&] { fx.extract(cv::Mat(50, 50, CV_32FC1)); },
                                                "8-bit");
+}
+
+TEST(FeatureExtractor, ImagesAboveMaxImagePixelsAreRejected) {
+  FeatureOptions o;
+  o.max_image_pixels = 64 * 48;
+  const FeatureExtractor fx{o};
+  EXPECT_NO_THROW(fx.extract(cv::Mat(48, 64, CV_8UC1, cv::Scalar(0))));  // exactly the limit
+  expectThrowContaining<std::invalid_argument>(
+      [&] { fx.extract(cv::Mat(49, 64, CV_8UC1, cv::Scalar(0))); },
+      "64 x 49 = 3136 pixels, more than max_image_pixels 3072");
+  // The default: 4096 x 4096.
+  EXPECT_EQ(imageSizeProblem(4096, 4096, FeatureOptions()), "");
+  EXPECT_EQ(imageSizeProblem(4097, 4096, FeatureOptions()),
+            "4097 x 4096 = 16781312 pixels, more than max_image_pixels 16777216");
 }
 
 // Every detector / descriptor combination on tiny and flat images: no

@@ -51,7 +51,16 @@ std::vector<std::string> listImages(const std::string& dir) {
 
 std::vector<FrameInput> loadFrames(const Args& a, const FeatureExtractor& extractor) {
   std::vector<FrameInput> frames;
-  auto add = [&](const cv::Mat& grey, double stamp, const CameraIntrinsics& k) {
+  std::size_t too_large = 0;  // bag images above max_image_pixels
+  auto add = [&](cv::Mat grey, double stamp, const CameraIntrinsics& k) {
+    const std::string size = imageSizeProblem(grey.cols, grey.rows, extractor.options());
+    if (!grey.empty() && !size.empty()) {
+      // A frame without features keeps the frame numbering (ground truth).
+      std::fprintf(stderr, "\nwarning: frame %zu skipped (%s): a frame without features\n",
+                   frames.size(), size.c_str());
+      ++too_large;
+      grey = cv::Mat();
+    }
     FrameInput f;
     // rosbag stamps may repeat (several cameras, a replayed clock): keep
     // them strictly increasing as the detector requires.
@@ -71,7 +80,7 @@ std::vector<FrameInput> loadFrames(const Args& a, const FeatureExtractor& extrac
     std::size_t skipped = 0;
     for (std::size_t i = 0; i < files.size(); ++i) {
       std::string why;
-      const cv::Mat grey = eval::readGreyImage(files[i], &why);
+      const cv::Mat grey = eval::readGreyImage(files[i], extractor.options(), &why);
       if (grey.empty()) {
         // Kept as a frame without features, so that frame i stays image i
         // of the folder (the ground truth's numbering).
@@ -114,6 +123,10 @@ std::vector<FrameInput> loadFrames(const Args& a, const FeatureExtractor& extrac
     const bowg_ros::BagImage image = bowg_ros::readBagImage(m, a.bag);
     add(image.grey, image.stamp.toSec(), intrinsics);
     bar(frames.size(), total);
+  }
+  if (too_large > 0) {
+    std::fprintf(stderr, "warning: %zu of %zu images skipped (more than max_image_pixels)\n",
+                 too_large, frames.size());
   }
   return frames;
 }

@@ -77,8 +77,10 @@ TEST_F(EvaluateCli, UnreadableImagesAreSkippedCountedAndKeepTheirFrameNumber) {
   // by garbage: the run goes on, says which images it skipped and why, and
   // frame 10 is still frame 10 (a frame without features stands in).
   const std::string dir = kDir + "/damaged";
-  ASSERT_EQ(run("(rm -rf " + dir + " && mkdir -p " + dir + " && for i in $(seq -f %06g 0 39); do "
-                "cp " + kDir + "/frames/frame_$i.png " + dir + "/; done && : > " + dir +
+  ASSERT_EQ(run("(rm -rf " + dir + " && mkdir -p " + dir +
+                " && for i in $(seq -f %06g 0 39); do "
+                "cp " +
+                kDir + "/frames/frame_$i.png " + dir + "/; done && : > " + dir +
                 "/frame_000005.png && echo garbage > " + dir + "/frame_000009.png)"),
             0);
   const std::string out = kDir + "/damaged_out";
@@ -96,6 +98,41 @@ TEST_F(EvaluateCli, UnreadableImagesAreSkippedCountedAndKeepTheirFrameNumber) {
   EXPECT_NE(keyframes.find("\n5,5.000000,no_features,"), std::string::npos) << keyframes;
   EXPECT_NE(keyframes.find("\n9,9.000000,no_features,"), std::string::npos) << keyframes;
   EXPECT_NE(keyframes.find("\n39,"), std::string::npos) << keyframes;
+}
+
+TEST_F(EvaluateCli, ImagesAboveMaxImagePixelsAreSkippedAndKeepTheirFrameNumber) {
+  // 20 frames of 320 x 240 with frame 7 replaced by a 321 x 240 render, and
+  // max_image_pixels = 320 x 240 in the configuration.
+  const std::string dir = kDir + "/oversize";
+  ASSERT_EQ(run("(rm -rf " + dir + " && mkdir -p " + dir +
+                " && for i in $(seq -f %06g 0 19); do "
+                "cp " +
+                kDir + "/frames/frame_$i.png " + dir + "/; done)"),
+            0);
+  ASSERT_EQ(run(std::string(BOWG_GENERATOR_BIN) + " --images " + kDir +
+                    "/wide --frames 8 --width 321 --height 240 --speed 1.0",
+                kDir + "/wide.log"),
+            0)
+      << readAll(kDir + "/wide.log");
+  ASSERT_EQ(run("cp " + kDir + "/wide/frame_000007.png " + dir + "/frame_000007.png"), 0);
+  writeFile(kDir + "/small_limit.yaml",
+            "feature_detector: gftt\nmin_score: 0.7\nrecent_exclusion: 30\n"
+            "direct_index_level: 2\nmax_image_pixels: 76800\n");
+  const std::string out = kDir + "/oversize_out";
+  const std::string cmd = kEvaluate + " --quiet --images " + dir + " --vocabulary " +
+                          BOWG_DEFAULT_VOCABULARY + " --config " + kDir +
+                          "/small_limit.yaml --thresholds 0.7 --output " + out;
+  ASSERT_EQ(run(cmd, kDir + "/oversize.log"), 0) << readAll(kDir + "/oversize.log");
+  const std::string log = readAll(kDir + "/oversize.log");
+  // Refused by OpenCV's header check (the limit is passed on to it) or by
+  // the check after decoding: either way the reason names the limit.
+  const std::size_t at = log.find("frame_000007.png skipped (");
+  ASSERT_NE(at, std::string::npos) << log;
+  EXPECT_NE(log.find("max_image_pixels 76800", at), std::string::npos) << log;
+  EXPECT_NE(log.find("1 of 20 images skipped"), std::string::npos) << log;
+  const std::string keyframes = readAll(out + "/keyframes_bowg.csv");
+  EXPECT_NE(keyframes.find("\n7,7.000000,no_features,"), std::string::npos) << keyframes;
+  EXPECT_EQ(keyframes.find("\n6,6.000000,no_features,"), std::string::npos) << keyframes;
 }
 
 TEST_F(EvaluateCli, BadOptionsAreRefusedWithAMessage) {

@@ -2,15 +2,15 @@
 // the strongest-first selection and the reading of files and bag runs.
 #include "descriptor_extraction.h"
 
+#include <rosbag/bag.h>
+#include <rosbag/view.h>
+
 #include <algorithm>
 #include <cstdio>
+#include <opencv2/core.hpp>
 #include <string>
 #include <utility>
 #include <vector>
-
-#include <opencv2/core.hpp>
-#include <rosbag/bag.h>
-#include <rosbag/view.h>
 
 #include "bowg/core/errors.h"
 #include "bowg/features/feature_extractor.h"
@@ -28,7 +28,16 @@ class DescriptorCollector {
   DescriptorCollector(const FeatureOptions& features, long max_features)
       : extractor_(features), max_features_(max_features) {}
 
-  void add(const cv::Mat& image) {
+  const FeatureOptions& features() const { return extractor_.options(); }
+
+  /// `source` names the image in the warning when it is too large.
+  void add(const cv::Mat& image, const std::string& source) {
+    const std::string size = imageSizeProblem(image.cols, image.rows, extractor_.options());
+    if (!size.empty()) {
+      std::fprintf(stderr, "\nwarning: image %s skipped (%s)\n", source.c_str(), size.c_str());
+      ++result_.unreadable;
+      return;
+    }
     ImageFeatures f = extractor_.extract(image);
     std::vector<std::size_t> order(f.size());
     for (std::size_t j = 0; j < order.size(); ++j) order[j] = j;
@@ -57,12 +66,12 @@ class DescriptorCollector {
 
 void addFile(const std::string& path, DescriptorCollector* collector) {
   std::string why;
-  const cv::Mat image = eval::readGreyImage(path, &why);
+  const cv::Mat image = eval::readGreyImage(path, collector->features(), &why);
   if (image.empty()) {
     std::fprintf(stderr, "\nwarning: image '%s' skipped (%s)\n", path.c_str(), why.c_str());
     collector->skipUnreadable();
   } else {
-    collector->add(image);
+    collector->add(image, "'" + path + "'");
   }
 }
 
@@ -77,7 +86,8 @@ void addBagRun(const std::vector<ImageSource>& images, std::size_t* i, const Arg
   for (const rosbag::MessageInstance& m : view) {
     if (*i >= images.size() || images[*i].bag != b) break;
     if (index++ != images[*i].index) continue;
-    collector->add(bowg_ros::readBagImage(m, a.bags[b]).grey);
+    collector->add(bowg_ros::readBagImage(m, a.bags[b]).grey,
+                   "#" + std::to_string(index - 1) + " of " + a.bags[b]);
     ++*i;
     progressBar(0.2 * *i / images.size(), "extracting features");
   }

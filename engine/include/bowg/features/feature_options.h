@@ -40,8 +40,18 @@ struct FeatureOptions {
   /// Optional 8-bit mask image (non-zero = usable), e.g. to blank burned-in
   /// text overlays; must match the image size.
   std::string mask_path;
+  /// Largest image accepted, in pixels (width x height; default 4096 x
+  /// 4096). A camera frame is far smaller; a larger one (a wrong topic, a
+  /// corrupt header) would take gigabytes and seconds. The nodelet drops and
+  /// counts such frames, the tools skip them with a warning.
+  int max_image_pixels = 4096 * 4096;
 
   void validate() const;  ///< throws InvalidParameter naming the field
 };
+
+/// "" when an image of width x height is within options.max_image_pixels,
+/// else what is wrong ("1000 x 1000 = 1000000 pixels, more than
+/// max_image_pixels 16777216").
+std::string imageSizeProblem(long long width, long long height, const FeatureOptions& options);
 
 }  // namespace bowg

@@ -23,7 +23,7 @@ bool jpegComplete(const std::vector<unsigned char>& bytes) {
 
 }  // namespace
 
-cv::Mat readGreyImage(const std::string& path, std::string* why) {
+cv::Mat readGreyImage(const std::string& path, const FeatureOptions& options, std::string* why) {
   std::ifstream in(path, std::ios::binary);
   if (!in) {
     *why = "cannot open the file";
@@ -40,28 +40,30 @@ cv::Mat readGreyImage(const std::string& path, std::string* why) {
     return cv::Mat();
   }
   // OpenCV (3.4.2+) refuses images above OPENCV_IO_MAX_IMAGE_PIXELS after
-  // reading the header, before allocating: set it to our limit unless the
-  // user did. It is read once per process, so where OpenCV decoded an image
-  // before this point the check after decoding is what holds.
-  static const bool limit_set = [] {
-    return ::setenv("OPENCV_IO_MAX_IMAGE_PIXELS", std::to_string(kMaxImagePixels).c_str(), 0) == 0;
+  // reading the header, before allocating: set it to the first limit asked
+  // for unless the user did. It is read once per process, so where OpenCV
+  // decoded an image before this point, or for a later, larger limit, the
+  // check after decoding is what holds.
+  static const bool limit_set = [&options] {
+    return ::setenv("OPENCV_IO_MAX_IMAGE_PIXELS", std::to_string(options.max_image_pixels).c_str(),
+                    0) == 0;
   }();
   (void)limit_set;
   cv::Mat grey;
   try {
     grey = cv::imdecode(bytes, cv::IMREAD_GRAYSCALE);
   } catch (const cv::Exception& e) {
-    *why = std::string("OpenCV refused it (larger than 4096 x 4096 pixels, or corrupt): ") +
-           e.what();
+    *why = "OpenCV refused it (more than max_image_pixels " +
+           std::to_string(options.max_image_pixels) + ", or corrupt): " + e.what();
     return cv::Mat();
   }
   if (grey.empty()) {
     *why = "not an image OpenCV can decode";
     return cv::Mat();
   }
-  if (static_cast<long long>(grey.cols) * grey.rows > kMaxImagePixels) {
-    *why = "larger than 4096 x 4096 pixels (" + std::to_string(grey.cols) + " x " +
-           std::to_string(grey.rows) + ")";
+  const std::string size = imageSizeProblem(grey.cols, grey.rows, options);
+  if (!size.empty()) {
+    *why = size;
     return cv::Mat();
   }
   return grey;

@@ -8,18 +8,16 @@
 #include <opencv2/core.hpp>
 #include <string>
 
+#include "bowg/features/feature_options.h"
+
 namespace bowg {
 namespace eval {
-
-/// Largest image accepted (pixels): 4096 x 4096. A camera frame is far
-/// smaller; a larger file would take gigabytes and seconds to decode.
-constexpr long long kMaxImagePixels = 4096LL * 4096LL;
 
 /// The image at `path` as 8-bit grey, or an empty Mat with `*why` saying
 /// what is wrong: unreadable or empty file, not an image OpenCV decodes, a
 /// JPEG without its end-of-image marker (truncated: libjpeg would fill the
-/// rest with grey), or more than kMaxImagePixels.
-cv::Mat readGreyImage(const std::string& path, std::string* why);
+/// rest with grey), or more pixels than options.max_image_pixels.
+cv::Mat readGreyImage(const std::string& path, const FeatureOptions& options, std::string* why);
 
 }  // namespace eval
 }  // namespace bowg
