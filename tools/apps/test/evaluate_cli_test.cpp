@@ -40,6 +40,22 @@ class EvaluateCli : public ::testing::Test {
     ASSERT_TRUE(out.good()) << path;
   }
 
+  // A fresh folder `dir` holding copies of the first `count` frames.
+  static void copyFirstFrames(const std::string& dir, int count) {
+    ASSERT_EQ(run("(rm -rf " + dir + " && mkdir -p " + dir + " && for i in $(seq -f %06g 0 " +
+                  std::to_string(count - 1) + "); do cp " + kDir + "/frames/frame_$i.png " + dir +
+                  "/; done)"),
+              0);
+  }
+
+  // bowg_evaluate on the image folder `dir` without ground truth, at the
+  // configuration's threshold only.
+  static std::string evaluateFolder(const std::string& dir, const std::string& config,
+                                    const std::string& out) {
+    return kEvaluate + " --quiet --images " + dir + " --vocabulary " + BOWG_DEFAULT_VOCABULARY +
+           " --config " + config + " --thresholds 0.7 --output " + out;
+  }
+
   static std::string evaluate(const std::string& extra, const std::string& out) {
     return kEvaluate + " --quiet --images " + kDir + "/frames --gt " + kDir +
            "/frames/ground_truth.txt --vocabulary " + BOWG_DEFAULT_VOCABULARY + " --config " +
@@ -77,16 +93,12 @@ TEST_F(EvaluateCli, UnreadableImagesAreSkippedCountedAndKeepTheirFrameNumber) {
   // by garbage: the run goes on, says which images it skipped and why, and
   // frame 10 is still frame 10 (a frame without features stands in).
   const std::string dir = kDir + "/damaged";
-  ASSERT_EQ(run("(rm -rf " + dir + " && mkdir -p " + dir +
-                " && for i in $(seq -f %06g 0 39); do "
-                "cp " +
-                kDir + "/frames/frame_$i.png " + dir + "/; done && : > " + dir +
-                "/frame_000005.png && echo garbage > " + dir + "/frame_000009.png)"),
-            0);
+  copyFirstFrames(dir, 40);
+  // In a subshell: run() redirects the command's output.
+  ASSERT_EQ(
+      run("(: > " + dir + "/frame_000005.png && echo garbage > " + dir + "/frame_000009.png)"), 0);
   const std::string out = kDir + "/damaged_out";
-  const std::string cmd = kEvaluate + " --quiet --images " + dir + " --vocabulary " +
-                          BOWG_DEFAULT_VOCABULARY + " --config " + kDir +
-                          "/config.yaml --thresholds 0.7 --output " + out;
+  const std::string cmd = evaluateFolder(dir, kDir + "/config.yaml", out);
   ASSERT_EQ(run(cmd, kDir + "/damaged.log"), 0) << readAll(kDir + "/damaged.log");
   const std::string log = readAll(kDir + "/damaged.log");
   EXPECT_NE(log.find("frame_000005.png skipped (the file is empty)"), std::string::npos) << log;
@@ -104,11 +116,7 @@ TEST_F(EvaluateCli, ImagesAboveMaxImagePixelsAreSkippedAndKeepTheirFrameNumber) 
   // 20 frames of 320 x 240 with frame 7 replaced by a 321 x 240 render, and
   // max_image_pixels = 320 x 240 in the configuration.
   const std::string dir = kDir + "/oversize";
-  ASSERT_EQ(run("(rm -rf " + dir + " && mkdir -p " + dir +
-                " && for i in $(seq -f %06g 0 19); do "
-                "cp " +
-                kDir + "/frames/frame_$i.png " + dir + "/; done)"),
-            0);
+  copyFirstFrames(dir, 20);
   ASSERT_EQ(run(std::string(BOWG_GENERATOR_BIN) + " --images " + kDir +
                     "/wide --frames 8 --width 321 --height 240 --speed 1.0",
                 kDir + "/wide.log"),
@@ -119,9 +127,7 @@ TEST_F(EvaluateCli, ImagesAboveMaxImagePixelsAreSkippedAndKeepTheirFrameNumber) 
             "feature_detector: gftt\nmin_score: 0.7\nrecent_exclusion: 30\n"
             "direct_index_level: 2\nmax_image_pixels: 76800\n");
   const std::string out = kDir + "/oversize_out";
-  const std::string cmd = kEvaluate + " --quiet --images " + dir + " --vocabulary " +
-                          BOWG_DEFAULT_VOCABULARY + " --config " + kDir +
-                          "/small_limit.yaml --thresholds 0.7 --output " + out;
+  const std::string cmd = evaluateFolder(dir, kDir + "/small_limit.yaml", out);
   ASSERT_EQ(run(cmd, kDir + "/oversize.log"), 0) << readAll(kDir + "/oversize.log");
   const std::string log = readAll(kDir + "/oversize.log");
   // Refused by OpenCV's header check (the limit is passed on to it) or by
