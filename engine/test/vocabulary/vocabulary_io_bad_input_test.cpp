@@ -153,6 +153,16 @@ TEST(VocabularyIo, MalformedYamlIsRefusedWithTheFileAndLine) {
                       "line 9: unterminated quoted string");
   expectRefusedNaming("unknown_key.yml", head + "   colour: 3\n", "line 8: unknown key 'colour'");
   expectRefusedNaming("twice.yml", head + "   k: 2\n", "line 8: 'k' appears twice");
+  // A negative header value is named as such (not as missing or non-integer),
+  // and a header key left out as missing.
+  expectRefusedNaming("negative_k.yml",
+                      "%YAML:1.0\n---\nvocabulary:\n   k: -3\n   L: 1\n   scoringType: 0\n"
+                      "   weightingType: 0\n   nodes: []\n   words: []\n",
+                      "line 4: 'k' is -3, must not be negative");
+  expectRefusedNaming("no_L.yml",
+                      "%YAML:1.0\n---\nvocabulary:\n   k: 3\n   scoringType: 0\n"
+                      "   weightingType: 0\n   nodes: []\n   words: []\n",
+                      "missing 'L'");
   expectRefusedNaming("not_integer.yml",
                       head + "   nodes:\n      - { nodeId:1x, parentId:0, weight:0., descriptor:" +
                           d + " }\n   words: []\n",

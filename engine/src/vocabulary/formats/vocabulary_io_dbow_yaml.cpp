@@ -24,8 +24,8 @@
 
 #include "bowg/core/atomic_file.h"
 #include "bowg/core/errors.h"
-#include "vocabulary/formats/vocabulary_io_internal.h"
 #include "core/yaml_tokens.h"
+#include "vocabulary/formats/vocabulary_io_internal.h"
 
 namespace bowg {
 namespace vocabulary_io {
@@ -133,7 +133,8 @@ class DbowYamlReader {
       fail(path_, "no 'vocabulary' map (not a DBoW2/DBoW3 vocabulary)");
     }
     expect(YamlTokens::Kind::kColon, "':' after 'vocabulary'");
-    std::int64_t header[4] = {-1, -1, -1, -1};
+    std::int64_t header[4] = {0, 0, 0, 0};
+    bool have_header[4] = {false, false, false, false};
     const char* header_keys[4] = {"k", "L", "scoringType", "weightingType"};
     bool have_nodes = false, have_words = false;
     std::vector<ForeignNode> nodes;
@@ -144,9 +145,14 @@ class DbowYamlReader {
       bool known = false;
       for (int i = 0; i < 4; ++i) {
         if (key.text != header_keys[i]) continue;
-        if (header[i] >= 0) failAt(key, "'" + key.text + "' appears twice");
-        header[i] = integer(expect(YamlTokens::Kind::kScalar, "the value of '" + key.text + "'"),
-                            key.text);
+        if (have_header[i]) failAt(key, "'" + key.text + "' appears twice");
+        header[i] =
+            integer(expect(YamlTokens::Kind::kScalar, "the value of '" + key.text + "'"), key.text);
+        if (header[i] < 0) {
+          failAt(key,
+                 "'" + key.text + "' is " + std::to_string(header[i]) + ", must not be negative");
+        }
+        have_header[i] = true;
         known = true;
       }
       if (key.text == "nodes" || key.text == "words") {
@@ -167,7 +173,7 @@ class DbowYamlReader {
       if (!known) failAt(key, "unknown key '" + key.text + "' in 'vocabulary'");
     }
     for (int i = 0; i < 4; ++i) {
-      if (header[i] < 0) fail(path_, std::string("missing or non-integer '") + header_keys[i] + "'");
+      if (!have_header[i]) fail(path_, std::string("missing '") + header_keys[i] + "'");
     }
     if (!have_nodes) fail(path_, "missing 'nodes' sequence");
     if (!have_words) fail(path_, "missing 'words' sequence");
@@ -220,7 +226,8 @@ class DbowYamlReader {
       while (tokens_.peek().kind != YamlTokens::Kind::kCloseSeq) {
         const YamlTokens::Token at = tokens_.peek();
         on_record(flowMap(name), at);
-        if (tokens_.peek().kind == YamlTokens::Kind::kComma) tokens_.next();
+        if (tokens_.peek().kind == YamlTokens::Kind::kComma)
+          tokens_.next();
         else if (tokens_.peek().kind != YamlTokens::Kind::kCloseSeq)
           expect(YamlTokens::Kind::kCloseSeq, "',' or ']' in '" + name + "'");
       }
@@ -252,7 +259,8 @@ class DbowYamlReader {
       }
       if (fields.size() >= 4) failAt(key, "an item of '" + name + "' has more than 4 fields");
       fields.emplace_back(key.text, std::move(value));
-      if (tokens_.peek().kind == YamlTokens::Kind::kComma) tokens_.next();
+      if (tokens_.peek().kind == YamlTokens::Kind::kComma)
+        tokens_.next();
       else if (tokens_.peek().kind != YamlTokens::Kind::kCloseMap)
         expect(YamlTokens::Kind::kCloseMap, "',' or '}' in an item of '" + name + "'");
     }
@@ -280,7 +288,8 @@ class DbowYamlReader {
                     ") is not a 256-bit binary descriptor (32 bytes, 'dbw3 0 32 ...' or a "
                     "256-character bit string)");
     }
-    if (f.size() != 4) failAt(at, where + " has fields other than nodeId, parentId, weight, descriptor");
+    if (f.size() != 4)
+      failAt(at, where + " has fields other than nodeId, parentId, weight, descriptor");
     return n;
   }
 
