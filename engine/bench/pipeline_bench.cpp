@@ -9,19 +9,24 @@
 //
 // Counters (per keyframe, in ms unless named otherwise): transform,
 // word_groups, query, islands, verification, total_mean, total_max,
-// features, candidates, loops (fraction of keyframes), bytes_per_keyframe.
+// features, candidates, loops (fraction of keyframes), bytes_per_keyframe
+// (Database::memoryBytes() / size), rss_growth_per_keyframe and
+// estimate_growth_per_keyframe (resident set and memoryBytes() growth per
+// keyframe added since the previous size).
 #include <benchmark/benchmark.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <memory>
 #include <random>
 
-#include "synthetic_corridor.h"
-#include "synthetic_vocabulary.h"
 #include "bowg/database/database.h"
 #include "bowg/detection/loop_detector.h"
 #include "bowg/vocabulary/vocabulary.h"
+#include "synthetic_corridor.h"
+#include "synthetic_vocabulary.h"
 
 namespace bowg {
 namespace {
@@ -69,9 +74,28 @@ Pipeline& pipeline() {
   return p;
 }
 
+// The process's resident set (Linux /proc/self/statm), 0 where unknown.
+double residentBytes() {
+  std::ifstream statm("/proc/self/statm");
+  double pages_total = 0, pages_resident = 0;
+  if (!(statm >> pages_total >> pages_resident)) return 0;
+  return pages_resident * static_cast<double>(::sysconf(_SC_PAGESIZE));
+}
+
 void BM_Pipeline(benchmark::State& state) {
   Pipeline& p = pipeline();
+  // Memory: the growth of the resident set while the database grows to this
+  // size (from the previous size, or from empty), against the growth of
+  // Database::memoryBytes() over the same keyframes.
+  const std::size_t size_before = p.detector->database().size();
+  const double rss_before = residentBytes();
+  const double estimate_before = static_cast<double>(p.detector->database().memoryBytes());
   p.growTo(static_cast<std::size_t>(state.range(0)));
+  const double added =
+      static_cast<double>(std::max<std::size_t>(1, p.detector->database().size() - size_before));
+  const double rss_growth = (residentBytes() - rss_before) / added;
+  const double estimate_growth =
+      (static_cast<double>(p.detector->database().memoryBytes()) - estimate_before) / added;
   // Keyframes are generated before timing; each iteration processes one.
   const int kBatch = 256;
   std::vector<KeyframeInput> batch;
@@ -116,6 +140,8 @@ void BM_Pipeline(benchmark::State& state) {
   state.counters["db_size"] = static_cast<double>(db.size());
   state.counters["bytes_per_keyframe"] =
       static_cast<double>(db.memoryBytes()) / std::max<std::size_t>(1, db.size());
+  state.counters["rss_growth_per_keyframe"] = rss_growth;
+  state.counters["estimate_growth_per_keyframe"] = estimate_growth;
 }
 
 BENCHMARK(BM_Pipeline)

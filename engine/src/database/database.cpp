@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "bowg/core/heap_bytes.h"
 #include "bowg/scoring/distribution.h"
 #include "bowg/vocabulary/vocabulary.h"
 
@@ -134,8 +135,8 @@ EntryId Database::add(DatabaseEntry e, bool bow_normalised) {
       distributionVector(e.keypoints, e.centre_x, e.centre_y, fan_bins_);
   distributions_.insert(distributions_.end(), dist.begin(), dist.end());
   odometers_.push_back(!std::isnan(e.odometer) ? e.odometer
-                       : odometers_.empty()     ? -std::numeric_limits<double>::infinity()
-                                                : odometers_.back());
+                       : odometers_.empty()    ? -std::numeric_limits<double>::infinity()
+                                               : odometers_.back());
   entries_.push_back(std::move(e));
   const DatabaseEntry& stored = entries_.back();
   indexWords(stored);
@@ -256,20 +257,21 @@ std::vector<double> Database::distribution(EntryId id) const {
 }
 
 std::size_t Database::memoryBytes() const {
-  std::size_t bytes = entries_.capacity() * sizeof(DatabaseEntry);
+  std::size_t bytes = vectorHeapBytes(entries_);
   for (const auto& e : entries_) {
-    bytes += e.keypoints.capacity() * sizeof(Keypoint) +
-             e.descriptors.capacity() * sizeof(Descriptor) + e.words.capacity() * sizeof(WordId) +
-             e.bow.capacity() * sizeof(BowEntry) + e.raw_groups.capacity() * sizeof(GroupEntry);
-    for (const auto& d : e.direct) {
-      bytes += sizeof(DirectIndexEntry) + d.second.capacity() * sizeof(std::uint32_t);
-    }
+    bytes += vectorHeapBytes(e.keypoints) + vectorHeapBytes(e.descriptors) +
+             vectorHeapBytes(e.words) + vectorHeapBytes(e.bow) + vectorHeapBytes(e.raw_groups) +
+             vectorHeapBytes(e.direct);
+    for (const auto& d : e.direct) bytes += vectorHeapBytes(d.second);
   }
-  bytes += distributions_.capacity() * sizeof(double);
-  for (const auto& l : word_index_) bytes += l.capacity() * sizeof(l[0]);
-  for (const auto& l : group_index_) bytes += l.capacity() * sizeof(l[0]);
-  bytes += (word_index_.size() + group_index_.size()) * sizeof(word_index_[0]);
-  bytes += group_table_.size() * (sizeof(WordId) + sizeof(double) + 2 * sizeof(void*));
+  bytes += vectorHeapBytes(distributions_) + vectorHeapBytes(odometers_);
+  for (const auto& l : word_index_) bytes += vectorHeapBytes(l);
+  for (const auto& l : group_index_) bytes += vectorHeapBytes(l);
+  bytes += vectorHeapBytes(word_index_) + vectorHeapBytes(group_index_);
+  // The group table's hash map: one node (next pointer, key, value) per
+  // group and one pointer per bucket (about as many buckets as groups).
+  bytes += group_table_.size() *
+           (heapBlockBytes(sizeof(void*) + sizeof(WordId) + sizeof(double)) + sizeof(void*));
   return bytes;
 }
 

@@ -139,7 +139,8 @@ class Database {
   /// stored vectors (the normalisers of eqs. 2 and 4 use it with I_{t-1}).
   EntryScores score(const DatabaseQuery& q, EntryId id) const;
 
-  /// Bytes held by the entries and indexes (approximate, for the benchmark).
+  /// Heap bytes held by the entries and indexes, with glibc's per-allocation
+  /// overhead (docs/benchmarks.md compares it with the resident set).
   std::size_t memoryBytes() const;
 
   void clear();
