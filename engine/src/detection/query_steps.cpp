@@ -213,10 +213,10 @@ IslandChoice chooseIsland(const std::vector<Island>& islands,
   }
   // RANSAC (the cost) in decreasing number of correspondences. Inliers are a
   // subset of the correspondences, so once a candidate has fewer
-  // correspondences than the best inlier count so far (or as many, and a
-  // worse score: ties go to the better-scored island) neither it nor any
-  // later one can win: the choice is the one of trying all, with fewer
-  // RANSACs.
+  // correspondences than min_inliers (it cannot be a loop) or than the best
+  // inlier count so far (or as many, and a worse score: ties go to the
+  // better-scored island), neither it nor any later one can win: the choice
+  // is the one of trying every candidate that could be a loop.
   std::stable_sort(order.begin(), order.end(), [&pairs](std::size_t a, std::size_t b) {
     return pairs[a].size() > pairs[b].size();
   });
