@@ -1,6 +1,7 @@
 // tools/bench/peer_ratios.py (scripts/peer_benchmark.sh's table) on crafted
 // rounds: the per-round ratios ours / DLoopDetector and their median, worked
-// out by hand, the target verdicts, the loops, and clear errors.
+// out by hand, the target verdicts, the loops, and clear errors; and the
+// script itself refusing to run without the peer kit.
 #include <gtest/gtest.h>
 
 #include <fstream>
@@ -26,9 +27,12 @@ std::string peerRun(const std::string& name, double mean, double max, double fea
   tool_test::run("mkdir -p " + dir);
   write(dir + "/summary.json",
         "{\"timing_alpha\": 0.3, \"runs\": [{\"alpha\": 0.3, \"tp\": 38, \"fp\": 5}],"
-        " \"detect\": {\"mean\": " + std::to_string(mean) + ", \"median\": 1, \"p95\": 2,"
-        " \"max\": " + std::to_string(max) + "}, \"features\": {\"mean\": " +
-            std::to_string(features) + ", \"max\": 9}}\n");
+        " \"detect\": {\"mean\": " +
+            std::to_string(mean) +
+            ", \"median\": 1, \"p95\": 2,"
+            " \"max\": " +
+            std::to_string(max) + "}, \"features\": {\"mean\": " + std::to_string(features) +
+            ", \"max\": 9}}\n");
   return dir;
 }
 
@@ -42,10 +46,12 @@ std::string oursRun(const std::string& name, double mean, double max, double fea
         "bowg               0.995   0.822   0.900  402    2    0.000 (     none)    404\n\n"
         "per-keyframe timing (ms): mean / median / p95 / max\n"
         "bowg (1.4 s for the run):\n"
-        "  features           " + std::to_string(features) + "    3.16    3.80   14.84\n"
-        "  transform          0.14    0.14    0.21    0.36\n"
-        "  detector_total     " + std::to_string(mean) + "    1.09    3.09   " +
-            std::to_string(max) + "\n");
+        "  features           " +
+            std::to_string(features) +
+            "    3.16    3.80   14.84\n"
+            "  transform          0.14    0.14    0.21    0.36\n"
+            "  detector_total     " +
+            std::to_string(mean) + "    1.09    3.09   " + std::to_string(max) + "\n");
   return dir;
 }
 
@@ -55,10 +61,9 @@ TEST(PeerRatios, MediansOfPerRoundRatiosAgainstTheTargets) {
   // Round 2: detection 0.5 / 2.0 = 0.25, max 4 / 10 = 0.40, features 1 / 2 = 0.50.
   // Round 3: detection 1.0 / 2.5 = 0.40, max 5 / 20 = 0.25, features 2 / 2 = 1.00.
   // Medians: 0.40 (not met), 0.30 (met), 1.00 (met: <= 1).
-  const std::string rounds =
-      " seq:" + peerRun("p1", 3.0, 20, 2) + ":" + oursRun("o1", 1.5, 6, 3) +
-      " seq:" + peerRun("p2", 2.0, 10, 2) + ":" + oursRun("o2", 0.5, 4, 1) +
-      " seq:" + peerRun("p3", 2.5, 20, 2) + ":" + oursRun("o3", 1.0, 5, 2);
+  const std::string rounds = " seq:" + peerRun("p1", 3.0, 20, 2) + ":" + oursRun("o1", 1.5, 6, 3) +
+                             " seq:" + peerRun("p2", 2.0, 10, 2) + ":" + oursRun("o2", 0.5, 4, 1) +
+                             " seq:" + peerRun("p3", 2.5, 20, 2) + ":" + oursRun("o3", 1.0, 5, 2);
   const std::string log = kDir + "/table.log";
   ASSERT_EQ(tool_test::run(kScript + " --csv " + kDir + "/ratios.csv" + rounds, log), 0)
       << tool_test::readAll(log);
@@ -79,8 +84,7 @@ TEST(PeerRatios, MediansOfPerRoundRatiosAgainstTheTargets) {
             std::string::npos)
       << table;
   const std::string csv = tool_test::readAll(kDir + "/ratios.csv");
-  EXPECT_EQ(csv.find("sequence,measure,rounds,peer,ours,ratio,ratio_min,ratio_max,target,met"),
-            0u)
+  EXPECT_EQ(csv.find("sequence,measure,rounds,peer,ours,ratio,ratio_min,ratio_max,target,met"), 0u)
       << csv;
 }
 
@@ -88,14 +92,27 @@ TEST(PeerRatios, BadRoundsAreClearErrors) {
   ASSERT_EQ(tool_test::run("mkdir -p " + kDir), 0);
   const std::string log = kDir + "/bad.log";
   EXPECT_NE(tool_test::run(kScript + " only_two:" + kDir, log), 0);
-  EXPECT_NE(tool_test::readAll(log).find("a round is NAME:PEER_RUN:OURS_OUTPUT"),
-            std::string::npos)
+  EXPECT_NE(tool_test::readAll(log).find("a round is NAME:PEER_RUN:OURS_OUTPUT"), std::string::npos)
       << tool_test::readAll(log);
   const std::string empty = kDir + "/empty_run";
   ASSERT_EQ(tool_test::run("mkdir -p " + empty), 0);
   EXPECT_NE(tool_test::run(kScript + " s:" + empty + ":" + empty, log), 0);
   EXPECT_NE(tool_test::readAll(log).find("cannot read " + empty + "/summary.json"),
             std::string::npos)
+      << tool_test::readAll(log);
+}
+
+TEST(PeerBenchmark, AnAbsentPeerKitIsAClearError) {
+  // Before anything is installed or built: exit 2 naming the missing kit.
+  ASSERT_EQ(tool_test::run("mkdir -p " + kDir), 0);
+  const std::string log = kDir + "/no_kit.log";
+  const int status = tool_test::run("BOWG_PEER_KIT=" + kDir + "/no_such_kit " +
+                                        std::string(BOWG_REPO_DIR) + "/scripts/peer_benchmark.sh",
+                                    log);
+  EXPECT_EQ(status, 2) << tool_test::readAll(log);
+  EXPECT_NE(
+      tool_test::readAll(log).find("the peer kit is absent (" + kDir + "/no_such_kit/peer.sh)"),
+      std::string::npos)
       << tool_test::readAll(log);
 }
 
