@@ -119,6 +119,10 @@ EntryId Database::add(DatabaseEntry e, bool bow_normalised) {
   for (const auto& g : e.raw_groups) {
     if (g.first >= W) throw std::invalid_argument("Database::add: group id out of range");
   }
+  if (!(e.stamp >= 0.0 && e.stamp < kStampLimit)) {
+    throw std::invalid_argument("Database::add: stamp " + std::to_string(e.stamp) +
+                                " s outside [0, 2^32) s");
+  }
   if (!entries_.empty() && !(e.stamp > entries_.back().stamp)) {
     throw std::invalid_argument("Database::add: stamp does not increase");
   }

@@ -84,8 +84,14 @@ void readEntryHeader(Reader* p, const std::string& entry, DatabaseEntry* e) {
   e->intrinsics.fy = p->f64("intrinsics");
   e->intrinsics.cx = p->f64("intrinsics");
   e->intrinsics.cy = p->f64("intrinsics");
-  if (!std::isfinite(e->stamp) || !std::isfinite(e->centre_x) || !std::isfinite(e->centre_y)) {
-    p->fail(entry + " has a non-finite stamp or centre");
+  // A keyframe's stamp is a ROS time (unsigned 32-bit seconds) or an image
+  // folder's n / rate: a value outside [0, 2^32) s was never written by a run.
+  if (!(e->stamp >= 0.0 && e->stamp < kStampLimit)) {
+    p->fail(entry + " has an implausible stamp (" + std::to_string(e->stamp) +
+            " s; stamps lie in [0, 2^32) s)");
+  }
+  if (!std::isfinite(e->centre_x) || !std::isfinite(e->centre_y)) {
+    p->fail(entry + " has a non-finite centre");
   }
   const CameraIntrinsics& k = e->intrinsics;
   if (k.valid && !(k.fx > 0.0 && k.fy > 0.0 && std::isfinite(k.fx) && std::isfinite(k.fy) &&

@@ -53,7 +53,7 @@ void fanCentre(const KeyframeInput& kf, double* cx, double* cy) {
 }
 
 // What process() requires of a keyframe: as many descriptors as keypoints, a
-// finite stamp after the last one, an odometer that is NaN or finite, >= 0
+// stamp in [0, 2^32) s after the last one, an odometer that is NaN or finite, >= 0
 // and never decreasing. Throws std::invalid_argument naming the field.
 void checkKeyframe(const KeyframeInput& keyframe, const Database& database) {
   const ImageFeatures& f = keyframe.features;
@@ -62,8 +62,9 @@ void checkKeyframe(const KeyframeInput& keyframe, const Database& database) {
                                 std::to_string(f.keypoints.size()) + " keypoints but " +
                                 std::to_string(f.descriptors.size()) + " descriptors");
   }
-  if (!std::isfinite(keyframe.stamp)) {
-    throw std::invalid_argument("LoopDetector::process: keyframe.stamp is not finite");
+  if (!(keyframe.stamp >= 0.0 && keyframe.stamp < kStampLimit)) {
+    throw std::invalid_argument("LoopDetector::process: keyframe.stamp " +
+                                std::to_string(keyframe.stamp) + " s is outside [0, 2^32) s");
   }
   if (!std::isnan(keyframe.odometer)) {
     if (!std::isfinite(keyframe.odometer) || keyframe.odometer < 0.0) {

@@ -135,6 +135,12 @@ TEST(DatabaseIo, ForgedContentIsRefusedByName) {
   };
   const double nan = std::nan(""), negative = -5.0;
   const float fnan = std::nanf("");
+  // Entry 0: stamp at 36, fan centre at 44 and 52, intrinsics from 60.
+  const double minus_huge = -1e300, after_2106 = 5e9;
+  forge("stamp.bowgdb", 36, &minus_huge, 8, "entry 0 has an implausible stamp");
+  forge("late.bowgdb", 36, &after_2106, 8, "entry 0 has an implausible stamp (5000000000");
+  forge("stamp_nan.bowgdb", 36, &nan, 8, "entry 0 has an implausible stamp (nan");
+  forge("centre.bowgdb", 44, &nan, 8, "entry 0 has a non-finite centre");
   forge("fx.bowgdb", 61, &nan, 8, "entry 0 has invalid intrinsics");
   forge("fy.bowgdb", 69, &negative, 8, "entry 0 has invalid intrinsics");
   forge("x.bowgdb", 97, &fnan, 4, "entry 0 keypoint 0 has a non-finite");

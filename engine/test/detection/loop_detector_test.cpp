@@ -109,6 +109,15 @@ TEST(LoopDetector, BadInputThrowsAndIsNotAdded) {
   KeyframeInput mismatch = testing::observeCorridor(c, 2.0, 11.0, rng);
   mismatch.features.descriptors.pop_back();
   EXPECT_THROW(det.process(mismatch), std::invalid_argument);
+  // Stamps are ROS times or n / rate: [0, 2^32) s (a database file with
+  // others is refused too).
+  for (const double stamp : {std::nan(""), 1e300, kStampLimit}) {
+    KeyframeInput implausible = testing::observeCorridor(c, 2.0, stamp, rng);
+    EXPECT_THROW(det.process(implausible), std::invalid_argument) << stamp;
+  }
+  LoopDetector fresh(vocabulary(), defaultOptions());
+  EXPECT_THROW(fresh.process(testing::observeCorridor(c, 1.0, -1.0, rng)), std::invalid_argument);
+  EXPECT_EQ(fresh.process(testing::observeCorridor(c, 1.0, 0.0, rng)).query_id, 0u);
   EXPECT_EQ(det.database().size(), 1u);
   // The next valid keyframe gets id 1.
   EXPECT_EQ(det.process(testing::observeCorridor(c, 2.0, 11.0, rng)).query_id, 1u);
