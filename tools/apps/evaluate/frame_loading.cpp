@@ -51,16 +51,7 @@ std::vector<std::string> listImages(const std::string& dir) {
 
 std::vector<FrameInput> loadFrames(const Args& a, const FeatureExtractor& extractor) {
   std::vector<FrameInput> frames;
-  std::size_t too_large = 0;  // bag images above max_image_pixels
-  auto add = [&](cv::Mat grey, double stamp, const CameraIntrinsics& k) {
-    const std::string size = imageSizeProblem(grey.cols, grey.rows, extractor.options());
-    if (!grey.empty() && !size.empty()) {
-      // A frame without features keeps the frame numbering (ground truth).
-      std::fprintf(stderr, "\nwarning: frame %zu skipped (%s): a frame without features\n",
-                   frames.size(), size.c_str());
-      ++too_large;
-      grey = cv::Mat();
-    }
+  auto add = [&](const cv::Mat& grey, double stamp, const CameraIntrinsics& k) {
     FrameInput f;
     // rosbag stamps may repeat (several cameras, a replayed clock): keep
     // them strictly increasing as the detector requires.
@@ -112,6 +103,7 @@ std::vector<FrameInput> loadFrames(const Args& a, const FeatureExtractor& extrac
   if (total == 0) throw FormatError("the bag " + a.bag + " has no messages on " + a.image_topic);
   if (a.max_frames > 0) total = std::min<std::size_t>(total, a.max_frames);
   CameraIntrinsics intrinsics;
+  std::size_t too_large = 0;  // images above max_image_pixels
   for (const rosbag::MessageInstance& m : view) {
     if (frames.size() >= total) break;
     if (m.getTopic() == a.info_topic) {
@@ -121,7 +113,16 @@ std::vector<FrameInput> loadFrames(const Args& a, const FeatureExtractor& extrac
       continue;
     }
     const bowg_ros::BagImage image = bowg_ros::readBagImage(m, a.bag);
-    add(image.grey, image.stamp.toSec(), intrinsics);
+    // Folder images are checked by readGreyImage; a bag's here. A frame
+    // without features keeps the frame numbering (ground truth).
+    const std::string size =
+        imageSizeProblem(image.grey.cols, image.grey.rows, extractor.options());
+    if (!size.empty()) {
+      std::fprintf(stderr, "\nwarning: frame %zu skipped (%s): a frame without features\n",
+                   frames.size(), size.c_str());
+      ++too_large;
+    }
+    add(size.empty() ? image.grey : cv::Mat(), image.stamp.toSec(), intrinsics);
     bar(frames.size(), total);
   }
   if (too_large > 0) {
