@@ -139,8 +139,8 @@ EntryId Database::add(DatabaseEntry e, bool bow_normalised) {
       distributionVector(e.keypoints, e.centre_x, e.centre_y, fan_bins_);
   distributions_.insert(distributions_.end(), dist.begin(), dist.end());
   odometers_.push_back(!std::isnan(e.odometer) ? e.odometer
-                       : odometers_.empty()    ? -std::numeric_limits<double>::infinity()
-                                               : odometers_.back());
+                       : odometers_.empty()     ? -std::numeric_limits<double>::infinity()
+                                                : odometers_.back());
   entries_.push_back(std::move(e));
   const DatabaseEntry& stored = entries_.back();
   indexWords(stored);

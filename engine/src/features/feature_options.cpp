@@ -41,8 +41,8 @@ void FeatureOptions::validate() const {
   requireIntInRange("features.orb_fast_threshold", orb_fast_threshold, 1, kMaxFastThreshold);
   requireIntAtLeast("features.max_image_pixels", max_image_pixels, 1);
   if (descriptor == DescriptorType::kBrief && brief_pattern_path.empty()) {
-    fail("features.brief_pattern_path",
-         "must name a pattern file when features.descriptor is brief", "an empty path");
+    fail("features.brief_pattern_path", "must name a pattern file when features.descriptor is brief",
+         "an empty path");
   }
 }
 

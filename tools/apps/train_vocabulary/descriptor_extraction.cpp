@@ -2,15 +2,15 @@
 // the strongest-first selection and the reading of files and bag runs.
 #include "descriptor_extraction.h"
 
-#include <rosbag/bag.h>
-#include <rosbag/view.h>
-
 #include <algorithm>
 #include <cstdio>
-#include <opencv2/core.hpp>
 #include <string>
 #include <utility>
 #include <vector>
+
+#include <opencv2/core.hpp>
+#include <rosbag/bag.h>
+#include <rosbag/view.h>
 
 #include "bowg/core/errors.h"
 #include "bowg/features/feature_extractor.h"

@@ -43,11 +43,11 @@ class Vocabulary;
 DirectIndex directIndexFromWords(const Vocabulary& vocabulary, const std::vector<WordId>& words,
                                  int level);
 
-/// One keyframe as stored in the database.
 /// One past the largest keyframe stamp, 2^32 s: stamps are ROS times
 /// (unsigned 32-bit seconds) or an image folder's n / rate, in [0, 2^32).
 constexpr double kStampLimit = 4294967296.0;
 
+/// One keyframe as stored in the database.
 struct DatabaseEntry {
   EntryId id = 0;
   double stamp = 0;  ///< in [0, kStampLimit), increasing
