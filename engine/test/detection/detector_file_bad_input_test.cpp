@@ -7,8 +7,8 @@
 #include <cstring>
 #include <string>
 
-#include "bowg/core/checksum.h"
 #include "bowg/core/errors.h"
+#include "core/resealed_checksum.h"
 #include "detection/detector_file_runs.h"
 
 namespace bowg {
@@ -118,8 +118,7 @@ TEST(DatabaseIo, ForgedContentIsRefusedByName) {
     SCOPED_TRACE(name);
     std::string b = good;
     std::memcpy(&b[at], value, bytes);
-    const std::uint64_t sum = checksum64(b.data(), b.size() - 8);
-    for (int i = 0; i < 8; ++i) b[b.size() - 8 + i] = static_cast<char>((sum >> (8 * i)) & 0xff);
+    testing::resealChecksum(&b);
     const std::string forged = outPath(name);
     writeBytes(forged, b);
     LoopDetector c(voc, options());

@@ -12,9 +12,9 @@
 #include <string>
 #include <vector>
 
-#include "bowg/core/checksum.h"
 #include "bowg/core/errors.h"
 #include "bowg/vocabulary/vocabulary_io.h"
+#include "core/resealed_checksum.h"
 #include "synthetic_vocabulary.h"
 #include "vocabulary/vocabulary_files.h"
 
@@ -73,13 +73,11 @@ TEST(VocabularyIo, TruncatedAndCorruptedFilesFailCleanly) {
   }
 }
 
-// A .bowgvoc with `edit` applied to its bytes and its checksum (the last 8
-// bytes, checksum64 of everything before) recomputed: only the loader's own
-// checks can refuse it.
+// A .bowgvoc with byte `at` set to `value` and its checksum resealed: only
+// the loader's own checks can refuse it.
 std::string resealed(std::string bytes, std::size_t at, char value) {
   bytes[at] = value;
-  const std::uint64_t sum = checksum64(bytes.data(), bytes.size() - 8);
-  for (int i = 0; i < 8; ++i) bytes[bytes.size() - 8 + i] = static_cast<char>(sum >> (8 * i));
+  testing::resealChecksum(&bytes);
   return bytes;
 }
 
