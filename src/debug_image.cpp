@@ -2,6 +2,8 @@
 #include "bowg_ros/debug_image.h"
 
 #include <algorithm>
+#include <string>
+#include <vector>
 #include <opencv2/imgproc.hpp>
 
 namespace bowg_ros {
@@ -9,7 +11,15 @@ namespace bowg_ros {
 cv::Mat drawDebugImage(const cv::Mat& query, const cv::Mat& match,
                        const std::vector<bowg::Correspondence>& inliers,
                        const std::string& caption) {
-  const int kCaption = 24;
+  // One caption line per '\n'-separated part, 18 px each.
+  std::vector<std::string> lines;
+  for (std::size_t start = 0;;) {
+    const std::size_t end = caption.find('\n', start);
+    lines.push_back(caption.substr(start, end == std::string::npos ? end : end - start));
+    if (end == std::string::npos) break;
+    start = end + 1;
+  }
+  const int kCaption = 6 + 18 * static_cast<int>(lines.size());
   const cv::Size qs = query.empty() ? cv::Size(320, 240) : query.size();
   const cv::Size ms = match.empty() ? qs : match.size();
   cv::Mat canvas(std::max(qs.height, ms.height) + kCaption, qs.width + ms.width, CV_8UC3,
@@ -33,8 +43,10 @@ cv::Mat drawDebugImage(const cv::Mat& query, const cv::Mat& match,
     cv::circle(canvas, q, 3, cv::Scalar(0, 0, 255), 1, cv::LINE_AA);
     cv::circle(canvas, m, 3, cv::Scalar(0, 0, 255), 1, cv::LINE_AA);
   }
-  cv::putText(canvas, caption, cv::Point(4, 17), cv::FONT_HERSHEY_SIMPLEX, 0.5,
-              cv::Scalar(255, 255, 255), 1);
+  for (std::size_t i = 0; i < lines.size(); ++i) {
+    cv::putText(canvas, lines[i], cv::Point(4, 17 + 18 * static_cast<int>(i)),
+                cv::FONT_HERSHEY_SIMPLEX, 0.5, cv::Scalar(255, 255, 255), 1);
+  }
   return canvas;
 }
 

@@ -14,6 +14,9 @@ void KeyframeGateOptions::validate() const {
   if (!(min_distance >= 0.0) || !std::isfinite(min_distance)) {
     throw std::invalid_argument("min_keyframe_distance must be a finite value >= 0 m");
   }
+  if (!(time_jump_reset >= 0.0) || !std::isfinite(time_jump_reset)) {
+    throw std::invalid_argument("reset_on_time_jump must be a finite value >= 0 s");
+  }
 }
 
 const char* toString(GateDecision d) {
@@ -28,6 +31,10 @@ const char* toString(GateDecision d) {
       return "stamp older than the previous frame";
     case GateDecision::kRepeatedStamp:
       return "same stamp as the previous frame";
+    case GateDecision::kBeforeFloor:
+      return "stamp not after the loaded database's last keyframe";
+    case GateDecision::kTimeJump:
+      return "time jumped back: a new run";
   }
   return "?";
 }
@@ -40,10 +47,19 @@ void KeyframeGate::setOptions(const KeyframeGateOptions& options) {
 }
 
 GateDecision KeyframeGate::check(double stamp) {
+  if (has_frame_ && options_.time_jump_reset > 0.0 &&
+      stamp < last_frame_stamp_ - options_.time_jump_reset) {
+    reset();
+    ++epoch_;
+    has_frame_ = has_keyframe_ = true;
+    last_frame_stamp_ = last_keyframe_stamp_ = stamp;
+    return GateDecision::kTimeJump;
+  }
   if (has_frame_) {
     if (stamp < last_frame_stamp_) return GateDecision::kOutOfOrder;
     if (stamp == last_frame_stamp_) return GateDecision::kRepeatedStamp;
   }
+  if (has_floor_ && !(stamp > floor_)) return GateDecision::kBeforeFloor;
   has_frame_ = true;
   last_frame_stamp_ = stamp;
   if (has_keyframe_) {
@@ -72,8 +88,14 @@ void KeyframeGate::addPosition(double x, double y, double z) {
   last_z_ = z;
 }
 
+void KeyframeGate::setStampFloor(double stamp) {
+  has_floor_ = true;
+  floor_ = stamp;
+}
+
 void KeyframeGate::reset() {
-  has_frame_ = has_keyframe_ = has_position_ = false;
+  has_frame_ = has_keyframe_ = has_position_ = has_floor_ = false;
+  floor_ = 0.0;
   last_frame_stamp_ = last_keyframe_stamp_ = 0.0;
   travelled_ = 0.0;
   odometer_ = 0.0;

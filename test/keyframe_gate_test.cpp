@@ -113,12 +113,54 @@ TEST(KeyframeGate, OdometerIsThePathLengthSinceTheStartAcrossKeyframes) {
   EXPECT_THROW(gate.setOdometer(-1.0), std::invalid_argument);
 }
 
+TEST(KeyframeGate, StampFloorRejectsFramesUpToALoadedDatabasesLastKeyframe) {
+  KeyframeGate gate;
+  gate.setStampFloor(100.0);
+  EXPECT_EQ(gate.check(50.0), GateDecision::kBeforeFloor);
+  EXPECT_EQ(gate.check(100.0), GateDecision::kBeforeFloor);  // equal is not after
+  EXPECT_EQ(gate.check(100.5), GateDecision::kAccept);
+  EXPECT_TRUE(isStampRejection(GateDecision::kBeforeFloor));
+  gate.reset();  // a database reset lifts the floor
+  EXPECT_EQ(gate.check(1.0), GateDecision::kAccept);
+}
+
+TEST(KeyframeGate, AJumpBackBeyondTheResetThresholdStartsANewRun) {
+  KeyframeGateOptions o;
+  o.min_interval = 1.0;
+  o.time_jump_reset = 5.0;
+  KeyframeGate gate(o);
+  gate.addPosition(0, 0, 0);
+  gate.addPosition(10, 0, 0);
+  EXPECT_EQ(gate.check(100.0), GateDecision::kAccept);
+  EXPECT_EQ(gate.check(101.0), GateDecision::kAccept);
+  EXPECT_EQ(gate.check(97.0), GateDecision::kOutOfOrder);  // 4 s back: not more than 5
+  EXPECT_EQ(gate.epoch(), 0u);
+  // The bag starts over: 101 -> 95 is 6 s back.
+  EXPECT_EQ(gate.check(95.0), GateDecision::kTimeJump);
+  EXPECT_TRUE(isKeyframe(GateDecision::kTimeJump));
+  EXPECT_EQ(gate.epoch(), 1u);
+  EXPECT_FALSE(gate.hasOdometry());  // positions of the old run forgotten
+  // The jump frame is the new run's first keyframe: the interval counts from it.
+  EXPECT_EQ(gate.check(95.5), GateDecision::kTooSoon);
+  EXPECT_EQ(gate.check(96.0), GateDecision::kAccept);
+  gate.reset();  // the epoch survives a reset
+  EXPECT_EQ(gate.epoch(), 1u);
+  // Off (0): a jump back of any size is only out of order.
+  KeyframeGate off;
+  EXPECT_EQ(off.check(1000.0), GateDecision::kAccept);
+  EXPECT_EQ(off.check(1.0), GateDecision::kOutOfOrder);
+  EXPECT_EQ(off.epoch(), 0u);
+}
+
 TEST(KeyframeGate, RejectsInvalidOptions) {
   KeyframeGateOptions o;
   o.min_interval = -1.0;
   EXPECT_THROW(KeyframeGate{o}, std::invalid_argument);
   o.min_interval = 0.0;
   o.min_distance = NAN;
+  EXPECT_THROW(KeyframeGate{o}, std::invalid_argument);
+  o.min_distance = 0.0;
+  o.time_jump_reset = -1.0;
   EXPECT_THROW(KeyframeGate{o}, std::invalid_argument);
 }
 

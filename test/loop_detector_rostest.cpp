@@ -80,6 +80,85 @@ TEST(LoopDetectorNodelet, RevisitGivesLoopClosuresWithTheRightIds) {
   RecordProperty("loops", std::to_string(loops.size()));
 }
 
+/// Median absolute difference of two 8-bit grey images of the same size
+/// (robust to the inlier lines drawn over the panels).
+int medianAbsDiff(const cv::Mat& a, const cv::Mat& b) {
+  cv::Mat d;
+  cv::absdiff(a, b, d);
+  int histogram[256] = {0};
+  for (int y = 0; y < d.rows; ++y)
+    for (int x = 0; x < d.cols; ++x) ++histogram[d.at<std::uint8_t>(y, x)];
+  const int half = static_cast<int>(d.total() / 2);
+  int count = 0;
+  for (int v = 0; v < 256; ++v) {
+    count += histogram[v];
+    if (count > half) return v;
+  }
+  return 255;
+}
+
+TEST(LoopDetectorNodelet, DebugImageShowsTheMatchOfALoop500KeyframesBack) {
+  // Full images of the last 5 keyframes only: the match of a loop 500
+  // keyframes back must come from its thumbnail.
+  Detector d("/farback", {{"debug_image_cache", 5}});
+  ASSERT_TRUE(d.loaded());
+  ros::NodeHandle nh;
+  std::mutex mutex;
+  std::map<double, sensor_msgs::Image> revisit_images;  // by stamp
+  const int forward = 500, revisit = 20;
+  const double first_stamp = 3000.0;
+  ros::Subscriber debug_sub = nh.subscribe<sensor_msgs::Image>(
+      d.name() + "/debug_image", 600, [&](const sensor_msgs::Image::ConstPtr& m) {
+        if (m->header.stamp.toSec() < first_stamp + 0.1 * forward - 1e-6) return;
+        std::lock_guard<std::mutex> lock(mutex);
+        revisit_images[m->header.stamp.toSec()] = *m;
+      });
+  for (int i = 0; i < 100 && debug_sub.getNumPublishers() == 0; ++i)
+    ros::WallDuration(0.05).sleep();
+  const cv::Mat world = test::makeWorld(forward * kStep + kViewWidth + kOffset, kViewHeight, 21);
+  const std::vector<int> xs = test::trajectory(forward, revisit, kStep, kOffset);
+  std::vector<int> brightness(forward, 0);
+  brightness.resize(forward + revisit, 12);
+  ASSERT_TRUE(d.run(world, xs, first_stamp, brightness, 40.0));
+  ros::WallDuration(0.5).sleep();
+  const std::vector<LoopClosure> loops = d.loops();
+  ASSERT_FALSE(loops.empty()) << "no loop on a revisit 500 keyframes back";
+  int checked = 0;
+  for (const LoopClosure& l : loops) {
+    ASSERT_GE(l.query_id - l.match_id, 490u);
+    sensor_msgs::Image m;
+    {
+      std::lock_guard<std::mutex> lock(mutex);
+      auto it = revisit_images.find(l.query_stamp.toSec());
+      ASSERT_NE(it, revisit_images.end()) << "no debug image for the loop at keyframe "
+                                          << l.query_id;
+      m = it->second;
+    }
+    const cv::Mat canvas = cv_bridge::toCvCopy(m, "mono8")->image;
+    ASSERT_EQ(canvas.cols, 2 * kViewWidth);
+    const int caption = canvas.rows - kViewHeight;
+    ASSERT_GT(caption, 0);
+    const cv::Mat query = canvas(cv::Rect(0, caption, kViewWidth, kViewHeight));
+    const cv::Mat match = canvas(cv::Rect(kViewWidth, caption, kViewWidth, kViewHeight));
+    // The right panel is the matched place (from a 240 px JPEG thumbnail:
+    // blurred, so compared loosely), not the grey "not cached" panel; the
+    // left one is the query (inlier lines drawn over both).
+    const cv::Mat true_match = test::viewAt(world, xs[l.match_id], kViewWidth);
+    const cv::Mat true_query = test::viewAt(world, xs[l.query_id], kViewWidth, 12);
+    const int match_error = medianAbsDiff(match, true_match);
+    EXPECT_LT(match_error, 20) << "keyframe " << l.query_id << " -> " << l.match_id;
+    // Another place of the strip differs far more: the panel shows this one.
+    const cv::Mat elsewhere = test::viewAt(world, xs[l.match_id] + 100 * kStep, kViewWidth);
+    EXPECT_GT(medianAbsDiff(match, elsewhere), 2 * match_error + 5);
+    EXPECT_LE(medianAbsDiff(query, true_query), 10);
+    std::printf("[ MEASURED ] loop %u -> %u: median |debug panel - true view| query %d, match %d, "
+                "elsewhere %d\n", l.query_id, l.match_id, medianAbsDiff(query, true_query),
+                match_error, medianAbsDiff(match, elsewhere));
+    ++checked;
+  }
+  EXPECT_EQ(checked, static_cast<int>(loops.size()));
+}
+
 TEST(LoopDetectorNodelet, NonRevisitingSequenceGivesNoLoop) {
   Detector d("/forward", {});
   ASSERT_TRUE(d.loaded());

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cv_bridge/cv_bridge.h>
+#include <diagnostic_msgs/DiagnosticArray.h>
 #include <dynamic_reconfigure/client.h>
 #include <gtest/gtest.h>
 #include <nodelet/NodeletLoad.h>
@@ -228,6 +229,56 @@ class ErrorLog {
   ros::Subscriber sub_;
   std::mutex mutex_;
   std::vector<std::string> errors_;
+};
+
+/// The latest /diagnostics status of each nodelet, by status name
+/// ("<nodelet name without the leading slash>: loop detector").
+class DiagnosticsWatcher {
+ public:
+  DiagnosticsWatcher() {
+    sub_ = nh_.subscribe("/diagnostics", 50, &DiagnosticsWatcher::on, this);
+  }
+  /// Waits until the status of `nodelet` (e.g. "/gate/bowg") has `level`
+  /// and its message contains `text`; returns whether it did. `last` gets
+  /// the latest status seen (for failure messages).
+  bool waitFor(const std::string& nodelet, std::uint8_t level, const std::string& text,
+               double timeout, diagnostic_msgs::DiagnosticStatus* last) {
+    const std::string name = nodelet.substr(1) + ": loop detector";
+    const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(timeout);
+    while (ros::WallTime::now() < end) {
+      {
+        std::lock_guard<std::mutex> lock(mutex_);
+        auto it = latest_.find(name);
+        if (it != latest_.end()) {
+          *last = it->second;
+          if (it->second.level == level && it->second.message.find(text) != std::string::npos)
+            return true;
+        }
+      }
+      ros::WallDuration(0.1).sleep();
+    }
+    return false;
+  }
+  /// The value of `key` in the latest status of `nodelet` ("" if none).
+  std::string value(const std::string& nodelet, const std::string& key) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    auto it = latest_.find(nodelet.substr(1) + ": loop detector");
+    if (it == latest_.end()) return "";
+    for (const auto& kv : it->second.values) {
+      if (kv.key == key) return kv.value;
+    }
+    return "";
+  }
+
+ private:
+  void on(const diagnostic_msgs::DiagnosticArray::ConstPtr& msg) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    for (const auto& st : msg->status) latest_[st.name] = st;
+  }
+  ros::NodeHandle nh_;
+  ros::Subscriber sub_;
+  std::mutex mutex_;
+  std::map<std::string, diagnostic_msgs::DiagnosticStatus> latest_;
 };
 
 inline bool setConfig(const std::string& node, BoWGConfig* config) {

@@ -5,7 +5,13 @@
 // the odometry positions) since then. Until the first odometry message
 // arrives, only the time gate applies, so a missing odometry topic never
 // silences the detector. Frames whose stamp does not increase are rejected
-// (the detector's temporal score needs time order). ROS-free.
+// (the detector's temporal score needs time order), and so are frames not
+// after the last keyframe of a loaded database (the stamp floor). A replay
+// that starts over (a bag restarted, simulated time reset) sends stamps far
+// back: with `time_jump_reset` > 0 a jump back by more than that starts a new
+// run (the gate forgets everything and counts an epoch; the nodelet then
+// resets its database), otherwise such frames are rejected like any other
+// out-of-order frame. ROS-free.
 #pragma once
 
 #include <string>
@@ -15,6 +21,9 @@ namespace bowg_ros {
 struct KeyframeGateOptions {
   double min_interval = 0.0;  ///< s, >= 0
   double min_distance = 0.0;  ///< m, >= 0; 0 = no distance gate
+  /// s, >= 0: a stamp more than this before the previous frame's starts a
+  /// new run (kTimeJump); 0 = never (such frames are kOutOfOrder).
+  double time_jump_reset = 0.0;
   void validate() const;      ///< throws std::invalid_argument naming the field
 };
 
@@ -24,7 +33,18 @@ enum class GateDecision {
   kTooClose,       ///< travelled less than min_distance
   kOutOfOrder,     ///< stamp older than the previous frame's
   kRepeatedStamp,  ///< same stamp as the previous frame
+  kBeforeFloor,    ///< not after the stamp floor (a loaded database's last keyframe)
+  kTimeJump,       ///< jumped back by more than time_jump_reset: a new run, and its first keyframe
 };
+/// True for the decisions that make the frame a keyframe.
+inline bool isKeyframe(GateDecision d) {
+  return d == GateDecision::kAccept || d == GateDecision::kTimeJump;
+}
+/// True for the decisions that reject a frame for its stamp (counted, logged).
+inline bool isStampRejection(GateDecision d) {
+  return d == GateDecision::kOutOfOrder || d == GateDecision::kRepeatedStamp ||
+         d == GateDecision::kBeforeFloor;
+}
 const char* toString(GateDecision d);
 
 class KeyframeGate {
@@ -33,8 +53,15 @@ class KeyframeGate {
 
   /// Decides for a frame stamped `stamp` (s). Out-of-order and repeated
   /// stamps are judged against the previous frame, accepted or not. On
-  /// kAccept the interval and distance counters restart.
+  /// kAccept the interval and distance counters restart; on kTimeJump the
+  /// gate first forgets everything (as reset()) and counts a new epoch.
   GateDecision check(double stamp);
+
+  /// Frames must be stamped after `stamp` (s) until the next reset(): the
+  /// last keyframe of a loaded database, whose detector refuses older ones.
+  void setStampFloor(double stamp);
+  /// Runs started by time jumps so far (0 until the first).
+  unsigned epoch() const { return epoch_; }
 
   /// One odometry position (m, any fixed frame); adds the distance from the
   /// previous position to the travelled path.
@@ -52,12 +79,15 @@ class KeyframeGate {
   const KeyframeGateOptions& options() const { return options_; }
   void setOptions(const KeyframeGateOptions& options);
 
-  /// Forgets every frame and position (after a database reset).
+  /// Forgets every frame, position and the stamp floor (after a database
+  /// reset); the epoch is kept.
   void reset();
 
  private:
   KeyframeGateOptions options_;
-  bool has_frame_ = false, has_keyframe_ = false, has_position_ = false;
+  bool has_frame_ = false, has_keyframe_ = false, has_position_ = false, has_floor_ = false;
+  double floor_ = 0;
+  unsigned epoch_ = 0;
   double last_frame_stamp_ = 0, last_keyframe_stamp_ = 0;
   double last_x_ = 0, last_y_ = 0, last_z_ = 0;
   double travelled_ = 0;

@@ -64,10 +64,22 @@ bool LoopDetectorNodelet::startEngine() {
   return true;
 }
 
+std::string LoopDetectorNodelet::publicName(const std::string& name) const {
+  // getNodeHandle() lives in the parent namespace of the nodelet's name. For
+  // a nodelet at the root ("/bowg") that is "/", which roscpp cleans to "" and
+  // then resolves in the *manager's* namespace: loaded into a camera's
+  // manager (/camera/camera_nodelet_manager), "image" became /camera/image and
+  // the launch file's remap (keyed "/image" by the loader) never matched.
+  // Resolve in the nodelet's own namespace instead: the absolute name goes
+  // through the remappings the loader passed (the private handle holds them).
+  return getPrivateNodeHandle().resolveName(
+      ros::names::append(ros::names::parentNamespace(getName()), name));
+}
+
 // Outputs, services, diagnostics and live tuning.
 void LoopDetectorNodelet::advertiseInterfaces(ros::NodeHandle& nh, ros::NodeHandle& pnh) {
   // Outputs.
-  loop_pub_ = nh.advertise<LoopClosure>("loop_closure", 10);
+  loop_pub_ = nh.advertise<LoopClosure>(publicName("loop_closure"), 10);
   status_pub_ = pnh.advertise<KeyframeStatus>("keyframe_status", 50);
   private_it_.reset(new image_transport::ImageTransport(pnh));
   debug_pub_ = private_it_->advertise("debug_image", 1);
@@ -100,32 +112,35 @@ void LoopDetectorNodelet::subscribeInputs(ros::NodeHandle& nh, ros::NodeHandle& 
   // are counted, only in our own queue).
   const int input_queue = std::max(5, queue_size_);
   if (use_features_input_) {
-    features_sub_ = nh.subscribe("keyframe_features", input_queue,
+    features_sub_ = nh.subscribe(publicName("keyframe_features"), input_queue,
                                  &LoopDetectorNodelet::featuresCallback, this);
   } else if (use_compressed_) {
     // Debian lacks the compressed image_transport plugin: subscribe to the
     // CompressedImage topic directly and decode with cv::imdecode.
-    compressed_sub_ = nh.subscribe(nh.resolveName("image") + "/compressed", input_queue,
+    compressed_sub_ = nh.subscribe(publicName("image") + "/compressed", input_queue,
                                    &LoopDetectorNodelet::compressedCallback, this);
   } else {
     it_.reset(new image_transport::ImageTransport(nh));
     try {
       image_sub_ =
-          it_->subscribe("image", input_queue, &LoopDetectorNodelet::imageCallback, this,
+          it_->subscribe(publicName("image"), input_queue, &LoopDetectorNodelet::imageCallback, this,
                          image_transport::TransportHints("raw", ros::TransportHints(), pnh));
     } catch (const std::exception& e) {
-      NODELET_FATAL("cannot subscribe to %s: %s (for compressed input set ~use_compressed)",
-                    nh.resolveName("image").c_str(), e.what());
+      // No input: the diagnostics say so (ERROR) as long as the nodelet lives.
+      const std::string problem = "cannot subscribe to " + publicName("image") + ": " + e.what();
+      NODELET_FATAL("%s (for compressed input set ~use_compressed)", problem.c_str());
+      std::lock_guard<std::mutex> lock(stats_mutex_);
+      stats_.input_problem = problem;
     }
   }
   // Intrinsics (for the relative pose) also in features mode: camera_info is
   // the sibling of the image topic, image_pipeline's convention.
-  info_sub_ = nh.subscribe(image_transport::getCameraInfoTopic(nh.resolveName("image")), 1,
+  info_sub_ = nh.subscribe(image_transport::getCameraInfoTopic(publicName("image")), 1,
                            &LoopDetectorNodelet::cameraInfoCallback, this);
   // Odometry feeds the distance gate and the keyframes' odometer (windows in
   // metres: recent_exclusion_m, alignment_window_m, max_island_distance_m);
   // without a publisher those fall back to keyframes.
-  odom_sub_ = nh.subscribe("odom", 50, &LoopDetectorNodelet::odometryCallback, this);
+  odom_sub_ = nh.subscribe(publicName("odom"), 50, &LoopDetectorNodelet::odometryCallback, this);
 }
 
 void LoopDetectorNodelet::onInit() {
@@ -138,6 +153,7 @@ void LoopDetectorNodelet::onInit() {
   if (!startEngine()) return;
   gate_.setOptions(gate_options_);
   gate_.setOdometer(lastOdometer(*detector_));
+  if (!detector_->database().empty()) gate_.setStampFloor(lastStamp(*detector_));
   queue_.reset(new BoundedQueue<Frame>(static_cast<std::size_t>(queue_size_)));
 
   advertiseInterfaces(nh, pnh);
@@ -147,8 +163,8 @@ void LoopDetectorNodelet::onInit() {
   // Inputs last, once everything they feed exists.
   subscribeInputs(nh, pnh);
   NODELET_INFO("bowg_ros ready: input %s, keyframe interval %.3f s, distance %.3f m, queue %d",
-               use_features_input_ ? nh.resolveName("keyframe_features").c_str()
-                                   : nh.resolveName("image").c_str(),
+               use_features_input_ ? publicName("keyframe_features").c_str()
+                                   : publicName("image").c_str(),
                gate_options_.min_interval, gate_options_.min_distance, queue_size_);
 }
 

@@ -61,6 +61,7 @@
 #include "bowg_ros/debug_image.h"
 #include "bowg_ros/image_conversion.h"
 #include "bowg_ros/keyframe_gate.h"
+#include "bowg_ros/keyframe_thumbnails.h"
 #include "bowg_ros/live_parameters.h"
 #include "bowg_ros/ros_conversions.h"
 
@@ -78,6 +79,13 @@ inline double lastOdometer(const bowg::LoopDetector& detector) {
   return std::max(0.0, detector.database().lastOdometer());
 }
 
+/// The stamp of a loaded database's last keyframe, or NaN when it is empty:
+/// the gate's stamp floor (the detector refuses older keyframes).
+inline double lastStamp(const bowg::LoopDetector& detector) {
+  const auto& entries = detector.database().entries();
+  return entries.empty() ? std::numeric_limits<double>::quiet_NaN() : entries.back().stamp;
+}
+
 /// One frame waiting for the worker: exactly one of the three inputs is set.
 struct Frame {
   std_msgs::Header header;
@@ -86,6 +94,9 @@ struct Frame {
   KeyframeFeatures::ConstPtr features;              // upstream features
   /// Metres driven when the frame passed the gate (NaN without odometry).
   double odometer = std::numeric_limits<double>::quiet_NaN();
+  /// The gate's run (KeyframeGate::epoch()): a frame of a newer run than the
+  /// worker's starts a new database (time jumped back, ~reset_on_time_jump).
+  unsigned epoch = 0;
 };
 
 /// Counters for the diagnostics, guarded by LoopDetectorNodelet::stats_mutex_.
@@ -98,6 +109,9 @@ struct Stats {
   std::size_t malformed = 0;  ///< image messages whose layout cannot be read
   std::size_t too_large = 0;  ///< images above max_image_pixels
   std::size_t errors = 0;
+  std::size_t time_jump_resets = 0;
+  std::string last_stamp_rejection;  ///< the latest stamp-order skip, for the diagnostics
+  std::string input_problem;         ///< why the input subscription failed (empty: fine)
   // Sums since the last diagnostics update (for means per window).
   std::size_t window_keyframes = 0;
   double window_convert_ms = 0, window_feature_ms = 0, window_transform_ms = 0,
@@ -118,6 +132,9 @@ class LoopDetectorNodelet : public nodelet::Nodelet {
   void advertiseInterfaces(ros::NodeHandle& nh, ros::NodeHandle& pnh);
   void subscribeInputs(ros::NodeHandle& nh, ros::NodeHandle& pnh);
   bool loadParameters(ros::NodeHandle& pnh);
+  /// A public topic name (image, loop_closure, ...) resolved and remapped in
+  /// the nodelet's own namespace, whatever the manager's namespace.
+  std::string publicName(const std::string& name) const;
 
   void imageCallback(const sensor_msgs::ImageConstPtr& msg);
   void compressedCallback(const sensor_msgs::CompressedImageConstPtr& msg);
@@ -161,6 +178,8 @@ class LoopDetectorNodelet : public nodelet::Nodelet {
   /// live parameter): read by the callbacks without the detector lock.
   bowg::FeatureOptions size_limit_;
   std::map<bowg::EntryId, cv::Mat> debug_cache_;  // keyframe images while debugging
+  ThumbnailOptions thumbnail_options_;
+  KeyframeThumbnails thumbnails_;  // every keyframe's, for the debug image of any loop
 
   // Camera callback side.
   std::mutex gate_mutex_;
@@ -172,6 +191,7 @@ class LoopDetectorNodelet : public nodelet::Nodelet {
   std::unique_ptr<BoundedQueue<Frame>> queue_;
   std::thread worker_;
   bool initialised_ = false;
+  unsigned worker_epoch_ = 0;  ///< the run the database belongs to (worker thread only)
 
   std::mutex stats_mutex_;
   Stats stats_;

@@ -1,29 +1,44 @@
 // LoopDetectorNodelet: the input callbacks. They only check, gate and enqueue
 // (never block: the bounded queue drops the oldest frame); the worker converts.
+#include <cstdio>
+
 #include "loop_detector_nodelet.h"
 
 namespace bowg_ros {
 
 bool LoopDetectorNodelet::offer(Frame frame) {
+  const double stamp = frame.header.stamp.toSec();
   GateDecision d;
   {
     std::lock_guard<std::mutex> lock(gate_mutex_);
-    d = gate_.check(frame.header.stamp.toSec());
+    d = gate_.check(stamp);
     frame.odometer = gate_.odometer();
+    frame.epoch = gate_.epoch();
   }
   {
     std::lock_guard<std::mutex> lock(stats_mutex_);
     ++stats_.frames_received;
-    if (d == GateDecision::kOutOfOrder || d == GateDecision::kRepeatedStamp) {
+    if (isStampRejection(d)) {
       ++stats_.skipped_out_of_order;
+      char text[160];
+      std::snprintf(text, sizeof text, "frame at %.6f s: %s", stamp, toString(d));
+      stats_.last_stamp_rejection = text;
     }
+    if (d == GateDecision::kTimeJump) ++stats_.time_jump_resets;
   }
-  if (d == GateDecision::kOutOfOrder || d == GateDecision::kRepeatedStamp) {
-    NODELET_WARN_THROTTLE(2.0, "frame at %.6f skipped: %s", frame.header.stamp.toSec(),
-                          toString(d));
+  if (isStampRejection(d)) {
+    NODELET_WARN_THROTTLE(2.0,
+                          "frame at %.6f skipped: %s (a replay that starts over: call ~reset, "
+                          "or set ~reset_on_time_jump)",
+                          stamp, toString(d));
     return false;
   }
-  if (d != GateDecision::kAccept) return false;
+  if (d == GateDecision::kTimeJump) {
+    NODELET_WARN("time jumped back by more than ~reset_on_time_jump (frame at %.6f s): a new run, "
+                 "the database starts empty",
+                 stamp);
+  }
+  if (!isKeyframe(d)) return false;
   queue_->push(std::move(frame));
   return true;
 }

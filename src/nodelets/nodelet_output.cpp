@@ -1,5 +1,9 @@
 // LoopDetectorNodelet: what it publishes per keyframe (loop_closure,
 // ~keyframe_status, the lazy ~debug_image) and the diagnostics.
+#include <cstdio>
+#include <string>
+#include <vector>
+
 #include "loop_detector_nodelet.h"
 
 namespace bowg_ros {
@@ -17,19 +21,42 @@ void LoopDetectorNodelet::publishResult(const Frame& frame, const bowg::LoopResu
   status_pub_.publish(toKeyframeStatus(result, frame.header, detector_->options(), num_features,
                                        database_size, convert_ms, feature_ms));
 
-  // Lazy: the debug image is drawn, and images are cached, only while
+  // Every keyframe leaves a thumbnail, so that the debug image can show the
+  // matched place of any loop (a revisit comes hundreds of keyframes later).
+  thumbnails_.add(result.query_id, grey);
+
+  // Lazy: the debug image is drawn, and full images are cached, only while
   // somebody subscribes.
   if (debug_pub_.getNumSubscribers() > 0 && !grey.empty()) {
+    // The loop's match, or else the best candidate the checks turned down.
+    const bool has_other = found || result.has_candidate;
+    const bowg::EntryId other = found ? result.match_id : result.best.entry;
     cv::Mat match;
-    if (found) {
-      auto it = debug_cache_.find(result.match_id);
-      if (it != debug_cache_.end()) match = it->second;
+    bool from_thumbnail = false;
+    if (has_other) {
+      auto it = debug_cache_.find(other);
+      if (it != debug_cache_.end()) {
+        match = it->second;
+      } else {
+        match = thumbnails_.restore(other);
+        from_thumbnail = !match.empty();
+      }
     }
-    const std::string caption = "keyframe " + std::to_string(result.query_id) + ": " +
-                                bowg::toString(result.status) +
-                                (found ? " -> " + std::to_string(result.match_id) + ", " +
-                                             std::to_string(result.inliers) + " inliers"
-                                       : std::string());
+    char scores[96] = "";
+    if (result.has_candidate) {
+      std::snprintf(scores, sizeof scores, " (score %.3f, island %u-%u)", result.best.eta,
+                    result.island_first, result.island_last);
+    }
+    std::string caption = "keyframe " + std::to_string(result.query_id) + ": " +
+                          bowg::toString(result.status);
+    if (found) {
+      caption += " -> " + std::to_string(result.match_id) + ", " +
+                 std::to_string(result.inliers) + " inliers";
+    } else if (result.has_candidate) {
+      caption += "; best candidate " + std::to_string(result.best.entry);
+    }
+    caption += std::string("\n") + (result.has_candidate ? scores + 1 : "no candidate");
+    if (from_thumbnail) caption += "; match shown from its thumbnail";
     cv_bridge::CvImage out(
         frame.header, "bgr8",
         drawDebugImage(grey, match,
@@ -48,15 +75,21 @@ void LoopDetectorNodelet::publishResult(const Frame& frame, const bowg::LoopResu
 }
 
 void LoopDetectorNodelet::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status) {
-  std::size_t database_size = 0;
+  std::size_t database_size = 0, thumbnail_bytes = 0;
   {
     std::lock_guard<std::mutex> lock(detector_mutex_);
     if (detector_) database_size = detector_->database().size();
+    thumbnail_bytes = thumbnails_.bytes();
   }
   bool has_intrinsics;
   {
     std::lock_guard<std::mutex> lock(intrinsics_mutex_);
     has_intrinsics = intrinsics_.valid;
+  }
+  bool has_odometry;
+  {
+    std::lock_guard<std::mutex> lock(gate_mutex_);
+    has_odometry = gate_.hasOdometry();
   }
   const std::size_t dropped = queue_ ? queue_->dropped() : 0;
   std::lock_guard<std::mutex> lock(stats_mutex_);
@@ -67,14 +100,18 @@ void LoopDetectorNodelet::diagnose(diagnostic_updater::DiagnosticStatusWrapper& 
   status.add("frames received", s.frames_received);
   status.add("keyframes", s.keyframes);
   status.add("database size", database_size);
+  status.add("debug thumbnails (kB)", thumbnail_bytes / 1024.0);
   status.add("loops found", s.loops);
   status.add("dropped frames (queue full)", dropped);
   status.add("skipped frames (stamp order)", s.skipped_out_of_order);
+  if (!s.last_stamp_rejection.empty()) status.add("last stamp-order skip", s.last_stamp_rejection);
+  status.add("new runs (time jumped back)", s.time_jump_resets);
   status.add("dropped frames (unsupported encoding)", s.bad_encoding);
   status.add("dropped frames (malformed image)", s.malformed);
   status.add("dropped frames (more than max_image_pixels)", s.too_large);
   status.add("keyframe errors", s.errors);
   status.add("camera intrinsics known", has_intrinsics);
+  status.add("odometry received", has_odometry);
   status.add("ms convert", s.window_convert_ms / n);
   status.add("ms features", s.window_feature_ms / n);
   status.add("ms words", s.window_transform_ms / n);
@@ -83,15 +120,36 @@ void LoopDetectorNodelet::diagnose(diagnostic_updater::DiagnosticStatusWrapper& 
   status.add("ms islands", s.window_islands_ms / n);
   status.add("ms verification", s.window_verification_ms / n);
   status.add("ms total", s.window_total_ms / n);
-  if (!initialised_) {
-    status.summary(diagnostic_msgs::DiagnosticStatus::ERROR, "not started (see the log)");
-  } else if (s.bad_encoding > 0 || s.malformed > 0 || s.too_large > 0 || s.errors > 0) {
-    status.summary(diagnostic_msgs::DiagnosticStatus::WARN,
-                   "frames rejected (unsupported encoding, malformed or too large images, or "
-                   "processing errors)");
-  } else if (dropped > 0) {
-    status.summary(diagnostic_msgs::DiagnosticStatus::WARN,
-                   "keyframes dropped: the detector is slower than the keyframe rate");
+  // The worst level wins; every reason at that level is in the message.
+  std::vector<std::string> errors, warnings;
+  if (!initialised_) errors.push_back("not started (see the log)");
+  if (!s.input_problem.empty()) errors.push_back("no input: " + s.input_problem);
+  if (s.bad_encoding > 0 || s.malformed > 0 || s.too_large > 0 || s.errors > 0) {
+    warnings.push_back(
+        "frames rejected (unsupported encoding, malformed or too large images, or processing "
+        "errors)");
+  }
+  if (s.skipped_out_of_order > 0) {
+    warnings.push_back(std::to_string(s.skipped_out_of_order) +
+                       " frames skipped for their stamps (latest: " + s.last_stamp_rejection +
+                       "); a replay that starts over needs ~reset or ~reset_on_time_jump");
+  }
+  if (gate_options_.min_distance > 0.0 && !has_odometry && s.frames_received > 0) {
+    warnings.push_back("~min_keyframe_distance is set but no odometry arrived on " +
+                       publicName("odom") + ": only the time gate applies");
+  }
+  if (dropped > 0) {
+    warnings.push_back("keyframes dropped: the detector is slower than the keyframe rate");
+  }
+  auto join = [](const std::vector<std::string>& v) {
+    std::string out;
+    for (const std::string& r : v) out += (out.empty() ? "" : "; ") + r;
+    return out;
+  };
+  if (!errors.empty()) {
+    status.summary(diagnostic_msgs::DiagnosticStatus::ERROR, join(errors));
+  } else if (!warnings.empty()) {
+    status.summary(diagnostic_msgs::DiagnosticStatus::WARN, join(warnings));
   } else {
     status.summary(diagnostic_msgs::DiagnosticStatus::OK, "running");
   }

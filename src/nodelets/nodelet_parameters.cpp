@@ -14,6 +14,7 @@ const char* const kNodeParameters[] = {
     "vocabulary_path",    "queue_size",         "min_keyframe_interval",   "min_keyframe_distance",
     "use_compressed",     "use_features_input", "publish_correspondences", "database_load_path",
     "database_save_path", "debug_image_cache",  "image_transport",         "diagnostic_period",
+    "reset_on_time_jump", "debug_thumbnail_size",
 };
 
 bool isNodeParameter(const std::string& name) {
@@ -30,18 +31,21 @@ bool LoopDetectorNodelet::loadParameters(ros::NodeHandle& pnh) {
   pnh.param("queue_size", queue_size_, 2);
   pnh.param("min_keyframe_interval", gate_options_.min_interval, 0.0);
   pnh.param("min_keyframe_distance", gate_options_.min_distance, 0.0);
+  pnh.param("reset_on_time_jump", gate_options_.time_jump_reset, 0.0);
   pnh.param("use_compressed", use_compressed_, false);
   pnh.param("use_features_input", use_features_input_, false);
   pnh.param("publish_correspondences", publish_correspondences_, false);
   pnh.param<std::string>("database_load_path", database_load_path_, "");
   pnh.param<std::string>("database_save_path", database_save_path_, "");
   pnh.param("debug_image_cache", debug_image_cache_, 200);
+  pnh.param("debug_thumbnail_size", thumbnail_options_.max_side, thumbnail_options_.max_side);
   if (queue_size_ < 1) {
     NODELET_FATAL("~queue_size must be >= 1 (got %d)", queue_size_);
     return false;
   }
   try {
     gate_options_.validate();
+    thumbnails_ = KeyframeThumbnails(thumbnail_options_);
   } catch (const std::exception& e) {
     NODELET_FATAL("%s", e.what());
     return false;

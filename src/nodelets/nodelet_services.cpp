@@ -58,11 +58,14 @@ bool LoopDetectorNodelet::loadDatabase(LoadDatabase::Request& req, LoadDatabase:
   try {
     detector_->load(path);  // keeps the running database on any error
     debug_cache_.clear();
+    thumbnails_.clear();  // the loaded keyframes' images are not in the file
     {
-      // Stamps restart from the loaded database's; let the gate follow.
+      // Stamps restart from the loaded database's; let the gate follow
+      // (frames up to its last keyframe are skipped and counted there).
       std::lock_guard<std::mutex> gate_lock(gate_mutex_);
       gate_.reset();
       gate_.setOdometer(lastOdometer(*detector_));
+      if (!detector_->database().empty()) gate_.setStampFloor(lastStamp(*detector_));
     }
     res.success = true;
     res.message =
@@ -83,6 +86,7 @@ bool LoopDetectorNodelet::resetDatabase(std_srvs::Trigger::Request&,
   const std::size_t n = detector_->database().size();
   detector_->reset();
   debug_cache_.clear();
+  thumbnails_.clear();
   {
     std::lock_guard<std::mutex> gate_lock(gate_mutex_);
     gate_.reset();

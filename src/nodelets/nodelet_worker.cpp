@@ -49,6 +49,16 @@ void LoopDetectorNodelet::processFrame(const Frame& frame) {
   }
 
   std::lock_guard<std::mutex> lock(detector_mutex_);
+  if (frame.epoch != worker_epoch_) {
+    // The first keyframe after time jumped back (KeyframeGate, kTimeJump):
+    // the frames queued before it were processed into the old run.
+    NODELET_WARN("new run after a time jump: forgetting %zu keyframes",
+                 detector_->database().size());
+    detector_->reset();
+    debug_cache_.clear();
+    thumbnails_.clear();
+    worker_epoch_ = frame.epoch;
+  }
   t0 = Clock::now();
   if (frame.features) {
     input.features = fromMessage(*frame.features);

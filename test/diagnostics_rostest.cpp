@@ -1,0 +1,101 @@
+// End-to-end tests of the nodelet's /diagnostics: each way it can fail to
+// turn frames into keyframes gives the level and the reason a robot's
+// monitoring needs (test/diagnostics.test).
+#include <nav_msgs/Odometry.h>
+
+#include <string>
+
+#include "nodelet_harness.h"
+
+namespace bowg_ros {
+namespace {
+
+using diagnostic_msgs::DiagnosticStatus;
+
+TEST(Diagnostics, AFailedImageSubscriptionIsAnErrorNamingTheTopic) {
+  DiagnosticsWatcher diagnostics;
+  // No image_transport plugin has this name: the subscription throws.
+  Detector d("/noinput", {{"image_transport", XmlRpc::XmlRpcValue("no_such_transport")}});
+  ASSERT_TRUE(d.loaded());
+  EXPECT_FALSE(d.connected());
+  DiagnosticStatus last;
+  EXPECT_TRUE(diagnostics.waitFor(d.name(), DiagnosticStatus::ERROR,
+                                  "no input: cannot subscribe to /noinput/image", 10.0, &last))
+      << "level " << int(last.level) << ": " << last.message;
+}
+
+TEST(Diagnostics, ADistanceGateWithoutOdometryWarnsUntilOdometryArrives) {
+  DiagnosticsWatcher diagnostics;
+  Detector d("/nodistance", {{"min_keyframe_distance", XmlRpc::XmlRpcValue(0.5)}});
+  ASSERT_TRUE(d.loaded());
+  const cv::Mat world = test::makeWorld(kViewWidth + 10 * kStep, kViewHeight, 5);
+  d.publish(test::viewAt(world, 0, kViewWidth), 100.0);
+  d.publish(test::viewAt(world, kStep, kViewWidth), 100.1);
+  // Without odometry only the time gate applies: both frames are keyframes.
+  ASSERT_TRUE(d.waitForStatuses(2, 20.0));
+  DiagnosticStatus last;
+  EXPECT_TRUE(diagnostics.waitFor(d.name(), DiagnosticStatus::WARN,
+                                  "no odometry arrived on /nodistance/odom", 10.0, &last))
+      << "level " << int(last.level) << ": " << last.message;
+  EXPECT_EQ(diagnostics.value(d.name(), "odometry received"), "False");
+  ros::NodeHandle nh;
+  ros::Publisher odom = nh.advertise<nav_msgs::Odometry>("/nodistance/odom", 10);
+  for (int i = 0; i < 100 && odom.getNumSubscribers() == 0; ++i) ros::WallDuration(0.05).sleep();
+  nav_msgs::Odometry o;
+  o.header.stamp = ros::Time(100.15);
+  odom.publish(o);
+  EXPECT_TRUE(diagnostics.waitFor(d.name(), DiagnosticStatus::OK, "running", 10.0, &last))
+      << "level " << int(last.level) << ": " << last.message;
+}
+
+TEST(Diagnostics, StampsGoingBackAreAWarningThatSaysWhatToDo) {
+  DiagnosticsWatcher diagnostics;
+  Detector d("/replay", {});
+  ASSERT_TRUE(d.loaded());
+  const cv::Mat world = test::makeWorld(kViewWidth + 10 * kStep, kViewHeight, 6);
+  d.publish(test::viewAt(world, 0, kViewWidth), 100.0);
+  d.publish(test::viewAt(world, kStep, kViewWidth), 100.1);
+  ASSERT_TRUE(d.waitForStatuses(2, 20.0));
+  DiagnosticStatus last;
+  ASSERT_TRUE(diagnostics.waitFor(d.name(), DiagnosticStatus::OK, "running", 10.0, &last))
+      << "level " << int(last.level) << ": " << last.message;
+  // The bag starts over.
+  d.publish(test::viewAt(world, 0, kViewWidth), 50.0);
+  EXPECT_TRUE(diagnostics.waitFor(d.name(), DiagnosticStatus::WARN,
+                                  "1 frames skipped for their stamps (latest: frame at "
+                                  "50.000000 s: stamp older than the previous frame); a replay "
+                                  "that starts over needs ~reset or ~reset_on_time_jump",
+                                  10.0, &last))
+      << "level " << int(last.level) << ": " << last.message;
+  ros::WallDuration(0.3).sleep();
+  EXPECT_EQ(d.statusCount(), 2u);
+}
+
+TEST(Diagnostics, WithResetOnTimeJumpAReplayThatStartsOverStartsANewDatabase) {
+  DiagnosticsWatcher diagnostics;
+  Detector d("/restart", {{"reset_on_time_jump", XmlRpc::XmlRpcValue(5.0)}});
+  ASSERT_TRUE(d.loaded());
+  const cv::Mat world = test::makeWorld(kViewWidth + 10 * kStep, kViewHeight, 7);
+  for (int i = 0; i < 4; ++i) d.publish(test::viewAt(world, i * kStep, kViewWidth), 100.0 + 0.1 * i);
+  // 2 s back: out of order, not a new run.
+  d.publish(test::viewAt(world, 0, kViewWidth), 98.3);
+  // 90 s back: a new run.
+  for (int i = 0; i < 3; ++i) d.publish(test::viewAt(world, i * kStep, kViewWidth), 10.0 + 0.1 * i);
+  ASSERT_TRUE(d.waitForStatuses(7, 20.0));
+  ros::WallDuration(0.3).sleep();
+  const std::vector<KeyframeStatus> s = d.statuses();
+  ASSERT_EQ(s.size(), 7u);
+  EXPECT_EQ(s[3].database_size, 4u);
+  EXPECT_DOUBLE_EQ(s[4].header.stamp.toSec(), 10.0);
+  EXPECT_EQ(s[4].id, 0u);  // the new run's first keyframe
+  EXPECT_EQ(s[4].database_size, 1u);
+  EXPECT_EQ(s[6].database_size, 3u);
+  DiagnosticStatus last;
+  EXPECT_TRUE(diagnostics.waitFor(d.name(), DiagnosticStatus::WARN, "1 frames skipped", 10.0,
+                                  &last))
+      << "level " << int(last.level) << ": " << last.message;
+  EXPECT_EQ(diagnostics.value(d.name(), "new runs (time jumped back)"), "1");
+}
+
+}  // namespace
+}  // namespace bowg_ros
