@@ -7,31 +7,10 @@
 #include <sstream>
 
 #include "bowg/core/errors.h"
+#include "bowg_evaluation/csv_cells.h"
 
 namespace bowg {
 namespace eval {
-namespace {
-
-std::vector<std::string> splitCsv(const std::string& line) {
-  std::vector<std::string> cells;
-  std::istringstream in(line);
-  std::string cell;
-  while (std::getline(in, cell, ',')) {
-    const auto b = cell.find_first_not_of(" \t\r");
-    const auto e = cell.find_last_not_of(" \t\r");
-    cells.push_back(b == std::string::npos ? std::string() : cell.substr(b, e - b + 1));
-  }
-  return cells;
-}
-
-bool toDouble(const std::string& s, double* v) {
-  if (s.empty()) return false;
-  char* end = nullptr;
-  *v = std::strtod(s.c_str(), &end);
-  return *end == '\0';
-}
-
-}  // namespace
 
 std::vector<double> parseOdometry(const std::string& text, const std::string& source) {
   std::istringstream in(text);

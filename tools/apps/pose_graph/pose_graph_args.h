@@ -1,0 +1,25 @@
+// bowg_pose_graph's command line.
+#pragma once
+
+#include <string>
+
+#include "bowg_pose_graph/pose_graph.h"
+
+namespace bowg {
+namespace pose_graph_app {
+
+struct Args {
+  std::string truth;     ///< --truth: true body poses (the generator's poses.csv)
+  std::string odometry;  ///< --odometry: drifting odometry (the generator's odometry.csv)
+  std::string loops;     ///< --loops: bowg_evaluate's detections_<row>.csv (query,match,score)
+  std::string output;    ///< --output DIR: trajectories.csv, summary.txt, trajectories.png
+  pose_graph::PoseGraphOptions graph;
+};
+
+extern const char* const kUsage;
+
+/// Throws std::invalid_argument with a message for the user (exit 2).
+Args parseArgs(int argc, char** argv);
+
+}  // namespace pose_graph_app
+}  // namespace bowg

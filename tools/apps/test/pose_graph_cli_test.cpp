@@ -1,0 +1,144 @@
+// bowg_pose_graph end to end on a synthetic two-lap circuit: drifting
+// odometry, loops at the revisited places; the error with the loops must
+// drop well below the odometry's, and bad input must name the file.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <opencv2/imgcodecs.hpp>
+#include <string>
+#include <vector>
+
+#include "shell_command.h"
+
+namespace bowg {
+namespace {
+
+using tool_test::readAll;
+using tool_test::run;
+
+const std::string kOut = std::string(BOWG_TEST_OUTPUT_DIR) + "/pose_graph_cli";
+
+struct Pose2 {
+  double x, y, yaw;
+};
+
+void writePoses(const std::string& path, const std::vector<Pose2>& poses) {
+  std::ofstream f(path);
+  f << "frame,stamp,x,y,z,qx,qy,qz,qw\n";
+  for (std::size_t i = 0; i < poses.size(); ++i) {
+    f << i << "," << 100 + 0.1 * i << "," << poses[i].x << "," << poses[i].y << ",0,0,0,"
+      << std::sin(poses[i].yaw / 2) << "," << std::cos(poses[i].yaw / 2) << "\n";
+  }
+}
+
+/// Two laps of a 20 m x 10 m rectangle in 0.2 m steps (300 frames a lap),
+/// and the odometry of a robot whose odometer over-reads by 3 % and whose
+/// heading drifts by 0.4 deg per metre.
+void writeCircuit(std::vector<Pose2>* truth, std::vector<Pose2>* odometry) {
+  const double step = 0.2;
+  for (int lap = 0; lap < 2; ++lap) {
+    for (int side = 0; side < 4; ++side) {
+      const double length = side % 2 == 0 ? 20.0 : 10.0;
+      const double yaw = side * M_PI / 2;
+      for (int k = 0; k < static_cast<int>(length / step + 0.5); ++k) {
+        Pose2 p = truth->empty() ? Pose2{0, 0, 0} : truth->back();
+        if (!truth->empty()) {
+          p.x += step * std::cos(p.yaw);
+          p.y += step * std::sin(p.yaw);
+        }
+        p.yaw = yaw;
+        truth->push_back(p);
+      }
+    }
+  }
+  odometry->push_back(truth->front());
+  for (std::size_t i = 1; i < truth->size(); ++i) {
+    const Pose2 &a = (*truth)[i - 1], &b = (*truth)[i];
+    const double dx = b.x - a.x, dy = b.y - a.y;
+    // The step in a's frame, then applied to the drifting estimate.
+    const double fwd = std::cos(a.yaw) * dx + std::sin(a.yaw) * dy;
+    const double left = -std::sin(a.yaw) * dx + std::cos(a.yaw) * dy;
+    const Pose2 o = odometry->back();
+    const double s = 1.03;
+    Pose2 n;
+    n.x = o.x + s * (std::cos(o.yaw) * fwd - std::sin(o.yaw) * left);
+    n.y = o.y + s * (std::sin(o.yaw) * fwd + std::cos(o.yaw) * left);
+    n.yaw = o.yaw + (b.yaw - a.yaw) + 0.4 * M_PI / 180 * std::hypot(dx, dy);
+    odometry->push_back(n);
+  }
+}
+
+double number(const std::string& text, const std::string& after) {
+  const std::size_t at = text.find(after);
+  if (at == std::string::npos) return NAN;
+  return std::atof(text.c_str() + at + after.size());
+}
+
+TEST(PoseGraphCli, LoopsBringTheTrajectoryBackToTheTruth) {
+  run("rm -rf " + kOut + " && mkdir -p " + kOut);
+  std::vector<Pose2> truth, odometry;
+  writeCircuit(&truth, &odometry);
+  ASSERT_EQ(truth.size(), 600u);
+  writePoses(kOut + "/poses.csv", truth);
+  writePoses(kOut + "/odometry.csv", odometry);
+  // Every 10th frame of lap 2 revisits frame - 300 of lap 1.
+  {
+    std::ofstream f(kOut + "/detections.csv");
+    f << "query,match,score\n";
+    for (int q = 310; q < 600; q += 10) f << q << "," << q - 300 << ",1.0\n";
+  }
+  const std::string log = kOut + "/run.log";
+  ASSERT_EQ(run(std::string(BOWG_POSE_GRAPH_BIN) + " --truth " + kOut + "/poses.csv --odometry " +
+                    kOut + "/odometry.csv --loops " + kOut + "/detections.csv --output " + kOut +
+                    "/out",
+                log),
+            0)
+      << readAll(log);
+  const std::string out = readAll(log);
+  const double before = number(out, "odometry only       : position RMSE ");
+  const double after = number(out, "pose graph + loops  : position RMSE ");
+  std::printf("%s", out.c_str());
+  ASSERT_TRUE(std::isfinite(before) && std::isfinite(after)) << out;
+  EXPECT_GT(before, 1.0);          // 3 % and 0.4 deg/m over 120 m: metres off (4.2 m)
+  EXPECT_LT(after, before / 3.0);  // the loops pull lap 2 onto lap 1, lap 1 onto the truth
+  EXPECT_NE(out.find("600 frames, 119.8 m driven, 29 loops"), std::string::npos) << out;
+  EXPECT_EQ(readAll(kOut + "/out/summary.txt"), out.substr(0, out.find("outputs in")));
+  const cv::Mat png = cv::imread(kOut + "/out/trajectories.png");
+  EXPECT_EQ(png.cols, 900);
+  const std::string csv = readAll(kOut + "/out/trajectories.csv");
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 601);
+}
+
+TEST(PoseGraphCli, BadInputNamesTheFile) {
+  run("mkdir -p " + kOut);
+  writePoses(kOut + "/short.csv", {{0, 0, 0}, {1, 0, 0}});
+  {
+    std::ofstream f(kOut + "/far.csv");
+    f << "query,match,score\n5,0,1.0\n";
+  }
+  const std::string log = kOut + "/bad.log";
+  const std::string bin = BOWG_POSE_GRAPH_BIN;
+  EXPECT_EQ(run(bin + " --truth " + kOut + "/short.csv --odometry " + kOut + "/short.csv --loops " +
+                    kOut + "/far.csv",
+                log),
+            1);
+  EXPECT_NE(readAll(log).find(kOut + "/far.csv: loop 5 -> 0 names frame 5, which " + kOut +
+                              "/short.csv does not hold"),
+            std::string::npos)
+      << readAll(log);
+  EXPECT_EQ(run(bin + " --truth " + kOut + "/short.csv --odometry " + kOut + "/missing.csv --loops " +
+                    kOut + "/far.csv",
+                log),
+            1);
+  EXPECT_NE(readAll(log).find("cannot read the trajectory file " + kOut + "/missing.csv"),
+            std::string::npos);
+  EXPECT_EQ(run(bin + " --truth x", log), 2);
+  EXPECT_NE(readAll(log).find("--truth, --odometry and --loops are required"), std::string::npos);
+  EXPECT_EQ(run(bin + " --truth a --odometry b --loops c --loop-sigma -1", log), 2);
+  EXPECT_NE(readAll(log).find("loop_position_sigma"), std::string::npos) << readAll(log);
+}
+
+}  // namespace
+}  // namespace bowg
