@@ -11,18 +11,16 @@
 #include <vector>
 
 #include "shell_command.h"
+#include "synthetic_circuit.h"
 
 namespace bowg {
 namespace {
 
 using tool_test::readAll;
 using tool_test::run;
+using tool_test::Pose2;
 
 const std::string kOut = std::string(BOWG_TEST_OUTPUT_DIR) + "/pose_graph_cli";
-
-struct Pose2 {
-  double x, y, yaw;
-};
 
 void writePoses(const std::string& path, const std::vector<Pose2>& poses) {
   std::ofstream f(path);
@@ -30,43 +28,6 @@ void writePoses(const std::string& path, const std::vector<Pose2>& poses) {
   for (std::size_t i = 0; i < poses.size(); ++i) {
     f << i << "," << 100 + 0.1 * i << "," << poses[i].x << "," << poses[i].y << ",0,0,0,"
       << std::sin(poses[i].yaw / 2) << "," << std::cos(poses[i].yaw / 2) << "\n";
-  }
-}
-
-/// Two laps of a 20 m x 10 m rectangle in 0.2 m steps (300 frames a lap),
-/// and the odometry of a robot whose odometer over-reads by 3 % and whose
-/// heading drifts by 0.4 deg per metre.
-void writeCircuit(std::vector<Pose2>* truth, std::vector<Pose2>* odometry) {
-  const double step = 0.2;
-  for (int lap = 0; lap < 2; ++lap) {
-    for (int side = 0; side < 4; ++side) {
-      const double length = side % 2 == 0 ? 20.0 : 10.0;
-      const double yaw = side * M_PI / 2;
-      for (int k = 0; k < static_cast<int>(length / step + 0.5); ++k) {
-        Pose2 p = truth->empty() ? Pose2{0, 0, 0} : truth->back();
-        if (!truth->empty()) {
-          p.x += step * std::cos(p.yaw);
-          p.y += step * std::sin(p.yaw);
-        }
-        p.yaw = yaw;
-        truth->push_back(p);
-      }
-    }
-  }
-  odometry->push_back(truth->front());
-  for (std::size_t i = 1; i < truth->size(); ++i) {
-    const Pose2 &a = (*truth)[i - 1], &b = (*truth)[i];
-    const double dx = b.x - a.x, dy = b.y - a.y;
-    // The step in a's frame, then applied to the drifting estimate.
-    const double fwd = std::cos(a.yaw) * dx + std::sin(a.yaw) * dy;
-    const double left = -std::sin(a.yaw) * dx + std::cos(a.yaw) * dy;
-    const Pose2 o = odometry->back();
-    const double s = 1.03;
-    Pose2 n;
-    n.x = o.x + s * (std::cos(o.yaw) * fwd - std::sin(o.yaw) * left);
-    n.y = o.y + s * (std::sin(o.yaw) * fwd + std::cos(o.yaw) * left);
-    n.yaw = o.yaw + (b.yaw - a.yaw) + 0.4 * M_PI / 180 * std::hypot(dx, dy);
-    odometry->push_back(n);
   }
 }
 
@@ -79,7 +40,7 @@ double number(const std::string& text, const std::string& after) {
 TEST(PoseGraphCli, LoopsBringTheTrajectoryBackToTheTruth) {
   run("rm -rf " + kOut + " && mkdir -p " + kOut);
   std::vector<Pose2> truth, odometry;
-  writeCircuit(&truth, &odometry);
+  tool_test::twoLapCircuit(&truth, &odometry);
   ASSERT_EQ(truth.size(), 600u);
   writePoses(kOut + "/poses.csv", truth);
   writePoses(kOut + "/odometry.csv", odometry);

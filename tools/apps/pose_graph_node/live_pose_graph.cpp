@@ -1,0 +1,175 @@
+#include "live_pose_graph.h"
+
+#include <cmath>
+
+#include "bowg_pose_graph/camera_frames.h"
+
+namespace bowg {
+namespace pose_graph_node {
+namespace {
+
+Eigen::Isometry3d toIsometry(const geometry_msgs::Pose& p) {
+  Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
+  t.linear() =
+      Eigen::Quaterniond(p.orientation.w, p.orientation.x, p.orientation.y, p.orientation.z)
+          .normalized()
+          .toRotationMatrix();
+  t.translation() = Eigen::Vector3d(p.position.x, p.position.y, p.position.z);
+  return t;
+}
+
+geometry_msgs::PoseStamped toPoseStamped(const Eigen::Isometry3d& t, double stamp,
+                                         const std::string& frame) {
+  geometry_msgs::PoseStamped p;
+  p.header.stamp = ros::Time(stamp);
+  p.header.frame_id = frame;
+  p.pose.position.x = t.translation().x();
+  p.pose.position.y = t.translation().y();
+  p.pose.position.z = t.translation().z();
+  const Eigen::Quaterniond q(t.rotation());
+  p.pose.orientation.x = q.x();
+  p.pose.orientation.y = q.y();
+  p.pose.orientation.z = q.z();
+  p.pose.orientation.w = q.w();
+  return p;
+}
+
+}  // namespace
+
+LivePoseGraph::LivePoseGraph(ros::NodeHandle& nh, ros::NodeHandle& pnh) {
+  pnh.param("loop_sigma", options_.loop_position_sigma, options_.loop_position_sigma);
+  pnh.param("loop_rotation_sigma_deg", options_.loop_rotation_sigma_deg,
+            options_.loop_rotation_sigma_deg);
+  pnh.param("odometry_sigma", options_.odometry_position_fraction,
+            options_.odometry_position_fraction);
+  pnh.param("odometry_rotation_deg_per_sqrt_m", options_.odometry_rotation_deg_per_sqrt_m,
+            options_.odometry_rotation_deg_per_sqrt_m);
+  pnh.param("robust_sigmas", options_.loop_robust_sigmas, options_.loop_robust_sigmas);
+  pnh.param("use_loop_rotation", use_loop_rotation_, false);
+  pnh.param<std::string>("map_frame", map_frame_, "map");
+  double horizon = 120.0;
+  pnh.param("odometry_horizon", horizon, horizon);
+  options_.validate();  // throws: main() reports and exits
+  odometry_ = pose_graph::OdometryBuffer(horizon);
+  graph_.reset(new pose_graph::PoseGraph(options_));
+
+  path_pub_ = pnh.advertise<nav_msgs::Path>("path", 1, true);
+  odometry_path_pub_ = pnh.advertise<nav_msgs::Path>("odometry_path", 1, true);
+  odom_sub_ = nh.subscribe("odom", 200, &LivePoseGraph::onOdometry, this);
+  keyframe_sub_ = nh.subscribe("keyframe_status", 200, &LivePoseGraph::onKeyframe, this);
+  loop_sub_ = nh.subscribe("loop_closure", 50, &LivePoseGraph::onLoop, this);
+  ROS_INFO("bowg_pose_graph_node: odometry %s, keyframes %s, loops %s -> %s, %s",
+           odom_sub_.getTopic().c_str(), keyframe_sub_.getTopic().c_str(),
+           loop_sub_.getTopic().c_str(), path_pub_.getTopic().c_str(),
+           odometry_path_pub_.getTopic().c_str());
+}
+
+void LivePoseGraph::restart(const std::string& why) {
+  ROS_WARN("bowg_pose_graph_node: %s: starting a new graph (%zu keyframes, %zu loops dropped)",
+           why.c_str(), node_stamps_.size(), loops_);
+  graph_.reset(new pose_graph::PoseGraph(options_));
+  pending_keyframes_.clear();
+  pending_loops_.clear();
+  node_of_keyframe_.clear();
+  node_stamps_.clear();
+  node_odometry_.clear();
+  loops_ = 0;
+}
+
+void LivePoseGraph::onOdometry(const nav_msgs::Odometry::ConstPtr& msg) {
+  odometry_.add(msg->header.stamp.toSec(), toIsometry(msg->pose.pose));
+  addCoveredKeyframes();
+}
+
+void LivePoseGraph::onKeyframe(const bowg_ros::KeyframeStatus::ConstPtr& msg) {
+  // The detector's ids restart after its ~reset (or a new run).
+  const std::uint32_t last = pending_keyframes_.empty()
+                                 ? (node_of_keyframe_.empty() ? 0 : node_of_keyframe_.rbegin()->first)
+                                 : pending_keyframes_.back().first;
+  if ((!node_of_keyframe_.empty() || !pending_keyframes_.empty()) && msg->id <= last) {
+    restart("keyframe id " + std::to_string(msg->id) + " after " + std::to_string(last));
+  }
+  pending_keyframes_.emplace_back(msg->id, msg->header.stamp.toSec());
+  addCoveredKeyframes();
+}
+
+void LivePoseGraph::onLoop(const bowg_ros::LoopClosure::ConstPtr& msg) {
+  pending_loops_.push_back(*msg);
+  if (addReadyLoops()) publish();
+}
+
+void LivePoseGraph::addCoveredKeyframes() {
+  bool added = false;
+  while (!pending_keyframes_.empty() && !odometry_.empty() &&
+         pending_keyframes_.front().second <= odometry_.newest()) {
+    const std::uint32_t id = pending_keyframes_.front().first;
+    const double stamp = pending_keyframes_.front().second;
+    pending_keyframes_.pop_front();
+    Eigen::Isometry3d odom;
+    if (!odometry_.at(stamp, &odom)) {
+      ++skipped_keyframes_;
+      ROS_WARN_THROTTLE(5.0, "bowg_pose_graph_node: keyframe %u at %.6f: no odometry that old "
+                        "(%zu keyframes skipped)", id, stamp, skipped_keyframes_);
+      continue;
+    }
+    if (node_stamps_.empty()) {
+      graph_->addPose(odom);
+    } else {
+      // The new node continues the corrected trajectory by the measured step.
+      const Eigen::Isometry3d step = node_odometry_.back().inverse() * odom;
+      const std::size_t n = graph_->addPose(graph_->pose(graph_->size() - 1) * step);
+      graph_->addOdometry(n - 1, n, step);
+    }
+    node_of_keyframe_[id] = node_stamps_.size();
+    node_stamps_.push_back(stamp);
+    node_odometry_.push_back(odom);
+    added = true;
+  }
+  if (addReadyLoops() || added) publish();
+}
+
+bool LivePoseGraph::addReadyLoops() {
+  bool added = false;
+  for (auto it = pending_loops_.begin(); it != pending_loops_.end();) {
+    auto q = node_of_keyframe_.find(it->query_id), m = node_of_keyframe_.find(it->match_id);
+    if (q == node_of_keyframe_.end() || m == node_of_keyframe_.end()) {
+      ++it;
+      continue;
+    }
+    pose_graph::LoopEdge edge;
+    edge.query = q->second;
+    edge.match = m->second;
+    if (use_loop_rotation_ && it->has_relative_pose) {
+      edge.has_rotation = true;
+      const geometry_msgs::Quaternion& o = it->relative_pose.pose.orientation;
+      edge.rotation = pose_graph::queryInMatchBody(Eigen::Quaterniond(o.w, o.x, o.y, o.z));
+    }
+    graph_->addLoop(edge);
+    ++loops_;
+    added = true;
+    it = pending_loops_.erase(it);
+  }
+  if (added) {
+    const pose_graph::SolveSummary s = graph_->optimize();
+    ROS_INFO("bowg_pose_graph_node: %zu keyframes, %zu loops: %s", graph_->size(), loops_,
+             s.report.c_str());
+  }
+  return added;
+}
+
+void LivePoseGraph::publish() {
+  nav_msgs::Path path, odometry_path;
+  path.header.frame_id = odometry_path.header.frame_id = map_frame_;
+  if (!node_stamps_.empty()) {
+    path.header.stamp = odometry_path.header.stamp = ros::Time(node_stamps_.back());
+  }
+  for (std::size_t i = 0; i < node_stamps_.size(); ++i) {
+    path.poses.push_back(toPoseStamped(graph_->pose(i), node_stamps_[i], map_frame_));
+    odometry_path.poses.push_back(toPoseStamped(node_odometry_[i], node_stamps_[i], map_frame_));
+  }
+  path_pub_.publish(path);
+  odometry_path_pub_.publish(odometry_path);
+}
+
+}  // namespace pose_graph_node
+}  // namespace bowg

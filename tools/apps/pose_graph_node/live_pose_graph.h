@@ -1,0 +1,65 @@
+// bowg_pose_graph_node: the live pose-graph example. It listens to the robot's
+// odometry, the loop detector's keyframes and loops, keeps one graph node per
+// keyframe (the odometry at the keyframe's stamp), and after every loop
+// re-optimises and publishes the corrected path. The ROS shell of
+// tools/libs/pose_graph.
+//
+//   odom (nav_msgs/Odometry)            -> OdometryBuffer
+//   keyframe_status (bowg_ros/KeyframeStatus) -> a node + an odometry edge
+//   loop_closure (bowg_ros/LoopClosure) -> a loop edge, optimise
+//   -> ~path (nav_msgs/Path, corrected), ~odometry_path (as measured)
+#pragma once
+
+#include <nav_msgs/Odometry.h>
+#include <nav_msgs/Path.h>
+#include <ros/ros.h>
+
+#include <Eigen/Geometry>
+#include <Eigen/StdVector>
+#include <deque>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "bowg_pose_graph/odometry_buffer.h"
+#include "bowg_pose_graph/pose_graph.h"
+#include "bowg_ros/KeyframeStatus.h"
+#include "bowg_ros/LoopClosure.h"
+
+namespace bowg {
+namespace pose_graph_node {
+
+class LivePoseGraph {
+ public:
+  LivePoseGraph(ros::NodeHandle& nh, ros::NodeHandle& pnh);
+
+ private:
+  void onOdometry(const nav_msgs::Odometry::ConstPtr& msg);
+  void onKeyframe(const bowg_ros::KeyframeStatus::ConstPtr& msg);
+  void onLoop(const bowg_ros::LoopClosure::ConstPtr& msg);
+  /// Turns the keyframes whose stamp the odometry covers into nodes.
+  void addCoveredKeyframes();
+  /// Adds the loops whose keyframes are nodes; true when one was added.
+  bool addReadyLoops();
+  void publish();
+  void restart(const std::string& why);
+
+  pose_graph::PoseGraphOptions options_;
+  bool use_loop_rotation_ = false;
+  std::string map_frame_;
+  pose_graph::OdometryBuffer odometry_;
+  std::unique_ptr<pose_graph::PoseGraph> graph_;
+  std::deque<std::pair<std::uint32_t, double>> pending_keyframes_;  // id, stamp
+  std::vector<bowg_ros::LoopClosure> pending_loops_;
+  std::map<std::uint32_t, std::size_t> node_of_keyframe_;
+  std::vector<double> node_stamps_;
+  std::vector<Eigen::Isometry3d, Eigen::aligned_allocator<Eigen::Isometry3d>> node_odometry_;
+  std::size_t loops_ = 0, skipped_keyframes_ = 0;
+
+  ros::Subscriber odom_sub_, keyframe_sub_, loop_sub_;
+  ros::Publisher path_pub_, odometry_path_pub_;
+};
+
+}  // namespace pose_graph_node
+}  // namespace bowg

@@ -1,0 +1,115 @@
+// bowg_pose_graph_node end to end (pose_graph_node.test): the test plays a
+// two-lap run as the robot and the loop detector would publish it (odometry,
+// keyframe statuses, loop closures at the revisits) and checks that the
+// published corrected path lies far closer to the truth than the odometry.
+#include <gtest/gtest.h>
+#include <nav_msgs/Odometry.h>
+#include <nav_msgs/Path.h>
+#include <ros/ros.h>
+
+#include <cmath>
+#include <mutex>
+
+#include "bowg_ros/KeyframeStatus.h"
+#include "bowg_ros/LoopClosure.h"
+#include "synthetic_circuit.h"
+
+namespace bowg {
+namespace {
+
+using tool_test::Pose2;
+
+struct LatestPath {
+  std::mutex mutex;
+  nav_msgs::Path path;
+  void on(const nav_msgs::Path::ConstPtr& m) {
+    std::lock_guard<std::mutex> lock(mutex);
+    path = *m;
+  }
+  std::size_t size() {
+    std::lock_guard<std::mutex> lock(mutex);
+    return path.poses.size();
+  }
+};
+
+double rmse(const nav_msgs::Path& path, const std::vector<Pose2>& truth) {
+  double sum = 0;
+  for (std::size_t i = 0; i < path.poses.size(); ++i) {
+    const auto& p = path.poses[i].pose.position;
+    sum += std::pow(p.x - truth[i].x, 2) + std::pow(p.y - truth[i].y, 2) + p.z * p.z;
+  }
+  return std::sqrt(sum / path.poses.size());
+}
+
+TEST(PoseGraphNode, LoopClosuresCorrectThePublishedPath) {
+  ros::NodeHandle nh;
+  ros::Publisher odom = nh.advertise<nav_msgs::Odometry>("/odom", 1000);
+  ros::Publisher status = nh.advertise<bowg_ros::KeyframeStatus>("/bowg/keyframe_status", 1000);
+  ros::Publisher loop = nh.advertise<bowg_ros::LoopClosure>("/loop_closure", 100);
+  LatestPath corrected, measured;
+  ros::Subscriber a = nh.subscribe("/pose_graph/path", 5, &LatestPath::on, &corrected);
+  ros::Subscriber b = nh.subscribe("/pose_graph/odometry_path", 5, &LatestPath::on, &measured);
+  const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(30);
+  while ((odom.getNumSubscribers() == 0 || status.getNumSubscribers() == 0 ||
+          loop.getNumSubscribers() == 0 || a.getNumPublishers() == 0) &&
+         ros::WallTime::now() < deadline) {
+    ros::WallDuration(0.05).sleep();
+  }
+  ASSERT_GT(loop.getNumSubscribers(), 0u) << "bowg_pose_graph_node is not listening";
+
+  std::vector<Pose2> truth, odometry;
+  tool_test::twoLapCircuit(&truth, &odometry);
+  const std::size_t n = truth.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const ros::Time stamp(1000.0 + 0.1 * i);
+    nav_msgs::Odometry o;
+    o.header.stamp = stamp;
+    o.header.frame_id = "odom";
+    o.pose.pose.position.x = odometry[i].x;
+    o.pose.pose.position.y = odometry[i].y;
+    o.pose.pose.orientation.z = std::sin(odometry[i].yaw / 2);
+    o.pose.pose.orientation.w = std::cos(odometry[i].yaw / 2);
+    odom.publish(o);
+    // The detector: a loop (published before the keyframe's status, as the
+    // nodelet does) at every 10th keyframe of lap 2.
+    if (i >= 310 && i % 10 == 0) {
+      bowg_ros::LoopClosure l;
+      l.header.stamp = l.query_stamp = stamp;
+      l.query_id = i;
+      l.match_id = i - 300;
+      l.match_stamp = ros::Time(1000.0 + 0.1 * (i - 300));
+      loop.publish(l);
+    }
+    bowg_ros::KeyframeStatus s;
+    s.header.stamp = stamp;
+    s.id = i;
+    status.publish(s);
+    ros::WallDuration(0.002).sleep();
+  }
+  // The last keyframe needs odometry after its stamp... it has one at it.
+  const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(30);
+  while ((corrected.size() < n || measured.size() < n) && ros::WallTime::now() < end) {
+    ros::WallDuration(0.05).sleep();
+  }
+  ros::WallDuration(0.5).sleep();  // the last optimisation's path
+  ASSERT_EQ(corrected.size(), n);
+  ASSERT_EQ(measured.size(), n);
+  std::lock_guard<std::mutex> l1(corrected.mutex), l2(measured.mutex);
+  EXPECT_EQ(corrected.path.header.frame_id, "map");
+  const double before = rmse(measured.path, truth), after = rmse(corrected.path, truth);
+  std::printf("[ MEASURED ] position RMSE: odometry %.3f m, corrected path %.3f m\n", before, after);
+  EXPECT_GT(before, 1.0);
+  EXPECT_LT(after, before / 3.0);
+}
+
+}  // namespace
+}  // namespace bowg
+
+int main(int argc, char** argv) {
+  testing::InitGoogleTest(&argc, argv);
+  ros::init(argc, argv, "bowg_pose_graph_node_rostest");
+  ros::NodeHandle nh;
+  ros::AsyncSpinner spinner(1);
+  spinner.start();
+  return RUN_ALL_TESTS();
+}
