@@ -17,10 +17,29 @@ fi
 
 jobs="${BOWG_JOBS:-$(nproc)}"
 cd "$ws"
-catkin_make -j"$jobs" \
-  -DCMAKE_BUILD_TYPE="${BOWG_BUILD_TYPE:-Release}" \
-  -DCMAKE_CXX_STANDARD=14 \
-  -DPYTHON_EXECUTABLE=/usr/bin/python3 \
-  -DPython3_EXECUTABLE=/usr/bin/python3 \
-  -DCATKIN_ENABLE_TESTING=ON \
-  "$@"
+build() {
+  catkin_make -j"$jobs" \
+    -DCMAKE_BUILD_TYPE="${BOWG_BUILD_TYPE:-Release}" \
+    -DCMAKE_CXX_STANDARD=14 \
+    -DPYTHON_EXECUTABLE=/usr/bin/python3 \
+    -DPython3_EXECUTABLE=/usr/bin/python3 \
+    -DCATKIN_ENABLE_TESTING=ON \
+    "$@"
+}
+if [ -z "${BOWG_BUILD_LOG:-}" ]; then
+  build "$@"
+else
+  # Quiet mode for the demo and the suite: the whole output goes to the log,
+  # the terminal sees one line per target built (progress, not silence), and
+  # the log's tail when the build fails.
+  set +e
+  build "$@" 2>&1 | tee "$BOWG_BUILD_LOG" |
+    { grep --line-buffered -E '^\[ *[0-9]+%\] Built target' || true; } | sed -u 's/^/   /'
+  status=${PIPESTATUS[0]}
+  set -e
+  if [ "$status" -ne 0 ]; then
+    tail -n 40 "$BOWG_BUILD_LOG" >&2
+    echo "build failed (log: $BOWG_BUILD_LOG)" >&2
+    exit 1
+  fi
+fi

@@ -35,9 +35,8 @@ case "$half" in tuning|test|all) ;; *) echo "BOWG_SUITE_HALF must be tuning, tes
 if [ "${BOWG_SKIP_DEPS:-0}" != 1 ]; then "$repo/scripts/install_deps.sh"; fi
 if [ "${BOWG_SKIP_BUILD:-0}" != 1 ]; then
   echo "== build (scripts/build.sh, workspace $ws; log ${TMPDIR:-/tmp}/bowg_suite_build.log)"
-  BOWG_WS="$ws" "$repo/scripts/build.sh" bowg_generate_pipe_sequence bowg_evaluate \
-    >"${TMPDIR:-/tmp}/bowg_suite_build.log" 2>&1 ||
-    { tail -n 40 "${TMPDIR:-/tmp}/bowg_suite_build.log" >&2; echo "suite: build failed" >&2; exit 1; }
+  BOWG_WS="$ws" BOWG_BUILD_LOG="${TMPDIR:-/tmp}/bowg_suite_build.log" \
+    "$repo/scripts/build.sh" bowg_generate_pipe_sequence bowg_evaluate
 fi
 tools="${BOWG_TOOLS_DIR:-$ws/devel/lib/bowg_ros}"
 generator_hash="$(sha256sum "$tools/bowg_generate_pipe_sequence" | cut -d' ' -f1)"
@@ -69,9 +68,12 @@ while IFS= read -r line; do
     if [ ! -s "$seq_dir/ground_truth.txt" ] || [ "$(cat "$seq_dir/generator.stamp" 2>/dev/null)" != "$stamp" ]; then
       echo "== $name: render ($args)"
       rm -rf "$seq_dir"; mkdir -p "$seq_dir"
+      t0=$(date +%s)
       "$tools/bowg_generate_pipe_sequence" --images "$seq_dir" --gt "$seq_dir/ground_truth.txt" \
         "${argv[@]}" >"$seq_dir/generate.log" 2>&1 || { tail -n 20 "$seq_dir/generate.log" >&2; exit 1; }
       echo "$stamp" >"$seq_dir/generator.stamp"
+      # The generator's closing summary (render time, revisits).
+      echo "   $(grep -E '^(render|ground truth):' "$seq_dir/generate.log" | sed 's/ ->.*//' | paste -sd ';' - | sed 's/;/; /g') ($(( $(date +%s) - t0 )) s)"
     fi
     # The generator's odometer: the recent-exclusion window in metres where
     # the configuration sets recent_exclusion_m (a pipe robot's tether or
@@ -84,10 +86,14 @@ while IFS= read -r line; do
     [ "$gt_spec" = none ] || gt=(--gt "$repo/$gt_spec")
   fi
   echo "== $name ($seq_half): bowg_evaluate --rows $rows"
+  t0=$(date +%s)
   "$tools/bowg_evaluate" --images "$images" --rate "$rate" "${gt[@]}" --vocabulary "$vocabulary" \
     --config "$config" --rows "$rows" --thresholds "$thresholds" --quiet \
     --output "$out/results/$name" >"$out/results/$name.log" 2>&1 ||
     { tail -n 20 "$out/results/$name.log" >&2; exit 1; }
+  # Its result table (one line per row) as it comes, not only at the end.
+  sed -n '/^row /,/^$/p' "$out/results/$name/summary.txt" | sed '/^$/d; s/^/   /'
+  echo "   ($(( $(date +%s) - t0 )) s)"
   ran+=("$name:$seq_half")
 done <"$list"
 

@@ -71,6 +71,8 @@ cv::Mat drawPrCurves(const std::vector<NamedCurve>& curves, const std::string& t
     if (y0 + rotated.rows <= height) rotated.copyTo(img(cv::Rect(2, y0, rotated.cols, rotated.rows)));
   }
   cv::putText(img, title, cv::Point(left, 26), font, 0.65, cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
+  cv::putText(img, "point labels: threshold", cv::Point(plot.x + plot.width - 170, 26), font, 0.45,
+              cv::Scalar(90, 90, 90), 1, cv::LINE_AA);
 
   // Distinct colours (BGR) for up to 8 methods, then repeat.
   const cv::Scalar colours[] = {{200, 80, 0},  {0, 140, 255}, {40, 160, 40}, {30, 30, 220},
@@ -80,8 +82,20 @@ cv::Mat drawPrCurves(const std::vector<NamedCurve>& curves, const std::string& t
     // Points in threshold order (descending) trace recall increasing.
     std::vector<cv::Point> pts;
     for (const PrPoint& p : curves[k].curve) pts.push_back(toPixel(p.recall, p.precision));
-    if (pts.size() == 1) cv::circle(img, pts[0], 4, colour, -1, cv::LINE_AA);
     if (pts.size() > 1) cv::polylines(img, pts, false, colour, 2, cv::LINE_AA);
+    // A marker per threshold of the sweep, labelled with its value, so the
+    // reader can pick an operating point (labels that would overlap the
+    // previous one are left out; every point keeps its marker).
+    cv::Point last_label(-1000, -1000);
+    for (std::size_t i = 0; i < pts.size(); ++i) {
+      cv::circle(img, pts[i], 4, colour, -1, cv::LINE_AA);
+      char label[24];
+      std::snprintf(label, sizeof label, "%g", curves[k].curve[i].threshold);
+      const cv::Point at = pts[i] + cv::Point(6, -6 - 12 * static_cast<int>(k % 3));
+      if (std::abs(at.x - last_label.x) < 28 && std::abs(at.y - last_label.y) < 12) continue;
+      cv::putText(img, label, at, font, 0.38, colour, 1, cv::LINE_AA);
+      last_label = at;
+    }
     // Legend in the lower-left corner of the plot (PR curves rarely go there).
     const int ly = plot.y + plot.height - 15 - 22 * static_cast<int>(curves.size() - 1 - k);
     cv::line(img, cv::Point(plot.x + 15, ly), cv::Point(plot.x + 45, ly), colour, 3, cv::LINE_AA);

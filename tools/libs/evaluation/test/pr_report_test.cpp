@@ -1,5 +1,6 @@
 #include "bowg_evaluation/pr_report.h"
 
+#include <cstdlib>
 #include <fstream>
 #include <string>
 
@@ -42,6 +43,34 @@ TEST(PrReportTest, PlotDrawsEachCurveInItsColourWhereItBelongs) {
   EXPECT_TRUE(second);
   EXPECT_NE(img.at<cv::Vec3b>(540, 770), first_colour);
   EXPECT_THROW(drawPrCurves(curves, "t", 100, 100), std::invalid_argument);
+}
+
+TEST(PrReportTest, EachThresholdHasAMarkerAndALabel) {
+  // One curve (the second colour, k = 1) from (recall 0.2, precision 1) to
+  // (0.9, 0.8): pixels (212, 40) and (709, 141); thresholds 1.2 and 0.7.
+  PrPoint a = point(1.0, 0.2), b = point(0.8, 0.9);
+  a.threshold = 1.2;
+  b.threshold = 0.7;
+  const std::vector<NamedCurve> curves = {{"first", {}}, {"second", {a, b}}};
+  const cv::Mat img = drawPrCurves(curves, "test");
+  const cv::Vec3b colour(0, 140, 255);
+  // Close to the colour (the labels are anti-aliased).
+  const auto has = [&](int x0, int x1, int y0, int y1) {
+    for (int y = y0; y <= y1; ++y)
+      for (int x = x0; x <= x1; ++x) {
+        const cv::Vec3b p = img.at<cv::Vec3b>(y, x);
+        if (std::abs(p[0] - colour[0]) < 50 && std::abs(p[1] - colour[1]) < 50 &&
+            std::abs(p[2] - colour[2]) < 50)
+          return true;
+      }
+    return false;
+  };
+  // The marker: 3 px off the 2 px line, across its direction (slope ~0.2).
+  EXPECT_TRUE(has(709, 711, 137, 138));
+  // The label "0.7": right of and above the point (6 px right, 18 px up for
+  // the second curve), not below it.
+  EXPECT_TRUE(has(715, 740, 110, 124));
+  EXPECT_FALSE(has(715, 740, 150, 170));
 }
 
 TEST(PrReportTest, WritesCsvAndPng) {
