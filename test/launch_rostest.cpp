@@ -88,12 +88,7 @@ bool imagesReachEveryNodelet(const std::string& image_topic,
     std_msgs::Header h;
     h.stamp = ros::Time(2000.0 + 0.1 * i);
     h.frame_id = kFrame;
-    sensor_msgs::CameraInfo info;
-    info.header = h;
-    info.width = kViewWidth;
-    info.height = kViewHeight;
-    info.K = {300, 0, kViewWidth / 2.0, 0, 300, kViewHeight / 2.0, 0, 0, 1};
-    info_pub.publish(info);
+    info_pub.publish(viewCameraInfo(h));
     image_pub.publish(cv_bridge::CvImage(h, "mono8",
                                          test::viewAt(world, (i % 40) * kStep, kViewWidth))
                           .toImageMsg());

@@ -51,6 +51,16 @@ inline std::string vocabularyPath() {
                                     "/bowg_rostest_vocabulary.bowgvoc");
 }
 
+/// The intrinsics of the synthetic views (f = 300 px, centred).
+inline sensor_msgs::CameraInfo viewCameraInfo(const std_msgs::Header& h) {
+  sensor_msgs::CameraInfo info;
+  info.header = h;
+  info.width = kViewWidth;
+  info.height = kViewHeight;
+  info.K = {300, 0, kViewWidth / 2.0, 0, 300, kViewHeight / 2.0, 0, 0, 1};
+  return info;
+}
+
 /// One nodelet instance under namespace `ns` (nodelet name ns/bowg), with
 /// its inputs and outputs wired to this test.
 class Detector {
@@ -99,12 +109,7 @@ class Detector {
     std_msgs::Header h;
     h.stamp = ros::Time(stamp);
     h.frame_id = kFrame;
-    sensor_msgs::CameraInfo info;
-    info.header = h;
-    info.width = kViewWidth;
-    info.height = kViewHeight;
-    info.K = {300, 0, kViewWidth / 2.0, 0, 300, kViewHeight / 2.0, 0, 0, 1};
-    info_pub_.publish(info);
+    info_pub_.publish(viewCameraInfo(h));
     image_pub_.publish(cv_bridge::CvImage(h, encoding, image).toImageMsg());
     // Like a camera: frames spaced in time, so the nodelet's subscriber
     // queue never overflows whatever the load of the test machine.

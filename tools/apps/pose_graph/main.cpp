@@ -15,6 +15,7 @@
 #include "bowg/core/atomic_file.h"
 #include "bowg/core/errors.h"
 #include "bowg_evaluation/metrics.h"
+#include "bowg_evaluation/text_file.h"
 #include "bowg_pose_graph/pose_graph.h"
 #include "bowg_pose_graph/trajectory_error.h"
 #include "bowg_pose_graph/trajectory_file.h"
@@ -24,14 +25,6 @@
 namespace bowg {
 namespace pose_graph_app {
 namespace {
-
-std::string readText(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw IoError("cannot read " + path);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 std::vector<Eigen::Vector3d> positions(const std::vector<pose_graph::FramePose>& poses) {
   std::vector<Eigen::Vector3d> out;
@@ -64,7 +57,7 @@ int run(const Args& a) {
     node_of_frame[odometry[i].frame] = i;
   }
   const std::vector<eval::Detection> detections =
-      eval::parseDetectionsCsv(readText(a.loops), a.loops);
+      eval::parseDetectionsCsv(eval::readTextFile(a.loops, "loop"), a.loops);
 
   pose_graph::PoseGraph graph(a.graph);
   for (const auto& p : odometry) graph.addPose(p.isometry());

@@ -1,7 +1,8 @@
 #include "bowg_evaluation/csv_cells.h"
 
 #include <cstdlib>
-#include <sstream>
+
+#include "bowg/core/errors.h"
 
 namespace bowg {
 namespace eval {
@@ -23,6 +24,24 @@ bool toDouble(const std::string& s, double* v) {
   char* end = nullptr;
   *v = std::strtod(s.c_str(), &end);
   return *end == '\0';
+}
+
+CsvLines::CsvLines(const std::string& text, const std::string& source)
+    : in_(text), source_(source) {}
+
+bool CsvLines::next(std::vector<std::string>* cells) {
+  std::string line;
+  while (std::getline(in_, line)) {
+    ++line_;
+    if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+    *cells = splitCsv(line);
+    return true;
+  }
+  return false;
+}
+
+void CsvLines::fail(const std::string& why) const {
+  throw FormatError(source_ + ":" + std::to_string(line_) + ": " + why);
 }
 
 }  // namespace eval

@@ -11,6 +11,7 @@
 
 #include "bowg/core/atomic_file.h"
 #include "bowg/core/errors.h"
+#include "bowg_evaluation/text_file.h"
 
 namespace bowg {
 namespace eval {
@@ -100,11 +101,7 @@ GroundTruth parseGroundTruth(const std::string& text, const std::string& source)
 }
 
 GroundTruth readGroundTruth(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw IoError("cannot read the ground-truth file " + path + ": " + std::strerror(errno));
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parseGroundTruth(text.str(), path);
+  return parseGroundTruth(readTextFile(path, "ground-truth"), path);
 }
 
 void writeGroundTruth(const std::string& path, const GroundTruth& gt, const std::string& header) {

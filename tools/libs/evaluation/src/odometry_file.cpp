@@ -8,23 +8,16 @@
 
 #include "bowg/core/errors.h"
 #include "bowg_evaluation/csv_cells.h"
+#include "bowg_evaluation/text_file.h"
 
 namespace bowg {
 namespace eval {
 
 std::vector<double> parseOdometry(const std::string& text, const std::string& source) {
-  std::istringstream in(text);
-  std::string line;
-  int line_no = 0;
-  const auto fail = [&](const std::string& why) {
-    throw FormatError(source + ":" + std::to_string(line_no) + ": " + why);
-  };
-  // Header.
-  while (std::getline(in, line)) {
-    ++line_no;
-    if (line.find_first_not_of(" \t\r") != std::string::npos) break;
-  }
-  const std::vector<std::string> header = splitCsv(line);
+  CsvLines csv(text, source);
+  const auto fail = [&](const std::string& why) { csv.fail(why); };
+  std::vector<std::string> header;
+  csv.next(&header);
   int frame_col = -1, odo_col = -1, distance_col = -1;
   for (std::size_t i = 0; i < header.size(); ++i) {
     if (header[i] == "frame") frame_col = static_cast<int>(i);
@@ -37,10 +30,8 @@ std::vector<double> parseOdometry(const std::string& text, const std::string& so
   }
   std::vector<double> odometer;
   double last = -1.0;
-  while (std::getline(in, line)) {
-    ++line_no;
-    if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
-    const std::vector<std::string> cells = splitCsv(line);
+  std::vector<std::string> cells;
+  while (csv.next(&cells)) {
     double frame = 0, value = 0;
     if (static_cast<int>(cells.size()) <= std::max(frame_col, odo_col)) fail("too few columns");
     if (!toDouble(cells[frame_col], &frame) || frame < 0 || frame != std::floor(frame) ||
@@ -61,11 +52,7 @@ std::vector<double> parseOdometry(const std::string& text, const std::string& so
 }
 
 std::vector<double> readOdometry(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw IoError("cannot read the odometry file " + path);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parseOdometry(text.str(), path);
+  return parseOdometry(readTextFile(path, "odometry"), path);
 }
 
 }  // namespace eval

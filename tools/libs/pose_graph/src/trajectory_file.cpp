@@ -6,6 +6,7 @@
 
 #include "bowg/core/errors.h"
 #include "bowg_evaluation/csv_cells.h"
+#include "bowg_evaluation/text_file.h"
 
 namespace bowg {
 namespace pose_graph {
@@ -19,19 +20,12 @@ Eigen::Isometry3d FramePose::isometry() const {
 }
 
 std::vector<FramePose> parseTrajectory(const std::string& text, const std::string& source) {
-  std::istringstream in(text);
-  std::string line;
-  int line_no = 0;
-  const auto fail = [&](const std::string& why) {
-    throw FormatError(source + ":" + std::to_string(line_no) + ": " + why);
-  };
-  while (std::getline(in, line)) {
-    ++line_no;
-    if (line.find_first_not_of(" \t\r") != std::string::npos) break;
-  }
+  eval::CsvLines csv(text, source);
+  const auto fail = [&](const std::string& why) { csv.fail(why); };
+  std::vector<std::string> header;
+  csv.next(&header);
   const char* const names[8] = {"frame", "x", "y", "z", "qx", "qy", "qz", "qw"};
   int column[8];
-  const std::vector<std::string> header = eval::splitCsv(line);
   for (int c = 0; c < 8; ++c) {
     column[c] = -1;
     for (std::size_t i = 0; i < header.size(); ++i) {
@@ -43,10 +37,8 @@ std::vector<FramePose> parseTrajectory(const std::string& text, const std::strin
     }
   }
   std::vector<FramePose> poses;
-  while (std::getline(in, line)) {
-    ++line_no;
-    if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
-    const std::vector<std::string> cells = eval::splitCsv(line);
+  std::vector<std::string> cells;
+  while (csv.next(&cells)) {
     double v[8];
     for (int c = 0; c < 8; ++c) {
       if (column[c] >= static_cast<int>(cells.size())) fail("too few columns");
@@ -74,11 +66,7 @@ std::vector<FramePose> parseTrajectory(const std::string& text, const std::strin
 }
 
 std::vector<FramePose> readTrajectory(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw IoError("cannot read the trajectory file " + path);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parseTrajectory(text.str(), path);
+  return parseTrajectory(eval::readTextFile(path, "trajectory"), path);
 }
 
 }  // namespace pose_graph
