@@ -1,4 +1,4 @@
-// The bag writer of bowg_generate_pipe_sequence (bag_output.h): the three
+// The bag writer of bowg_generate_pipe_sequence (bag_output.h): the four
 // messages of a frame and the image in each --bag-images format.
 #include "bag_output.h"
 
@@ -8,6 +8,7 @@
 #include <string>
 
 #include <geometry_msgs/PoseStamped.h>
+#include <nav_msgs/Odometry.h>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <sensor_msgs/CompressedImage.h>
@@ -108,6 +109,29 @@ void BagOutput::write(const pipe_sim::FrameState& f, const cv::Mat& image, const
   info_.header.stamp = stamp;
   bag_.write("/camera/camera_info", stamp, info_);
   bag_.write("/ground_truth/pose", stamp, poseOf(f, q, stamp));
+}
+
+void BagOutput::writeOdometry(const pipe_sim::FrameState& f, const pipe_sim::CameraPose& pose,
+                              const cv::Vec4d& q, const cv::Matx<double, 6, 6>& covariance) {
+  nav_msgs::Odometry odometry;
+  odometry.header.seq = f.index;
+  odometry.header.stamp = stampOf(f.stamp);
+  // "odom" coincides with "map" at frame 0 (the odometry starts at the true
+  // pose) and drifts away from it.
+  odometry.header.frame_id = "odom";
+  odometry.child_frame_id = "camera_link";
+  odometry.pose.pose.position.x = pose.position[0];
+  odometry.pose.pose.position.y = pose.position[1];
+  odometry.pose.pose.position.z = pose.position[2];
+  odometry.pose.pose.orientation.x = q[0];
+  odometry.pose.pose.orientation.y = q[1];
+  odometry.pose.pose.orientation.z = q[2];
+  odometry.pose.pose.orientation.w = q[3];
+  for (int r = 0; r < 6; ++r) {
+    for (int c = 0; c < 6; ++c) odometry.pose.covariance[6 * r + c] = covariance(r, c);
+  }
+  // The twist stays zero: the pose is what the pose-graph examples read.
+  bag_.write("/odom", odometry.header.stamp, odometry);
 }
 
 void BagOutput::finish() {

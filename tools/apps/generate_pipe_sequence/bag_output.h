@@ -1,6 +1,6 @@
 // The rosbag of bowg_generate_pipe_sequence (--bag): per frame the image in
-// the chosen format (--bag-images), the camera info and the ground-truth
-// pose. It is written to FILE.tmp and renamed to FILE once complete, so an
+// the chosen format (--bag-images), the camera info, the ground-truth pose
+// and the drifting odometry. It is written to FILE.tmp and renamed to FILE once complete, so an
 // interrupted run leaves no bag that looks finished.
 #pragma once
 
@@ -26,6 +26,11 @@ class BagOutput {
   /// Frame `f`'s image, camera info and pose (orientation quaternion `q`,
   /// x y z w), stamped f.stamp.
   void write(const pipe_sim::FrameState& f, const cv::Mat& image, const cv::Vec4d& q);
+
+  /// Frame `f`'s odometry on /odom: `pose` (orientation `q`, x y z w) with
+  /// `covariance` (x y z, rotation about x y z), stamped f.stamp.
+  void writeOdometry(const pipe_sim::FrameState& f, const pipe_sim::CameraPose& pose,
+                     const cv::Vec4d& q, const cv::Matx<double, 6, 6>& covariance);
 
   /// Closes the bag and renames it to its final path.
   void finish();

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "bowg_evaluation/command_line.h"
+#include "bowg_pipe_sim/random.h"
 #include "bowg_pipe_sim/route_programs.h"
 
 namespace bowg {
@@ -22,11 +23,12 @@ namespace generate_pipe_sequence_app {
 const char* const kUsage =
     "usage: bowg_generate_pipe_sequence (--bag FILE | --images DIR) [options]\n"
     "  --bag FILE             write a rosbag: /camera/image_raw (mono8), /camera/camera_info,\n"
-    "                         /ground_truth/pose (geometry_msgs/PoseStamped, frame map)\n"
+    "                         /ground_truth/pose (geometry_msgs/PoseStamped, frame map),\n"
+    "                         /odom (nav_msgs/Odometry, the drifting odometry, frame odom)\n"
     "  --bag-images FORMAT    the bag's images: mono8, bgr8 (the grey image in three\n"
     "                         channels) or jpeg (sensor_msgs/CompressedImage on\n"
     "                         /camera/image_raw/compressed, quality 95) [mono8]\n"
-    "  --images DIR           write frame_000000.png ... (and poses.csv) into DIR\n"
+    "  --images DIR           write frame_000000.png ... (and poses.csv, odometry.csv) into DIR\n"
     "  --gt FILE              ground-truth loops (default: <bag>_gt.txt or DIR/ground_truth.txt)\n"
     "  --route NAME           figure-eight, circuit, partial or no-revisit "
     "(docs/pipe_sequence.md)\n"
@@ -53,6 +55,13 @@ const char* const kUsage =
     "  --speed-variation V    speed * (1 + V * smooth noise in [-1, 1]) [0 = constant]\n"
     "  --speed-knot-seconds S seconds between the speed noise's knots [4]\n"
     "  --allow-reverse        back up where the speed is negative (no value; default: stop)\n"
+    "  --odometry-slip F      fraction of the distance the odometry over-reports (wheel slip,\n"
+    "                         tether stretch; negative: under-reports), in [-0.5, 0.5] [0.03]\n"
+    "  --odometry-slip-noise F\n"
+    "                         relative sigma of each frame's distance, >= 0 [0.02]\n"
+    "  --odometry-heading-drift DEG --odometry-roll-drift DEG\n"
+    "                         odometry's random walk of yaw and pitch / of roll, sigma in deg\n"
+    "                         per sqrt(metre driven), >= 0 [1 1]\n"
     "  --gt-distance M --gt-heading DEG --gt-exclude M\n"
     "                         ground-truth tolerances [0.15 30 3]\n"
     "  --compression C        bag compression: none, lz4 or bz2 (noisy images hardly\n"
@@ -100,9 +109,25 @@ bool setSequenceOption(pipe_sim::SequenceOptions* s, const std::string& flag,
   return true;
 }
 
+/// The odometry's options; false for any other flag.
+bool setOdometryOption(pipe_sim::OdometryNoise* o, const std::string& flag,
+                       const std::string& v) {
+  if (flag == "--odometry-slip") {
+    o->scale_bias = eval::numberArgument(flag, v);
+    if (!(o->scale_bias >= -0.5 && o->scale_bias <= 0.5)) {
+      throw std::invalid_argument("--odometry-slip must be in [-0.5, 0.5], not " + v);
+    }
+  } else if (flag == "--odometry-slip-noise") o->scale_noise = atLeast(flag, v, 0, true);
+  else if (flag == "--odometry-heading-drift") o->heading_drift_deg = atLeast(flag, v, 0, true);
+  else if (flag == "--odometry-roll-drift") o->roll_drift_deg = atLeast(flag, v, 0, true);
+  else return false;
+  return true;
+}
+
 /// One option with its value; `fx` keeps --fx until the image size is known.
 void setOption(Args* a, double* fx, const std::string& flag, const std::string& v) {
   if (setSequenceOption(&a->sequence, flag, v)) return;
+  if (setOdometryOption(&a->odometry, flag, v)) return;
   if (flag == "--bag") a->bag = v;
   else if (flag == "--images") a->images = v;
   else if (flag == "--gt") a->gt = v;
@@ -164,8 +189,12 @@ void checkCombinations(const Args& a) {
 }
 
 /// What follows from other options: the intrinsics from the image size (and
-/// --fx), the ground truth's path from the outputs.
+/// --fx), the ground truth's path from the outputs, the odometry's seed from
+/// --seed.
 void deriveDefaults(Args* a, double fx) {
+  // A stream of its own ("odom"): the odometry noise is not correlated with
+  // the roll, speed or texture drawn from the same --seed.
+  a->odometry.seed = pipe_sim::hashCombine(a->sequence.seed, 0x6f646f6dULL);
   a->camera.fx = a->camera.fy = fx > 0 ? fx : a->camera.width / 2.0;
   a->camera.cx = (a->camera.width - 1) / 2.0;
   a->camera.cy = (a->camera.height - 1) / 2.0;
@@ -206,6 +235,7 @@ Args parseArgs(int argc, char** argv) {
   a.texture.validate();
   a.camera.validate();
   a.gt_options.validate();
+  a.odometry.validate();
   return a;
 }
 

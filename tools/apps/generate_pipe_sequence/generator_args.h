@@ -1,11 +1,12 @@
 // bowg_generate_pipe_sequence's command line: the usage text, the options
 // and their parser (with the checks across options and the derived
-// defaults: focal length, principal point, ground-truth path).
+// defaults: focal length, principal point, ground-truth path, odometry seed).
 #pragma once
 
 #include <string>
 
 #include "bowg_evaluation/ground_truth.h"
+#include "bowg_pipe_sim/odometry_model.h"
 #include "bowg_pipe_sim/pipe_renderer.h"
 #include "bowg_pipe_sim/pipe_sequence.h"
 #include "bowg_pipe_sim/wall_texture.h"
@@ -24,6 +25,7 @@ struct Args {
   pipe_sim::WallTextureOptions texture;
   pipe_sim::CameraModel camera;
   eval::GroundTruthOptions gt_options;
+  pipe_sim::OdometryNoise odometry;  ///< its seed derived from --seed
 };
 
 /// Throws std::invalid_argument naming the flag (see kUsage); prints the

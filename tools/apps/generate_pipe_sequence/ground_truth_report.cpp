@@ -1,6 +1,6 @@
 // The ground-truth file of bowg_generate_pipe_sequence
 // (ground_truth_report.h): the roll differences of the matches, the frame
-// spacing line and the header text.
+// spacing and odometry lines and the header text.
 #include "ground_truth_report.h"
 
 #include <cmath>
@@ -38,6 +38,19 @@ std::string spacingLine(const pipe_sim::SequenceStats& stats) {
   return spacing;
 }
 
+std::string odometryLine(const pipe_sim::OdometryNoise& o, double drift_m, double driven_m) {
+  // Also as a share of the metres driven, the way odometers are specified
+  // (a one-frame sequence has driven nothing).
+  const double percent = driven_m > 0 ? 100 * drift_m / driven_m : 0;
+  char line[240];
+  std::snprintf(line, sizeof(line),
+                "end-point drift %.3f m (%.2f %% of the metres driven); slip %g, slip noise %g, "
+                "heading drift %g deg/sqrt(m), roll drift %g deg/sqrt(m)",
+                drift_m, percent, o.scale_bias, o.scale_noise, o.heading_drift_deg,
+                o.roll_drift_deg);
+  return line;
+}
+
 std::string headerText(const Args& args, std::size_t frames, const eval::GroundTruth& gt,
                        const GroundTruthSummary& summary) {
   const pipe_sim::SequenceOptions& s = args.sequence;
@@ -65,6 +78,7 @@ std::string headerText(const Args& args, std::size_t frames, const eval::GroundT
   }
   header << "\n"
          << summary.spacing << "\n"
+         << "odometry (odometry.csv, /odom): " << summary.odometry << "\n"
          << "tolerances: distance < " << args.gt_options.max_distance_m << " m, heading < "
          << args.gt_options.max_heading_deg << " deg, excluding the last "
          << args.gt_options.exclude_recent_m << " m driven\n"
@@ -77,12 +91,15 @@ std::string headerText(const Args& args, std::size_t frames, const eval::GroundT
 
 GroundTruthSummary writeSequenceGroundTruth(const Args& args,
                                             const std::vector<pipe_sim::FrameState>& frames,
-                                            const std::vector<eval::TravelPose>& travel) {
+                                            const std::vector<eval::TravelPose>& travel,
+                                            double odometry_drift_m) {
   const eval::GroundTruth gt = eval::groundTruthFromPoses(travel, args.gt_options);
   GroundTruthSummary summary;
   summary.positives = gt.positives();
   summary.median_roll_deg = medianRollDifference(frames, gt);
-  summary.spacing = spacingLine(pipe_sim::sequenceStats(frames));
+  const pipe_sim::SequenceStats stats = pipe_sim::sequenceStats(frames);
+  summary.spacing = spacingLine(stats);
+  summary.odometry = odometryLine(args.odometry, odometry_drift_m, stats.driven_m);
   eval::writeGroundTruth(args.gt, gt, headerText(args, frames.size(), gt, summary));
   return summary;
 }

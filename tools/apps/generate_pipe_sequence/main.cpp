@@ -12,11 +12,13 @@
 //       [--speed 0.2] [--rate 10] [--speed-variation 0] [--speed-knot-seconds 4]
 //       [--allow-reverse] [--gt-distance 0.15] [--gt-heading 30]
 //       [--gt-exclude 3] [--compression none|lz4|bz2]
+//       [--odometry-slip 0.03] [--odometry-slip-noise 0.02]
+//       [--odometry-heading-drift 1] [--odometry-roll-drift 1]
 //
 // The pieces: generator_args (command line), sequence_outputs (the bag via
-// bag_output, the PNG files, poses.csv), ground_truth_report (the loop
-// ground truth and its header); here the scene, the render loop and the
-// console summary.
+// bag_output, the PNG files, poses.csv, the drifting odometry),
+// ground_truth_report (the loop ground truth and its header); here the
+// scene, the render loop and the console summary.
 #include <algorithm>
 #include <chrono>
 #include <cstdint>
@@ -99,13 +101,15 @@ int run(int argc, char** argv) {
   SequenceOutputs outputs(args);
   const RenderTime time = renderFrames(renderer, frames, args.sequence.seed, &outputs);
   outputs.finish();
-  const GroundTruthSummary gt = writeSequenceGroundTruth(args, frames, outputs.travel());
+  const GroundTruthSummary gt =
+      writeSequenceGroundTruth(args, frames, outputs.travel(), outputs.odometryDrift());
 
   std::printf("frames: %zu, %s\n", frames.size(), gt.spacing.c_str());
   std::printf("render: %.1f ms mean, %.1f ms max per %dx%d frame\n", time.total_ms / frames.size(),
               time.max_ms, args.camera.width, args.camera.height);
   std::printf("ground truth: %d queries with a revisit, median roll difference %.1f deg -> %s\n",
               gt.positives, gt.median_roll_deg, args.gt.c_str());
+  std::printf("odometry: %s\n", gt.odometry.c_str());
   if (!args.bag.empty()) std::printf("bag: %s\n", args.bag.c_str());
   if (!args.images.empty()) std::printf("images: %s\n", args.images.c_str());
   return 0;

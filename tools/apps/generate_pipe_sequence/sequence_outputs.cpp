@@ -1,12 +1,14 @@
 // bowg_generate_pipe_sequence's per-frame outputs (sequence_outputs.h): the
-// image folder, the PNG of each frame, the rows of poses.csv and the poses
-// for the ground truth; the bag messages are bag_output's.
+// image folder, the PNG of each frame, the rows of poses.csv and
+// odometry.csv and the poses for the ground truth; the bag messages are
+// bag_output's.
 #include "sequence_outputs.h"
 
 #include <sys/stat.h>
 
 #include <cmath>
 #include <cstdio>
+#include <ostream>
 #include <stdexcept>
 #include <string>
 
@@ -35,6 +37,15 @@ void writeFramePng(const std::string& folder, int index, const cv::Mat& image) {
   }
 }
 
+/// frame,stamp,x,y,z,qx,qy,qz,qw: the columns poses.csv and odometry.csv
+/// share, so that their rows compare column by column.
+void writePoseColumns(std::ostream& out, const pipe_sim::FrameState& f,
+                      const pipe_sim::CameraPose& pose, const cv::Vec4d& q) {
+  out << f.index << "," << std::fixed << f.stamp << "," << pose.position[0] << ","
+      << pose.position[1] << "," << pose.position[2] << "," << q[0] << "," << q[1] << "," << q[2]
+      << "," << q[3];
+}
+
 eval::TravelPose travelPoseOf(const pipe_sim::FrameState& f) {
   eval::TravelPose tp;
   tp.x = f.pose.position[0];
@@ -51,7 +62,8 @@ eval::TravelPose travelPoseOf(const pipe_sim::FrameState& f) {
 
 }  // namespace
 
-SequenceOutputs::SequenceOutputs(const Args& args) : images_(args.images) {
+SequenceOutputs::SequenceOutputs(const Args& args)
+    : images_(args.images), odometry_(args.odometry) {
   if (!args.images.empty()) makeImageFolder(args.images);
   if (!args.bag.empty()) {
     bag_.reset(new BagOutput(args.bag, args.compression, args.bag_images, args.camera));
@@ -59,23 +71,31 @@ SequenceOutputs::SequenceOutputs(const Args& args) : images_(args.images) {
   // distance: position along the route; odometer: metres driven (they differ
   // once the robot backs up).
   poses_csv_ << "frame,stamp,x,y,z,qx,qy,qz,qw,roll_deg,exposure,distance,odometer\n";
+  odometry_csv_ << "frame,stamp,x,y,z,qx,qy,qz,qw\n";
 }
 
 void SequenceOutputs::add(const pipe_sim::FrameState& f, const cv::Mat& image) {
   const cv::Vec4d q = pipe_sim::rotationToQuaternion(f.pose.R_world_body);
   if (bag_) bag_->write(f, image, q);
   if (!images_.empty()) writeFramePng(images_, f.index, image);
-  poses_csv_ << f.index << "," << std::fixed << f.stamp << "," << f.pose.position[0] << ","
-             << f.pose.position[1] << "," << f.pose.position[2] << "," << q[0] << "," << q[1] << ","
-             << q[2] << "," << q[3] << "," << f.roll_rad * 180 / M_PI << "," << f.exposure << ","
-             << f.distance << "," << f.odometer << "\n";
+  writePoseColumns(poses_csv_, f, f.pose, q);
+  poses_csv_ << "," << f.roll_rad * 180 / M_PI << "," << f.exposure << "," << f.distance << ","
+             << f.odometer << "\n";
   travel_.push_back(travelPoseOf(f));
+
+  const pipe_sim::CameraPose odometry = odometry_.step(f.pose);
+  const cv::Vec4d q_odometry = pipe_sim::rotationToQuaternion(odometry.R_world_body);
+  if (bag_) bag_->writeOdometry(f, odometry, q_odometry, odometry_.covariance());
+  writePoseColumns(odometry_csv_, f, odometry, q_odometry);
+  odometry_csv_ << "\n";
+  odometry_drift_m_ = cv::norm(odometry.position - f.pose.position);
 }
 
 void SequenceOutputs::finish() {
   if (bag_) bag_->finish();
   if (!images_.empty()) {
     bowg::writeFileAtomically(images_ + "/poses.csv", poses_csv_.str());
+    bowg::writeFileAtomically(images_ + "/odometry.csv", odometry_csv_.str());
   }
 }
 

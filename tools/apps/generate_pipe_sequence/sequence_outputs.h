@@ -1,6 +1,7 @@
 // Everything bowg_generate_pipe_sequence writes frame by frame: the bag
-// (--bag), the PNG files and poses.csv (--images), and the driven poses the
-// ground truth is computed from afterwards.
+// (--bag), the PNG files, poses.csv and odometry.csv (--images), and the
+// driven poses the ground truth is computed from afterwards. The odometry is
+// simulated here, one frame after the other, from the true poses.
 #pragma once
 
 #include <memory>
@@ -12,6 +13,7 @@
 
 #include "bag_output.h"
 #include "bowg_evaluation/ground_truth.h"
+#include "bowg_pipe_sim/odometry_model.h"
 #include "bowg_pipe_sim/pipe_sequence.h"
 #include "generator_args.h"
 
@@ -23,20 +25,27 @@ class SequenceOutputs {
   /// Creates the image folder (--images) and opens the bag (--bag).
   explicit SequenceOutputs(const Args& args);
 
-  /// Frame `f`, rendered as `image`, into every output.
+  /// Frame `f`, rendered as `image`, into every output; frames in order
+  /// (the odometry integrates from one to the next).
   void add(const pipe_sim::FrameState& f, const cv::Mat& image);
 
-  /// Completes the bag and writes poses.csv.
+  /// Completes the bag and writes poses.csv and odometry.csv.
   void finish();
 
   /// The poses of the frames added so far, for eval::groundTruthFromPoses.
   const std::vector<eval::TravelPose>& travel() const { return travel_; }
 
+  /// Distance between the odometry's and the true position of the last
+  /// frame added (m).
+  double odometryDrift() const { return odometry_drift_m_; }
+
  private:
   std::string images_;  // --images, empty without
   std::unique_ptr<BagOutput> bag_;
-  std::ostringstream poses_csv_;
+  std::ostringstream poses_csv_, odometry_csv_;
   std::vector<eval::TravelPose> travel_;
+  pipe_sim::OdometrySimulator odometry_;
+  double odometry_drift_m_ = 0;
 };
 
 }  // namespace generate_pipe_sequence_app

@@ -1,0 +1,217 @@
+// End-to-end tests of bowg_generate_pipe_sequence's drifting odometry on
+// tiny sequences: odometry.csv has poses.csv's frames and stamps and starts
+// at the first true pose, equals poses.csv when every odometry noise is 0,
+// the bag carries the same poses on /odom, the summary reports the drift,
+// and bad odometry options are refused naming the flag.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <geometry_msgs/PoseStamped.h>
+#include <nav_msgs/Odometry.h>
+#include <rosbag/bag.h>
+#include <rosbag/view.h>
+
+#include "shell_command.h"
+
+namespace bowg {
+namespace {
+
+using tool_test::readAll;
+using tool_test::run;
+
+const std::string kDir = std::string(BOWG_TEST_OUTPUT_DIR) + "/generate_pipe_sequence_test";
+const std::string kGenerator = BOWG_GENERATOR_BIN;
+// 60 frames 10 cm apart: along the first pipe and round the first bend.
+const std::string kSequence = " --frames 60 --speed 1.0 --width 64 --height 48";
+const std::string kNoOdometryNoise =
+    " --odometry-slip 0 --odometry-slip-noise 0 --odometry-heading-drift 0"
+    " --odometry-roll-drift 0";
+
+using Table = std::vector<std::vector<std::string>>;
+
+/// The rows of a CSV file (header included), each split at the commas.
+Table readCsv(const std::string& path) {
+  Table rows;
+  std::istringstream lines(readAll(path));
+  std::string line;
+  while (std::getline(lines, line)) {
+    std::vector<std::string> fields;
+    std::istringstream cells(line);
+    std::string cell;
+    while (std::getline(cells, cell, ',')) fields.push_back(cell);
+    rows.push_back(fields);
+  }
+  return rows;
+}
+
+/// x y z qx qy qz qw of a data row (columns 2-8 of both files).
+std::vector<double> poseOf(const std::vector<std::string>& row) {
+  std::vector<double> pose;
+  for (int c = 2; c <= 8; ++c) pose.push_back(std::stod(row.at(c)));
+  return pose;
+}
+
+/// The largest difference of two x y z qx qy qz qw poses; q and -q are the
+/// same rotation.
+double poseDifference(const std::vector<double>& a, const std::vector<double>& b) {
+  double position = 0, same = 0, opposite = 0;
+  for (int i = 0; i < 3; ++i) position = std::max(position, std::abs(a[i] - b[i]));
+  for (int i = 3; i < 7; ++i) {
+    same = std::max(same, std::abs(a[i] - b[i]));
+    opposite = std::max(opposite, std::abs(a[i] + b[i]));
+  }
+  return std::max(position, std::min(same, opposite));
+}
+
+class GeneratePipeSequence : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    ASSERT_EQ(run("rm -rf " + kDir + " && mkdir -p " + kDir), 0);
+    // Default odometry noise, bag and images.
+    ASSERT_EQ(
+        run(kGenerator + kSequence + " --images " + kDir + "/drift --bag " + kDir + "/drift.bag",
+            kDir + "/drift.log"),
+        0)
+        << readAll(kDir + "/drift.log");
+    // Every odometry noise off.
+    ASSERT_EQ(run(kGenerator + kSequence + kNoOdometryNoise + " --images " + kDir + "/exact",
+                  kDir + "/exact.log"),
+              0)
+        << readAll(kDir + "/exact.log");
+  }
+};
+
+TEST_F(GeneratePipeSequence, OdometryCsvHasThePosesFramesAndStampsAndStartsAtTheTruth) {
+  const Table poses = readCsv(kDir + "/drift/poses.csv");
+  const Table odometry = readCsv(kDir + "/drift/odometry.csv");
+  ASSERT_EQ(poses.size(), 61u);  // header and 60 frames
+  ASSERT_EQ(odometry.size(), poses.size());
+  EXPECT_EQ(odometry[0],
+            (std::vector<std::string>{"frame", "stamp", "x", "y", "z", "qx", "qy", "qz", "qw"}));
+  for (std::size_t i = 1; i < poses.size(); ++i) {
+    SCOPED_TRACE(i);
+    ASSERT_EQ(odometry[i].size(), 9u);
+    EXPECT_EQ(odometry[i][0], poses[i][0]);  // frame
+    EXPECT_EQ(odometry[i][1], poses[i][1]);  // stamp
+  }
+  // The first row is the first pose, digit for digit; then the odometry
+  // drifts away (by centimetres after 6 m with the default noise).
+  EXPECT_EQ(std::vector<std::string>(odometry[1].begin() + 2, odometry[1].end()),
+            std::vector<std::string>(poses[1].begin() + 2, poses[1].begin() + 9));
+  EXPECT_GT(poseDifference(poseOf(odometry.back()), poseOf(poses.back())), 0.01);
+}
+
+TEST_F(GeneratePipeSequence, WithoutNoiseTheOdometryIsPosesCsv) {
+  const Table poses = readCsv(kDir + "/exact/poses.csv");
+  const Table odometry = readCsv(kDir + "/exact/odometry.csv");
+  ASSERT_EQ(poses.size(), 61u);
+  ASSERT_EQ(odometry.size(), poses.size());
+  for (std::size_t i = 1; i < poses.size(); ++i) {
+    SCOPED_TRACE(i);
+    EXPECT_EQ(odometry[i][0], poses[i][0]);
+    EXPECT_EQ(odometry[i][1], poses[i][1]);
+    // Both printed with 6 decimals: equal up to the rounding of the last.
+    EXPECT_LE(poseDifference(poseOf(odometry[i]), poseOf(poses[i])), 1.5e-6);
+  }
+  EXPECT_NE(readAll(kDir + "/exact.log").find("odometry: end-point drift 0.000 m (0.00 %"),
+            std::string::npos)
+      << readAll(kDir + "/exact.log");
+}
+
+TEST_F(GeneratePipeSequence, TheOdometryOptionsChangeNothingElse) {
+  EXPECT_EQ(readAll(kDir + "/drift/poses.csv"), readAll(kDir + "/exact/poses.csv"));
+  EXPECT_EQ(readAll(kDir + "/drift/frame_000059.png"), readAll(kDir + "/exact/frame_000059.png"));
+}
+
+TEST_F(GeneratePipeSequence, TheBagHasTheOdometryOnOdom) {
+  rosbag::Bag bag(kDir + "/drift.bag", rosbag::bagmode::Read);
+  std::vector<nav_msgs::Odometry> odometry;
+  for (const rosbag::MessageInstance& m : rosbag::View(bag, rosbag::TopicQuery("/odom"))) {
+    const nav_msgs::Odometry::ConstPtr msg = m.instantiate<nav_msgs::Odometry>();
+    ASSERT_TRUE(msg) << m.getDataType();
+    odometry.push_back(*msg);
+  }
+  std::vector<geometry_msgs::PoseStamped> truth;
+  for (const rosbag::MessageInstance& m :
+       rosbag::View(bag, rosbag::TopicQuery("/ground_truth/pose"))) {
+    truth.push_back(*m.instantiate<geometry_msgs::PoseStamped>());
+  }
+  const Table csv = readCsv(kDir + "/drift/odometry.csv");
+  ASSERT_EQ(odometry.size(), 60u);
+  ASSERT_EQ(truth.size(), odometry.size());
+  for (std::size_t i = 0; i < odometry.size(); ++i) {
+    SCOPED_TRACE(i);
+    const nav_msgs::Odometry& o = odometry[i];
+    EXPECT_EQ(o.header.seq, i);
+    EXPECT_EQ(o.header.stamp, truth[i].header.stamp);
+    EXPECT_EQ(o.header.frame_id, "odom");
+    EXPECT_EQ(o.child_frame_id, "camera_link");
+    const geometry_msgs::Pose& p = o.pose.pose;
+    EXPECT_LE(poseDifference({p.position.x, p.position.y, p.position.z, p.orientation.x,
+                              p.orientation.y, p.orientation.z, p.orientation.w},
+                             poseOf(csv[i + 1])),
+              1e-6);
+    // A covariance: symmetric, a variance on every axis once the rotation
+    // noise of the first step has moved the second (the default noise has
+    // all four kinds).
+    for (int r = 0; r < 6; ++r) {
+      EXPECT_GE(o.pose.covariance[7 * r], 0);
+      if (i > 1) EXPECT_GT(o.pose.covariance[7 * r], 0) << r;
+      for (int c = 0; c < 6; ++c) {
+        EXPECT_NEAR(o.pose.covariance[6 * r + c], o.pose.covariance[6 * c + r], 1e-12);
+      }
+    }
+  }
+  // Frame 0: the odometry starts at the true pose, with nothing to doubt.
+  EXPECT_EQ(odometry[0].pose.pose, truth[0].pose);
+  for (double v : odometry[0].pose.covariance) EXPECT_EQ(v, 0);
+}
+
+TEST_F(GeneratePipeSequence, TheSummaryAndTheGroundTruthHeaderReportTheDrift) {
+  const std::string log = readAll(kDir + "/drift.log");
+  EXPECT_NE(log.find("odometry: end-point drift "), std::string::npos) << log;
+  EXPECT_NE(log.find("% of the metres driven); slip 0.03, slip noise 0.02, heading drift 1"),
+            std::string::npos)
+      << log;
+  const std::string gt = readAll(kDir + "/drift_gt.txt");
+  EXPECT_NE(gt.find("# odometry (odometry.csv, /odom): end-point drift "), std::string::npos) << gt;
+}
+
+TEST_F(GeneratePipeSequence, TheSeedDecidesTheOdometryNoise) {
+  const std::string dir = kDir + "/seed2";
+  ASSERT_EQ(run(kGenerator + kSequence + " --seed 2 --images " + dir, kDir + "/seed2.log"), 0)
+      << readAll(kDir + "/seed2.log");
+  // Other poses too (the roll is the seed's); what matters is the drift:
+  // the odometry's offset from the truth differs.
+  const Table poses1 = readCsv(kDir + "/drift/poses.csv");
+  const Table odometry1 = readCsv(kDir + "/drift/odometry.csv");
+  const Table poses2 = readCsv(dir + "/poses.csv"), odometry2 = readCsv(dir + "/odometry.csv");
+  ASSERT_EQ(odometry2.size(), odometry1.size());
+  const double x1 = std::stod(odometry1.back()[2]) - std::stod(poses1.back()[2]);
+  const double x2 = std::stod(odometry2.back()[2]) - std::stod(poses2.back()[2]);
+  EXPECT_GT(std::abs(x1 - x2), 1e-4) << x1 << " " << x2;
+}
+
+TEST_F(GeneratePipeSequence, BadOdometryOptionsAreRefusedNamingTheFlag) {
+  const std::string log = kDir + "/bad.log";
+  const auto refused = [&](const std::string& options, const std::string& flag) {
+    EXPECT_NE(run(kGenerator + " --images " + kDir + "/bad --frames 2 " + options, log), 0)
+        << options;
+    EXPECT_NE(readAll(log).find(flag), std::string::npos) << options << ": " << readAll(log);
+  };
+  refused("--odometry-slip 0.6", "--odometry-slip must be in [-0.5, 0.5]");
+  refused("--odometry-slip -0.51", "--odometry-slip must be in [-0.5, 0.5]");
+  refused("--odometry-slip nan", "--odometry-slip");
+  refused("--odometry-slip-noise -0.1", "--odometry-slip-noise must be >= 0");
+  refused("--odometry-heading-drift -1", "--odometry-heading-drift must be >= 0");
+  refused("--odometry-roll-drift inf", "--odometry-roll-drift");
+  refused("--odometry-roll-drift", "--odometry-roll-drift: missing value");
+}
+
+}  // namespace
+}  // namespace bowg
