@@ -6,8 +6,9 @@
 # prints the trajectory error without and with the loops, with a plot.
 #   ./scripts/pose_graph_demo.sh            # outputs in <repo>/output/pose_graph
 # Environment: BOWG_WS (workspace), BOWG_JOBS, BOWG_SKIP_DEPS=1,
-# BOWG_POSE_GRAPH_DIR (outputs), BOWG_POSE_GRAPH_ARGS (generator options
-# instead of the default sequence's).
+# BOWG_SKIP_BUILD=1 with BOWG_TOOLS_DIR (prebuilt tools), BOWG_POSE_GRAPH_DIR
+# (outputs), BOWG_POSE_GRAPH_ARGS (generator options instead of the default
+# sequence's).
 set -euo pipefail
 repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 ws="${BOWG_WS:-$repo/.ws}"
@@ -20,10 +21,12 @@ if [ "${BOWG_SKIP_DEPS:-0}" != 1 ]; then
   echo "== dependencies (scripts/install_deps.sh)"
   "$repo/scripts/install_deps.sh"
 fi
-echo "== build (workspace $ws; log ${TMPDIR:-/tmp}/bowg_pose_graph_build.log)"
-BOWG_WS="$ws" BOWG_BUILD_LOG="${TMPDIR:-/tmp}/bowg_pose_graph_build.log" \
-  "$repo/scripts/build.sh" bowg_generate_pipe_sequence bowg_evaluate bowg_pose_graph
-tools="$ws/devel/lib/bowg_ros"
+if [ "${BOWG_SKIP_BUILD:-0}" != 1 ]; then
+  echo "== build (workspace $ws; log ${TMPDIR:-/tmp}/bowg_pose_graph_build.log)"
+  BOWG_WS="$ws" BOWG_BUILD_LOG="${TMPDIR:-/tmp}/bowg_pose_graph_build.log" \
+    "$repo/scripts/build.sh" bowg_generate_pipe_sequence bowg_evaluate bowg_pose_graph
+fi
+tools="${BOWG_TOOLS_DIR:-$ws/devel/lib/bowg_ros}"
 
 rm -rf "$out"; mkdir -p "$out"
 echo "== render ($args)"
