@@ -22,6 +22,7 @@
 #include <memory>
 #include <random>
 
+#include "bowg/core/resident_memory.h"
 #include "bowg/database/database.h"
 #include "bowg/detection/loop_detector.h"
 #include "bowg/vocabulary/vocabulary.h"
@@ -72,14 +73,6 @@ struct Pipeline {
 Pipeline& pipeline() {
   static Pipeline p;
   return p;
-}
-
-// The process's resident set (Linux /proc/self/statm), 0 where unknown.
-double residentBytes() {
-  std::ifstream statm("/proc/self/statm");
-  double pages_total = 0, pages_resident = 0;
-  if (!(statm >> pages_total >> pages_resident)) return 0;
-  return pages_resident * static_cast<double>(::sysconf(_SC_PAGESIZE));
 }
 
 void BM_Pipeline(benchmark::State& state) {

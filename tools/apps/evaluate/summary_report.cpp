@@ -104,6 +104,26 @@ void timeVersusSize(const Args& a, const std::vector<RowResult>& results, std::o
   writeFileAtomically(a.output + "/time_vs_database_size.csv", size_csv.str());
 }
 
+// Resident set and the engine's estimate as the database grows (the first
+// row is alone on a fresh heap; later rows reuse what earlier ones freed).
+void memoryVersusSize(const Args& a, const std::vector<RowResult>& results, std::ostream& s) {
+  std::ostringstream csv;
+  csv << "method,keyframes,resident_mb,estimate_mb\n";
+  s << "\nmemory growth per keyframe (resident set / Database::memoryBytes(), kB):\n";
+  for (std::size_t i = 0; i < results.size(); ++i) {
+    const DetectorRun& run = results[i].run;
+    for (const MemorySample& m : run.memory) {
+      csv << run.name << "," << m.keyframes << "," << fmt("%.3f", m.resident_bytes / 1048576.0)
+          << "," << fmt("%.3f", m.estimate_bytes / 1048576.0) << "\n";
+    }
+    const MemoryGrowth g = memoryGrowth(run);
+    s << run.name << ": " << fmt("%.1f", g.resident_per_keyframe / 1024.0) << " / "
+      << fmt("%.1f", g.estimate_per_keyframe / 1024.0) << " over " << g.keyframes << " keyframes"
+      << (i == 0 ? "" : " (heap reused from the rows before)") << "\n";
+  }
+  writeFileAtomically(a.output + "/memory_vs_database_size.csv", csv.str());
+}
+
 }  // namespace
 
 void writeReport(const Args& a, const std::vector<RowResult>& results, std::size_t frames,
@@ -125,6 +145,7 @@ void writeReport(const Args& a, const std::vector<RowResult>& results, std::size
   }
   timingTable(results, s);
   timeVersusSize(a, results, s);
+  memoryVersusSize(a, results, s);
   if (gt) {
     std::vector<NamedCurve> curves;
     for (const RowResult& r : results) curves.push_back({r.run.name, r.curve});
@@ -133,7 +154,7 @@ void writeReport(const Args& a, const std::vector<RowResult>& results, std::size
                 "BoWG precision-recall (" + std::to_string(frames) + " frames)");
   }
   s << "\noutputs in " << a.output << ": summary.txt, keyframes_<row>.csv, detections_<row>.csv, "
-    << "time_vs_database_size.csv" << (gt ? ", pr_curves.csv, pr_curve.png" : "") << "\n";
+    << "time_vs_database_size.csv, memory_vs_database_size.csv" << (gt ? ", pr_curves.csv, pr_curve.png" : "") << "\n";
   writeFileAtomically(a.output + "/summary.txt", s.str());
   std::cout << s.str();
 }

@@ -6,6 +6,9 @@
 #include <limits>
 #include <sstream>
 
+#include "bowg/core/resident_memory.h"
+#include "bowg/database/database.h"
+
 namespace bowg {
 namespace eval {
 
@@ -26,6 +29,12 @@ DetectorRun runDetector(std::shared_ptr<const Vocabulary> vocabulary,
   run.options = options;
   LoopDetector detector(std::move(vocabulary), options);
   run.keyframes.reserve(frames.size());
+  run.memory.reserve(frames.size() / kMemorySampleEvery + 2);
+  const auto sample = [&]() {
+    run.memory.push_back({detector.database().size(), residentBytes(),
+                          static_cast<double>(detector.database().memoryBytes())});
+  };
+  sample();
   const auto t0 = std::chrono::steady_clock::now();
   for (std::size_t i = 0; i < frames.size(); ++i) {
     const KeyframeInput input = toKeyframeInput(frames[i]);
@@ -50,9 +59,12 @@ DetectorRun runDetector(std::shared_ptr<const Vocabulary> vocabulary,
     k.timings = r.timings;
     run.keyframes.push_back(k);
     if (progress) progress(i + 1, frames.size());
+    // Outside the timings above; memoryBytes() walks the whole database.
+    if ((i + 1) % kMemorySampleEvery == 0 && i + 1 < frames.size()) sample();
   }
   run.wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (!frames.empty()) sample();
   return run;
 }
 
@@ -127,6 +139,18 @@ std::vector<TimeVsSize> timeVersusDatabaseSize(const DetectorRun& run, int bins)
     out.push_back(row);
   }
   return out;
+}
+
+MemoryGrowth memoryGrowth(const DetectorRun& run) {
+  MemoryGrowth g;
+  if (run.memory.size() < 2) return g;
+  const MemorySample& a = run.memory.front();
+  const MemorySample& b = run.memory.back();
+  g.keyframes = b.keyframes - a.keyframes;
+  if (g.keyframes == 0) return g;
+  g.resident_per_keyframe = (b.resident_bytes - a.resident_bytes) / g.keyframes;
+  g.estimate_per_keyframe = (b.estimate_bytes - a.estimate_bytes) / g.keyframes;
+  return g;
 }
 
 }  // namespace eval

@@ -15,6 +15,16 @@ namespace {
 
 using testing_data::syntheticSequence;
 
+TEST(DetectorRunTest, MemoryGrowthIsPerKeyframeBetweenTheFirstAndLastSample) {
+  DetectorRun run;
+  EXPECT_EQ(memoryGrowth(run).keyframes, 0u);  // no samples
+  run.memory = {{0, 1000.0, 100.0}, {1000, 51000.0, 40100.0}, {2500, 126000.0, 100100.0}};
+  const MemoryGrowth g = memoryGrowth(run);
+  EXPECT_EQ(g.keyframes, 2500u);
+  EXPECT_DOUBLE_EQ(g.resident_per_keyframe, 50.0);  // (126000 - 1000) / 2500
+  EXPECT_DOUBLE_EQ(g.estimate_per_keyframe, 40.0);  // (100100 - 100) / 2500
+}
+
 TEST(DetectorRunTest, OneRecordPerKeyframeAndConsistentOutputs) {
   auto vocabulary = std::make_shared<const Vocabulary>(testing::makeSyntheticVocabulary(6, 3));
   LoopDetectorOptions options;
@@ -30,6 +40,16 @@ TEST(DetectorRunTest, OneRecordPerKeyframeAndConsistentOutputs) {
                                       });
   ASSERT_EQ(run.keyframes.size(), 60u);
   EXPECT_EQ(progress_calls, 60u);
+  // Memory: before the first keyframe and after the last (60 < 1000).
+  ASSERT_EQ(run.memory.size(), 2u);
+  EXPECT_EQ(run.memory[0].keyframes, 0u);
+  EXPECT_EQ(run.memory[1].keyframes, 60u);
+  EXPECT_GT(run.memory[1].estimate_bytes, run.memory[0].estimate_bytes);
+  EXPECT_GT(run.memory[0].resident_bytes, 0.0);  // Linux
+  const MemoryGrowth growth = memoryGrowth(run);
+  EXPECT_EQ(growth.keyframes, 60u);
+  EXPECT_DOUBLE_EQ(growth.estimate_per_keyframe,
+                   (run.memory[1].estimate_bytes - run.memory[0].estimate_bytes) / 60);
   std::size_t loops = 0;
   for (const KeyframeRecord& k : run.keyframes) {
     EXPECT_EQ(k.database_size, static_cast<std::size_t>(k.frame));

@@ -51,12 +51,26 @@ struct KeyframeRecord {
   double feature_ms = 0;
 };
 
+/// Memory while the database grows: the process's resident set and the
+/// engine's estimate (Database::memoryBytes()) at `keyframes` entries.
+struct MemorySample {
+  std::size_t keyframes = 0;
+  double resident_bytes = 0;
+  double estimate_bytes = 0;
+};
+
 struct DetectorRun {
   std::string name;
   LoopDetectorOptions options;
   std::vector<KeyframeRecord> keyframes;
   double wall_seconds = 0;
+  /// Before the first keyframe, every kMemorySampleEvery keyframes and after
+  /// the last. The resident set is the process's: meaningful for a run alone
+  /// in the process on a fresh heap (a later run reuses what earlier ones
+  /// freed).
+  std::vector<MemorySample> memory;
 };
+constexpr std::size_t kMemorySampleEvery = 1000;
 
 /// Called after every keyframe with (done, total).
 using ProgressCallback = std::function<void(std::size_t, std::size_t)>;
@@ -93,6 +107,14 @@ struct TimeVsSize {
   TimingStats total_ms;
 };
 std::vector<TimeVsSize> timeVersusDatabaseSize(const DetectorRun& run, int bins);
+
+/// Growth per keyframe between the first and the last memory sample:
+/// resident set and estimate (bytes per keyframe; 0 without two samples).
+struct MemoryGrowth {
+  std::size_t keyframes = 0;
+  double resident_per_keyframe = 0, estimate_per_keyframe = 0;
+};
+MemoryGrowth memoryGrowth(const DetectorRun& run);
 
 }  // namespace eval
 }  // namespace bowg
