@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Builds bowg_ros in a catkin workspace that this script creates itself
 # (default: <repo>/.ws, override with BOWG_WS), so nobody has to set one up by
-# hand. Extra arguments go to catkin_make (e.g. run_tests, or -DFOO=bar).
+# hand. Extra arguments go to catkin_make (e.g. run_tests, install, or
+# -DFOO=bar).
 set -euo pipefail
 repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 ws="${BOWG_WS:-$repo/.ws}"

@@ -25,6 +25,10 @@ bash "$repo/scripts/build.sh" tests
 # catkin_test_results below.
 bash "$repo/scripts/build.sh" run_tests -j1 || true
 
+echo "== install space: catkin_make install, then roslaunch and rosrun from it alone"
+install_failed=0
+bash "$repo/scripts/check_install_space.sh" || install_failed=1
+
 echo "== AddressSanitizer/UBSan: file loaders and persistence on corrupt input"
 asan_dir="$ws/asan"
 cmake -S "$repo/engine" -B "$asan_dir" -DBOWG_SANITIZE=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo \
@@ -63,8 +67,11 @@ if [ -z "$tests" ] || [ "$tests" -eq 0 ]; then
   echo "FAIL: no test ran" >&2
   exit 1
 fi
-bad=$(( ${errors:-0} + ${failures:-0} + asan_failed + fuzz_failed ))
-echo "$(( tests + ${#asan_tests[@]} + 1 - bad - ${skipped:-0} )) passed, $bad failed, ${skipped:-0} skipped"
+# Besides catkin's tests: the asan tests, the fuzz run and the install space
+# check.
+bad=$(( ${errors:-0} + ${failures:-0} + asan_failed + fuzz_failed + install_failed ))
+echo "$(( tests + ${#asan_tests[@]} + 2 - bad - ${skipped:-0} )) passed, $bad failed, ${skipped:-0} skipped"
 [ "$asan_failed" -eq 0 ] || exit 1
 [ "$fuzz_failed" -eq 0 ] || exit 1
+[ "$install_failed" -eq 0 ] || exit 1
 exit $status
