@@ -42,8 +42,11 @@ set_target_properties(bowg_engine PROPERTIES POSITION_INDEPENDENT_CODE ON)
 # Engine tests: one gtest executable per test/*_test.cpp. Test data written by
 # the tests themselves goes to the build tree; shared third-party data is read
 # from BOWG_SHARED_DATA_DIR (tests skip with a message where it is absent).
-# REALPATH: the catkin workspace reaches the repository through a symlink.
-get_filename_component(BOWG_REPO_DIR ${BOWG_ENGINE_DIR}/.. REALPATH)
+# REALPATH: the catkin workspace reaches the repository through links, one per
+# top-level entry (scripts/link_package.sh), so resolve engine/ itself before
+# going up: "engine/.." would stay in the workspace.
+get_filename_component(BOWG_REPO_DIR ${BOWG_ENGINE_DIR} REALPATH)
+get_filename_component(BOWG_REPO_DIR ${BOWG_REPO_DIR} DIRECTORY)
 set(BOWG_SHARED_DATA_DIR_DEFAULT ${BOWG_REPO_DIR}/../shared/data)
 # Not a cache variable: a stale cached path (e.g. from a workspace that moved)
 # would silently turn the data tests into skips. Override with -D.

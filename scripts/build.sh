@@ -11,10 +11,9 @@ ws="${BOWG_WS:-$repo/.ws}"
 # ROS modules, so put the system interpreter first.
 export PATH="/usr/bin:$PATH"
 
-mkdir -p "$ws/src"
-if [ ! -e "$ws/src/bowg_ros" ]; then
-  ln -s "$repo" "$ws/src/bowg_ros"
-fi
+# The package in the workspace: a directory of links into the repository
+# (scripts/link_package.sh explains why), synced on every build.
+bash "$repo/scripts/link_package.sh" "$ws"
 
 jobs="${BOWG_JOBS:-$(nproc)}"
 cd "$ws"
