@@ -5,9 +5,21 @@
 # catkin gtests so that catkin_test_results sees them.
 set(BOWG_ENGINE_DIR ${CMAKE_CURRENT_LIST_DIR})
 
-option(BOWG_ENGINE_TESTS "Build the engine's gtests" ON)
-option(BOWG_ENGINE_BENCHMARKS "Build the Google Benchmark programs" ON)
-option(BOWG_SANITIZE "Build with AddressSanitizer and UBSan" OFF)
+# Build switches. The standalone build (engine/CMakeLists.txt) declares them
+# as cache options. In the catkin package they are plain variables with the
+# same defaults: catkin_make configures all packages of a workspace as one
+# CMake project with one cache, where an option not named after the package
+# would be global to all of them. A -D on the command line still sets them in
+# either build.
+if(NOT DEFINED BOWG_ENGINE_TESTS)
+  set(BOWG_ENGINE_TESTS ON)
+endif()
+if(NOT DEFINED BOWG_ENGINE_BENCHMARKS)
+  set(BOWG_ENGINE_BENCHMARKS ON)
+endif()
+if(NOT DEFINED BOWG_SANITIZE)
+  set(BOWG_SANITIZE OFF)
+endif()
 
 find_package(OpenCV REQUIRED COMPONENTS core imgproc imgcodecs features2d calib3d)
 find_package(ZLIB REQUIRED)
