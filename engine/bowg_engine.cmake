@@ -5,9 +5,21 @@
 # catkin gtests so that catkin_test_results sees them.
 set(BOWG_ENGINE_DIR ${CMAKE_CURRENT_LIST_DIR})
 
-option(BOWG_ENGINE_TESTS "Build the engine's gtests" ON)
-option(BOWG_ENGINE_BENCHMARKS "Build the Google Benchmark programs" ON)
-option(BOWG_SANITIZE "Build with AddressSanitizer and UBSan" OFF)
+# Build switches. The standalone build (engine/CMakeLists.txt) declares them
+# as cache options. In the catkin package they are plain variables with the
+# same defaults: catkin_make configures all packages of a workspace as one
+# CMake project with one cache, where an option not named after the package
+# would be global to all of them. A -D on the command line still sets them in
+# either build.
+if(NOT DEFINED BOWG_ENGINE_TESTS)
+  set(BOWG_ENGINE_TESTS ON)
+endif()
+if(NOT DEFINED BOWG_ENGINE_BENCHMARKS)
+  set(BOWG_ENGINE_BENCHMARKS ON)
+endif()
+if(NOT DEFINED BOWG_SANITIZE)
+  set(BOWG_SANITIZE OFF)
+endif()
 
 find_package(OpenCV REQUIRED COMPONENTS core imgproc imgcodecs features2d calib3d)
 find_package(ZLIB REQUIRED)
@@ -42,8 +54,11 @@ set_target_properties(bowg_engine PROPERTIES POSITION_INDEPENDENT_CODE ON)
 # Engine tests: one gtest executable per test/*_test.cpp. Test data written by
 # the tests themselves goes to the build tree; shared third-party data is read
 # from BOWG_SHARED_DATA_DIR (tests skip with a message where it is absent).
-# REALPATH: the catkin workspace reaches the repository through a symlink.
-get_filename_component(BOWG_REPO_DIR ${BOWG_ENGINE_DIR}/.. REALPATH)
+# REALPATH: the catkin workspace reaches the repository through links, one per
+# top-level entry (scripts/link_package.sh), so resolve engine/ itself before
+# going up: "engine/.." would stay in the workspace.
+get_filename_component(BOWG_REPO_DIR ${BOWG_ENGINE_DIR} REALPATH)
+get_filename_component(BOWG_REPO_DIR ${BOWG_REPO_DIR} DIRECTORY)
 set(BOWG_SHARED_DATA_DIR_DEFAULT ${BOWG_REPO_DIR}/../shared/data)
 # Not a cache variable: a stale cached path (e.g. from a workspace that moved)
 # would silently turn the data tests into skips. Override with -D.

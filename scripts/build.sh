@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Builds bowg_ros in a catkin workspace that this script creates itself
 # (default: <repo>/.ws, override with BOWG_WS), so nobody has to set one up by
-# hand. Extra arguments go to catkin_make (e.g. run_tests, or -DFOO=bar).
+# hand. Extra arguments go to catkin_make (e.g. run_tests, install, or
+# -DFOO=bar).
 set -euo pipefail
 repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 ws="${BOWG_WS:-$repo/.ws}"
@@ -10,10 +11,9 @@ ws="${BOWG_WS:-$repo/.ws}"
 # ROS modules, so put the system interpreter first.
 export PATH="/usr/bin:$PATH"
 
-mkdir -p "$ws/src"
-if [ ! -e "$ws/src/bowg_ros" ]; then
-  ln -s "$repo" "$ws/src/bowg_ros"
-fi
+# The package in the workspace: a directory of links into the repository
+# (scripts/link_package.sh explains why), synced on every build.
+bash "$repo/scripts/link_package.sh" "$ws"
 
 jobs="${BOWG_JOBS:-$(nproc)}"
 cd "$ws"
