@@ -6,6 +6,8 @@
 #include <cmath>
 #include <cstring>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "bowg/core/errors.h"
 #include "core/resealed_checksum.h"
@@ -113,11 +115,12 @@ TEST(DatabaseIo, ForgedContentIsRefusedByName) {
   a.save(path);
   const std::string good = readBytes(path);
   ASSERT_EQ(good[60], 1) << "entry 0's intrinsics-valid byte";
-  const auto forge = [&](const std::string& name, std::size_t at, const void* value,
-                         std::size_t bytes, const std::string& why) {
+  // Several byte edits at once (offset, bytes), then the checksum resealed.
+  using Edits = std::vector<std::pair<std::size_t, std::string>>;
+  const auto forgeAll = [&](const std::string& name, const Edits& edits, const std::string& why) {
     SCOPED_TRACE(name);
     std::string b = good;
-    std::memcpy(&b[at], value, bytes);
+    for (const auto& e : edits) b.replace(e.first, e.second.size(), e.second);
     testing::resealChecksum(&b);
     const std::string forged = outPath(name);
     writeBytes(forged, b);
@@ -131,6 +134,13 @@ TEST(DatabaseIo, ForgedContentIsRefusedByName) {
     }
     EXPECT_EQ(c.database().size(), 0u);
     std::remove(forged.c_str());
+  };
+  const auto bytesOf = [](const void* value, std::size_t bytes) {
+    return std::string(static_cast<const char*>(value), bytes);
+  };
+  const auto forge = [&](const std::string& name, std::size_t at, const void* value,
+                         std::size_t bytes, const std::string& why) {
+    forgeAll(name, {{at, bytesOf(value, bytes)}}, why);
   };
   const double nan = std::nan(""), negative = -5.0;
   const float fnan = std::nanf("");
@@ -163,6 +173,52 @@ TEST(DatabaseIo, ForgedContentIsRefusedByName) {
   const std::size_t chain = good.size() - (8 + 4 + 16 + 4 + 52 * 8 + 8 + 4 + 50 * 24 + 4);
   const std::int32_t forever = 0x7fffffff;
   forge("chain.bowgdb", chain, &forever, 4, "chain length 2147483647 outside 0..52");
+  // Entry 0's word groups follow its BoW vector: u32 count, (u32, f64) pairs.
+  const std::size_t groups = bow + 4 + words * 12;
+  std::uint32_t group_count = 0;
+  std::memcpy(&group_count, &good[groups], 4);
+  ASSERT_GT(group_count, 0u);
+  forge("group.bowgdb", groups + 4 + 4, &negative, 8, "entry 0 has a word-group weight <= 0");
+  // From the end: checksum 8, hypothesis count 4 (none stored), the two
+  // query odometers 16, the odometers (u32 + 52 x 8), the missed-query
+  // counters 8, the normalisers (u32 + 50 x 24).
+  const std::size_t query_odometers = good.size() - (8 + 4 + 16);
+  const std::size_t odometers = query_odometers - 52 * 8;
+  const std::size_t missed = odometers - 4 - 8;
+  const std::size_t normalisers = missed - 50 * 24;
+  forge("query_odometer.bowgdb", query_odometers, &negative, 8,
+        "a stored query odometer is invalid");
+  forge("odometer.bowgdb", odometers + 8, &negative, 8,
+        "entry 1 has a negative, non-finite or decreasing odometer");
+  const std::int32_t many = 1000;
+  forge("missed.bowgdb", missed, &many, 4, "missed-query count outside 0..52");
+  forge("normaliser.bowgdb", normalisers, &negative, 8, "a stored normaliser is negative or not finite");
+  forge("normaliser_nan.bowgdb", normalisers + 16, &nan, 8,
+        "a stored normaliser is negative or not finite");
+  // The chain's island (32 bytes: first, last, score, best entry, best
+  // score, size) precedes its length; a chain that ends beyond the database:
+  const std::size_t island = chain - 32;
+  const std::int32_t three = 3;
+  const std::uint32_t beyond = 1000, zero = 0;
+  forgeAll("island.bowgdb",
+           {{chain, bytesOf(&three, 4)}, {island, bytesOf(&zero, 4)},
+            {island + 4, bytesOf(&beyond, 4)}, {island + 16, bytesOf(&zero, 4)}},
+           "a temporal island lies outside the database");
+  // The previous scores precede the island: u32 count k, then k (u32 entry,
+  // f64 score) pairs. Find k from the layout, then point the last one past
+  // the database, or make its score negative.
+  std::size_t k = 0;
+  for (; k <= 52; ++k) {
+    std::uint32_t stored = 0;
+    std::memcpy(&stored, &good[island - 12 * k - 4], 4);
+    if (stored == k) break;
+  }
+  ASSERT_LE(k, 52u) << "previous scores not found";
+  ASSERT_GT(k, 0u);
+  const std::size_t last_score = island - 12;
+  forge("previous_entry.bowgdb", last_score, &beyond, 4,
+        "previous scores refer to an entry beyond the database");
+  forge("previous_score.bowgdb", last_score + 4, &negative, 8, "a previous score is negative");
   std::remove(path.c_str());
 }
 
