@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include <tf2_eigen/tf2_eigen.h>
+
 #include "bowg_pose_graph/camera_frames.h"
 
 namespace bowg {
@@ -47,6 +49,8 @@ LivePoseGraph::LivePoseGraph(ros::NodeHandle& nh, ros::NodeHandle& pnh) {
   pnh.param("robust_sigmas", options_.loop_robust_sigmas, options_.loop_robust_sigmas);
   pnh.param("use_loop_rotation", use_loop_rotation_, false);
   pnh.param<std::string>("map_frame", map_frame_, "map");
+  pnh.param<std::string>("base_frame", base_frame_, "");
+  if (!base_frame_.empty()) tf_listener_.reset(new tf2_ros::TransformListener(tf_buffer_));
   double horizon = 120.0;
   pnh.param("odometry_horizon", horizon, horizon);
   options_.validate();  // throws: main() reports and exits
@@ -136,14 +140,16 @@ bool LivePoseGraph::addReadyLoops() {
       ++it;
       continue;
     }
-    pose_graph::LoopEdge edge;
+    Eigen::Isometry3d camera = pose_graph::cameraAtBodyOrigin();
+    if (!base_frame_.empty() && !cameraMounting(*it, &camera)) {
+      ++it;  // kept until TF has the mounting
+      continue;
+    }
+    const geometry_msgs::Quaternion& o = it->relative_pose.pose.orientation;
+    pose_graph::LoopEdge edge = pose_graph::loopEdgeForCamera(
+        Eigen::Quaterniond(o.w, o.x, o.y, o.z), camera, use_loop_rotation_ && it->has_relative_pose);
     edge.query = q->second;
     edge.match = m->second;
-    if (use_loop_rotation_ && it->has_relative_pose) {
-      edge.has_rotation = true;
-      const geometry_msgs::Quaternion& o = it->relative_pose.pose.orientation;
-      edge.rotation = pose_graph::queryInMatchBody(Eigen::Quaterniond(o.w, o.x, o.y, o.z));
-    }
     graph_->addLoop(edge);
     ++loops_;
     added = true;
@@ -155,6 +161,23 @@ bool LivePoseGraph::addReadyLoops() {
              s.report.c_str());
   }
   return added;
+}
+
+bool LivePoseGraph::cameraMounting(const bowg_ros::LoopClosure& loop,
+                                   Eigen::Isometry3d* body_T_optical) {
+  try {
+    // The mounting is static: the latest transform.
+    *body_T_optical = tf2::transformToEigen(
+        tf_buffer_.lookupTransform(base_frame_, loop.header.frame_id, ros::Time(0)));
+    return true;
+  } catch (const tf2::TransformException& e) {
+    ROS_WARN_THROTTLE(5.0,
+                      "bowg_pose_graph_node: loop %u -> %u waits for the transform %s <- '%s' "
+                      "(%s); %zu loops wait",
+                      loop.query_id, loop.match_id, base_frame_.c_str(),
+                      loop.header.frame_id.c_str(), e.what(), pending_loops_.size());
+    return false;
+  }
 }
 
 void LivePoseGraph::publish() {

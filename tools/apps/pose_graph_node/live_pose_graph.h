@@ -8,11 +8,19 @@
 //   keyframe_status (bowg_ros/KeyframeStatus) -> a node + an odometry edge
 //   loop_closure (bowg_ros/LoopClosure) -> a loop edge, optimise
 //   -> ~path (nav_msgs/Path, corrected), ~odometry_path (as measured)
+//
+// The camera's mounting: with ~base_frame (the odometry's body frame) each
+// loop looks up base_frame <- the loop's optical frame in TF, so that "the
+// cameras stood at the same place" becomes the right constraint between the
+// bodies; without it the camera is taken to sit at the body's origin looking
+// along its x axis.
 #pragma once
 
 #include <nav_msgs/Odometry.h>
 #include <nav_msgs/Path.h>
 #include <ros/ros.h>
+#include <tf2_ros/buffer.h>
+#include <tf2_ros/transform_listener.h>
 
 #include <Eigen/Geometry>
 #include <Eigen/StdVector>
@@ -42,12 +50,17 @@ class LivePoseGraph {
   void addCoveredKeyframes();
   /// Adds the loops whose keyframes are nodes; true when one was added.
   bool addReadyLoops();
+  /// body_T_optical of the loop's camera; false (logged; the loop waits)
+  /// when TF lacks it.
+  bool cameraMounting(const bowg_ros::LoopClosure& loop, Eigen::Isometry3d* body_T_optical);
   void publish();
   void restart(const std::string& why);
 
   pose_graph::PoseGraphOptions options_;
   bool use_loop_rotation_ = false;
-  std::string map_frame_;
+  std::string map_frame_, base_frame_;
+  tf2_ros::Buffer tf_buffer_;
+  std::unique_ptr<tf2_ros::TransformListener> tf_listener_;
   pose_graph::OdometryBuffer odometry_;
   std::unique_ptr<pose_graph::PoseGraph> graph_;
   std::deque<std::pair<std::uint32_t, double>> pending_keyframes_;  // id, stamp

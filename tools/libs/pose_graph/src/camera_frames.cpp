@@ -10,11 +10,40 @@ Eigen::Matrix3d bodyFromOptical() {
   return m;
 }
 
-Eigen::Quaterniond queryInMatchBody(const Eigen::Quaterniond& query_R_match_optical) {
-  const Eigen::Matrix3d c = bodyFromOptical();
+namespace {
+
+Eigen::Quaterniond inBody(const Eigen::Quaterniond& query_R_match_optical,
+                          const Eigen::Matrix3d& body_R_optical) {
   // Inverse (match_R_query), then conjugated into body axes.
-  return Eigen::Quaterniond(c * query_R_match_optical.normalized().toRotationMatrix().transpose() *
-                            c.transpose());
+  return Eigen::Quaterniond(body_R_optical *
+                            query_R_match_optical.normalized().toRotationMatrix().transpose() *
+                            body_R_optical.transpose());
+}
+
+}  // namespace
+
+Eigen::Quaterniond queryInMatchBody(const Eigen::Quaterniond& query_R_match_optical) {
+  return inBody(query_R_match_optical, bodyFromOptical());
+}
+
+Eigen::Isometry3d cameraAtBodyOrigin() {
+  Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
+  t.linear() = bodyFromOptical();
+  return t;
+}
+
+LoopEdge loopEdgeForCamera(const Eigen::Quaterniond& query_R_match_optical,
+                           const Eigen::Isometry3d& body_T_optical, bool use_rotation) {
+  LoopEdge edge;
+  const Eigen::Vector3d offset = body_T_optical.translation();
+  if (use_rotation) {
+    edge.has_rotation = true;
+    edge.rotation = inBody(query_R_match_optical, body_T_optical.rotation());
+    edge.position = offset - edge.rotation * offset;
+  } else {
+    edge.extra_position_sigma = offset.norm();
+  }
+  return edge;
 }
 
 }  // namespace pose_graph

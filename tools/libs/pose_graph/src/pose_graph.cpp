@@ -105,6 +105,9 @@ void PoseGraph::addOdometry(std::size_t from, std::size_t to, const Eigen::Isome
 }
 
 void PoseGraph::addLoop(const LoopEdge& loop) {
+  if (!(loop.extra_position_sigma >= 0.0) || !std::isfinite(loop.extra_position_sigma)) {
+    throw std::invalid_argument("pose graph: a loop's extra position sigma must be finite and >= 0");
+  }
   if (loop.query >= size() || loop.match >= size() || loop.query == loop.match) {
     throw std::invalid_argument("pose graph: loop edge " + std::to_string(loop.query) + " -> " +
                                 std::to_string(loop.match) + " does not join two nodes of " +
@@ -142,17 +145,18 @@ SolveSummary PoseGraph::optimize() {
     return a > 0 ? new ceres::CauchyLoss(a) : nullptr;
   };
   for (const LoopEdge& l : loops_) {
+    const double sigma_p = std::hypot(options_.loop_position_sigma, l.extra_position_sigma);
     // The match is the older keyframe: the query's pose is expressed in it.
     if (l.has_rotation) {
       auto* cost = new ceres::AutoDiffCostFunction<RelativePoseError, 6, 3, 4, 3, 4>(
-          new RelativePoseError{l.position, l.rotation, 1.0 / options_.loop_position_sigma,
+          new RelativePoseError{l.position, l.rotation, 1.0 / sigma_p,
                                 1.0 / (options_.loop_rotation_sigma_deg * kDegree)});
       problem.AddResidualBlock(cost, loss(), positions_[l.match].data(),
                                rotations_[l.match].coeffs().data(), positions_[l.query].data(),
                                rotations_[l.query].coeffs().data());
     } else {
       auto* cost = new ceres::AutoDiffCostFunction<RelativePositionError, 3, 3, 4, 3>(
-          new RelativePositionError{l.position, 1.0 / options_.loop_position_sigma});
+          new RelativePositionError{l.position, 1.0 / sigma_p});
       problem.AddResidualBlock(cost, loss(), positions_[l.match].data(),
                                rotations_[l.match].coeffs().data(), positions_[l.query].data());
     }

@@ -31,6 +31,33 @@ TEST(CameraFrames, ARollAboutTheViewingAxisIsARollAboutBodyX) {
   EXPECT_TRUE(p.axis().isApprox(Eigen::Vector3d::UnitZ(), 1e-12));
 }
 
+TEST(CameraFrames, ACameraAheadOfTheBodyPutsTheQueryBodyWhereItsCameraStood) {
+  // The camera 0.5 m ahead of the body (optical axes as usual); the query
+  // passed the place facing the other way: 180 deg about the optical y
+  // (down) axis is 180 deg of yaw. Cameras at one place, bodies 0.5 m behind
+  // each: the query body lies 1 m ahead of the match body, along its x.
+  Eigen::Isometry3d camera = cameraAtBodyOrigin();
+  camera.translation() = Eigen::Vector3d(0.5, 0, 0);
+  const Eigen::Quaterniond half_turn(Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitY()));
+  const LoopEdge e = loopEdgeForCamera(half_turn, camera, true);
+  EXPECT_TRUE(e.has_rotation);
+  EXPECT_TRUE(e.position.isApprox(Eigen::Vector3d(1, 0, 0), 1e-12)) << e.position.transpose();
+  EXPECT_NEAR(Eigen::AngleAxisd(e.rotation).angle(), M_PI, 1e-12);
+  EXPECT_EQ(e.extra_position_sigma, 0.0);
+  // Same heading: the bodies coincide.
+  const LoopEdge same = loopEdgeForCamera(Eigen::Quaterniond::Identity(), camera, true);
+  EXPECT_TRUE(same.position.isZero(1e-12));
+  // Rotation unknown: position 0, give or take the 0.5 m offset.
+  const LoopEdge free = loopEdgeForCamera(half_turn, camera, false);
+  EXPECT_FALSE(free.has_rotation);
+  EXPECT_TRUE(free.position.isZero());
+  EXPECT_DOUBLE_EQ(free.extra_position_sigma, 0.5);
+  // At the body's origin, the edge's rotation is queryInMatchBody's.
+  const LoopEdge origin = loopEdgeForCamera(half_turn, cameraAtBodyOrigin(), true);
+  EXPECT_TRUE(origin.rotation.isApprox(queryInMatchBody(half_turn), 1e-12));
+  EXPECT_TRUE(origin.position.isZero(1e-12));
+}
+
 }  // namespace
 }  // namespace pose_graph
 }  // namespace bowg

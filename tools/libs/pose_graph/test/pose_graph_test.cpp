@@ -74,6 +74,30 @@ TEST(PoseGraph, ALoopSpreadsTheDisagreementAsLeastSquaresDo) {
   EXPECT_NEAR(g.pose(2).translation().y(), 0, 1e-6);
 }
 
+TEST(PoseGraph, ALoopsExtraSigmaWeakensItInQuadrature) {
+  // As above, with the loop's sigma sqrt(0.1^2 + 0.1^2) = 0.1 sqrt(2): its
+  // weight halves. Minimise (x1 - 1)^2 + (x2 - x1 - 1)^2 + x2^2 / 2:
+  // x2 = 2 x1 and 1.5 x2 - x1 = 1 -> x1 = 1/2, x2 = 1.
+  PoseGraphOptions o = quadratic();
+  o.odometry_rotation_floor_deg = 1e-4;
+  PoseGraph g(o);
+  g.addPose(pose(0, 0, 0));
+  g.addPose(pose(1, 0, 0));
+  g.addPose(pose(2, 0, 0));
+  g.addOdometry(0, 1, pose(1, 0, 0));
+  g.addOdometry(1, 2, pose(1, 0, 0));
+  LoopEdge loop;
+  loop.query = 2;
+  loop.match = 0;
+  loop.extra_position_sigma = 0.1;
+  g.addLoop(loop);
+  g.optimize();
+  EXPECT_NEAR(g.pose(1).translation().x(), 0.5, 1e-6);
+  EXPECT_NEAR(g.pose(2).translation().x(), 1.0, 1e-6);
+  loop.extra_position_sigma = -1;
+  EXPECT_THROW(g.addLoop(loop), std::invalid_argument);
+}
+
 TEST(PoseGraph, ALoopWithARotationSharesTheYawError) {
   // Odometry says +10 deg of yaw, the loop (same sigma) 0 deg: the optimum
   // of (2 sin((a - 10)/2))^2 + (2 sin(a/2))^2 is a = 5 deg.

@@ -6,6 +6,8 @@
 
 #include <Eigen/Geometry>
 
+#include "bowg_pose_graph/pose_graph.h"
+
 namespace bowg {
 namespace pose_graph {
 
@@ -17,6 +19,19 @@ Eigen::Matrix3d bodyFromOptical();
 /// camera's rotation in the query's optical frame (camera at the body's
 /// origin and looking along its x axis).
 Eigen::Quaterniond queryInMatchBody(const Eigen::Quaterniond& query_R_match_optical);
+
+/// The loop edge (without its node indices) for a camera mounted at
+/// `body_T_optical` (its optical frame in the body frame, e.g. from TF): the
+/// two cameras stood at the same place, so with the rotation R of the query
+/// body in the match body, the query body lies at t - R t in the match body
+/// (t: the camera's offset). With `use_rotation` false the rotation is not
+/// constrained; the position is then 0, give or take the offset's length
+/// (extra_position_sigma = |t|).
+LoopEdge loopEdgeForCamera(const Eigen::Quaterniond& query_R_match_optical,
+                           const Eigen::Isometry3d& body_T_optical, bool use_rotation);
+
+/// body_T_optical of a camera at the body's origin looking along body x.
+Eigen::Isometry3d cameraAtBodyOrigin();
 
 }  // namespace pose_graph
 }  // namespace bowg

@@ -47,6 +47,10 @@ struct LoopEdge {
   bool has_rotation = false;
   /// Rotation of the query body in the match body frame (when has_rotation).
   Eigen::Quaterniond rotation = Eigen::Quaterniond::Identity();
+  /// Added (in quadrature) to loop_position_sigma: what the edge does not
+  /// know of the position, such as a camera's offset from the body when the
+  /// rotation is unknown (m, >= 0).
+  double extra_position_sigma = 0;
   EIGEN_MAKE_ALIGNED_OPERATOR_NEW
 };
 
