@@ -50,6 +50,8 @@ LivePoseGraph::LivePoseGraph(ros::NodeHandle& nh, ros::NodeHandle& pnh) {
   pnh.param("use_loop_rotation", use_loop_rotation_, false);
   pnh.param<std::string>("map_frame", map_frame_, "map");
   pnh.param<std::string>("base_frame", base_frame_, "");
+  pnh.param("publish_tf", publish_tf_, true);
+  if (publish_tf_) tf_broadcaster_.reset(new tf2_ros::TransformBroadcaster);
   if (!base_frame_.empty()) tf_listener_.reset(new tf2_ros::TransformListener(tf_buffer_));
   double horizon = 120.0;
   pnh.param("odometry_horizon", horizon, horizon);
@@ -78,9 +80,11 @@ void LivePoseGraph::restart(const std::string& why) {
   node_stamps_.clear();
   node_odometry_.clear();
   loops_ = 0;
+  last_tf_stamp_ = -1;
 }
 
 void LivePoseGraph::onOdometry(const nav_msgs::Odometry::ConstPtr& msg) {
+  odom_frame_ = msg->header.frame_id;
   odometry_.add(msg->header.stamp.toSec(), toIsometry(msg->pose.pose));
   addCoveredKeyframes();
 }
@@ -192,6 +196,20 @@ void LivePoseGraph::publish() {
   }
   path_pub_.publish(path);
   odometry_path_pub_.publish(odometry_path);
+  // map -> odom: what turns the latest keyframe's odometry pose into its
+  // corrected one (REP-105; identity until a loop moves the graph). Once per
+  // keyframe: TF refuses a second transform at the same stamp.
+  if (tf_broadcaster_ && !node_stamps_.empty() && !odom_frame_.empty() &&
+      node_stamps_.back() > last_tf_stamp_) {
+    last_tf_stamp_ = node_stamps_.back();
+    const Eigen::Isometry3d map_T_odom =
+        graph_->pose(node_stamps_.size() - 1) * node_odometry_.back().inverse();
+    geometry_msgs::TransformStamped t = tf2::eigenToTransform(map_T_odom);
+    t.header.stamp = ros::Time(node_stamps_.back());
+    t.header.frame_id = map_frame_;
+    t.child_frame_id = odom_frame_;
+    tf_broadcaster_->sendTransform(t);
+  }
 }
 
 }  // namespace pose_graph_node

@@ -7,7 +7,8 @@
 //   odom (nav_msgs/Odometry)            -> OdometryBuffer
 //   keyframe_status (bowg_ros/KeyframeStatus) -> a node + an odometry edge
 //   loop_closure (bowg_ros/LoopClosure) -> a loop edge, optimise
-//   -> ~path (nav_msgs/Path, corrected), ~odometry_path (as measured)
+//   -> ~path (nav_msgs/Path, corrected), ~odometry_path (as measured),
+//      TF map -> odom (REP-105: the correction of the odometry's drift)
 //
 // The camera's mounting: with ~base_frame (the odometry's body frame) each
 // loop looks up base_frame <- the loop's optical frame in TF, so that "the
@@ -20,6 +21,7 @@
 #include <nav_msgs/Path.h>
 #include <ros/ros.h>
 #include <tf2_ros/buffer.h>
+#include <tf2_ros/transform_broadcaster.h>
 #include <tf2_ros/transform_listener.h>
 
 #include <Eigen/Geometry>
@@ -59,6 +61,10 @@ class LivePoseGraph {
   pose_graph::PoseGraphOptions options_;
   bool use_loop_rotation_ = false;
   std::string map_frame_, base_frame_;
+  std::string odom_frame_;  ///< the odometry's frame_id, for map -> odom
+  bool publish_tf_ = true;
+  double last_tf_stamp_ = -1;
+  std::unique_ptr<tf2_ros::TransformBroadcaster> tf_broadcaster_;
   tf2_ros::Buffer tf_buffer_;
   std::unique_ptr<tf2_ros::TransformListener> tf_listener_;
   pose_graph::OdometryBuffer odometry_;

@@ -7,6 +7,8 @@
 #include <nav_msgs/Path.h>
 #include <ros/ros.h>
 #include <tf2_ros/static_transform_broadcaster.h>
+#include <tf2_eigen/tf2_eigen.h>
+#include <tf2_ros/transform_listener.h>
 
 #include <cmath>
 #include <mutex>
@@ -57,6 +59,8 @@ TEST(PoseGraphNode, LoopClosuresCorrectThePublishedPath) {
   mounting.transform.rotation.z = -0.5;
   mounting.transform.rotation.w = 0.5;
   tf.sendTransform(mounting);
+  tf2_ros::Buffer tf_buffer;
+  tf2_ros::TransformListener tf_listener(tf_buffer);
   LatestPath mounted, no_tf;
   ros::Subscriber c = nh.subscribe("/pose_graph_mounted/path", 5, &LatestPath::on, &mounted);
   ros::Subscriber d = nh.subscribe("/pose_graph_no_tf/path", 5, &LatestPath::on, &no_tf);
@@ -121,6 +125,17 @@ TEST(PoseGraphNode, LoopClosuresCorrectThePublishedPath) {
   std::printf("[ MEASURED ] position RMSE: odometry %.3f m, corrected path %.3f m\n", before, after);
   EXPECT_GT(before, 1.0);
   EXPECT_LT(after, before / 3.0);
+  // map -> odom (from /pose_graph; the other two do not publish it): applied
+  // to the last keyframe's odometry pose it gives its corrected pose.
+  const ros::Time last_stamp = measured.path.poses.back().header.stamp;
+  ASSERT_TRUE(tf_buffer.canTransform("map", "odom", last_stamp, ros::Duration(5.0)));
+  const Eigen::Isometry3d map_T_odom =
+      tf2::transformToEigen(tf_buffer.lookupTransform("map", "odom", last_stamp));
+  Eigen::Isometry3d odom_T_base, map_T_base;
+  tf2::fromMsg(measured.path.poses.back().pose, odom_T_base);
+  tf2::fromMsg(corrected.path.poses.back().pose, map_T_base);
+  EXPECT_TRUE((map_T_odom * odom_T_base).isApprox(map_T_base, 1e-6));
+  EXPECT_GT(map_T_odom.translation().norm(), 1.0);  // the drift it undoes
   // With the mounting from TF: the loops hold the bodies together within
   // hypot(0.15, 0.1) m; without the transform they wait, and the path is
   // the odometry's.
