@@ -61,9 +61,13 @@ LivePoseGraph::LivePoseGraph(ros::NodeHandle& nh, ros::NodeHandle& pnh) {
 
   path_pub_ = pnh.advertise<nav_msgs::Path>("path", 1, true);
   odometry_path_pub_ = pnh.advertise<nav_msgs::Path>("odometry_path", 1, true);
-  odom_sub_ = nh.subscribe("odom", 200, &LivePoseGraph::onOdometry, this);
-  keyframe_sub_ = nh.subscribe("keyframe_status", 200, &LivePoseGraph::onKeyframe, this);
-  loop_sub_ = nh.subscribe("loop_closure", 50, &LivePoseGraph::onLoop, this);
+  loops_pub_ = pnh.advertise<visualization_msgs::Marker>("loops", 1, true);
+  // Deep queues: an optimisation after a loop takes a while on a long run,
+  // and a keyframe lost here is a hole in the graph (counted below if it
+  // happens anyway).
+  odom_sub_ = nh.subscribe("odom", 5000, &LivePoseGraph::onOdometry, this);
+  keyframe_sub_ = nh.subscribe("keyframe_status", 5000, &LivePoseGraph::onKeyframe, this);
+  loop_sub_ = nh.subscribe("loop_closure", 1000, &LivePoseGraph::onLoop, this);
   ROS_INFO("bowg_pose_graph_node: odometry %s, keyframes %s, loops %s -> %s, %s",
            odom_sub_.getTopic().c_str(), keyframe_sub_.getTopic().c_str(),
            loop_sub_.getTopic().c_str(), path_pub_.getTopic().c_str(),
@@ -79,6 +83,7 @@ void LivePoseGraph::restart(const std::string& why) {
   node_of_keyframe_.clear();
   node_stamps_.clear();
   node_odometry_.clear();
+  loop_nodes_.clear();
   loops_ = 0;
   last_tf_stamp_ = -1;
 }
@@ -96,6 +101,12 @@ void LivePoseGraph::onKeyframe(const bowg_ros::KeyframeStatus::ConstPtr& msg) {
                                  : pending_keyframes_.back().first;
   if ((!node_of_keyframe_.empty() || !pending_keyframes_.empty()) && msg->id <= last) {
     restart("keyframe id " + std::to_string(msg->id) + " after " + std::to_string(last));
+  }
+  if ((!node_of_keyframe_.empty() || !pending_keyframes_.empty()) && msg->id > last + 1) {
+    lost_keyframes_ += msg->id - last - 1;
+    ROS_WARN_THROTTLE(5.0, "bowg_pose_graph_node: keyframe statuses %u..%u never arrived (%zu "
+                      "lost): their odometry is bridged by one edge",
+                      last + 1, msg->id - 1, lost_keyframes_);
   }
   pending_keyframes_.emplace_back(msg->id, msg->header.stamp.toSec());
   addCoveredKeyframes();
@@ -155,6 +166,7 @@ bool LivePoseGraph::addReadyLoops() {
     edge.query = q->second;
     edge.match = m->second;
     graph_->addLoop(edge);
+    loop_nodes_.emplace_back(edge.query, edge.match);
     ++loops_;
     added = true;
     it = pending_loops_.erase(it);
@@ -196,6 +208,27 @@ void LivePoseGraph::publish() {
   }
   path_pub_.publish(path);
   odometry_path_pub_.publish(odometry_path);
+  visualization_msgs::Marker loops;
+  loops.header = path.header;
+  loops.ns = "loops";
+  loops.type = visualization_msgs::Marker::LINE_LIST;
+  loops.action = visualization_msgs::Marker::ADD;
+  loops.pose.orientation.w = 1;
+  loops.scale.x = 0.02;  // line width, m
+  loops.color.r = 0.1f;
+  loops.color.g = 0.7f;
+  loops.color.b = 0.2f;
+  loops.color.a = 1.0f;
+  for (const auto& l : loop_nodes_) {
+    for (std::size_t node : {l.first, l.second}) {
+      geometry_msgs::Point p;
+      p.x = path.poses[node].pose.position.x;
+      p.y = path.poses[node].pose.position.y;
+      p.z = path.poses[node].pose.position.z;
+      loops.points.push_back(p);
+    }
+  }
+  loops_pub_.publish(loops);
   // map -> odom: what turns the latest keyframe's odometry pose into its
   // corrected one (REP-105; identity until a loop moves the graph). Once per
   // keyframe: TF refuses a second transform at the same stamp.

@@ -8,6 +8,7 @@
 //   keyframe_status (bowg_ros/KeyframeStatus) -> a node + an odometry edge
 //   loop_closure (bowg_ros/LoopClosure) -> a loop edge, optimise
 //   -> ~path (nav_msgs/Path, corrected), ~odometry_path (as measured),
+//      ~loops (visualization_msgs/Marker: a line per loop on the corrected path),
 //      TF map -> odom (REP-105: the correction of the odometry's drift)
 //
 // The camera's mounting: with ~base_frame (the odometry's body frame) each
@@ -23,6 +24,7 @@
 #include <tf2_ros/buffer.h>
 #include <tf2_ros/transform_broadcaster.h>
 #include <tf2_ros/transform_listener.h>
+#include <visualization_msgs/Marker.h>
 
 #include <Eigen/Geometry>
 #include <Eigen/StdVector>
@@ -72,12 +74,13 @@ class LivePoseGraph {
   std::deque<std::pair<std::uint32_t, double>> pending_keyframes_;  // id, stamp
   std::vector<bowg_ros::LoopClosure> pending_loops_;
   std::map<std::uint32_t, std::size_t> node_of_keyframe_;
+  std::vector<std::pair<std::size_t, std::size_t>> loop_nodes_;  // query, match
   std::vector<double> node_stamps_;
   std::vector<Eigen::Isometry3d, Eigen::aligned_allocator<Eigen::Isometry3d>> node_odometry_;
-  std::size_t loops_ = 0, skipped_keyframes_ = 0;
+  std::size_t loops_ = 0, skipped_keyframes_ = 0, lost_keyframes_ = 0;
 
   ros::Subscriber odom_sub_, keyframe_sub_, loop_sub_;
-  ros::Publisher path_pub_, odometry_path_pub_;
+  ros::Publisher path_pub_, odometry_path_pub_, loops_pub_;
 };
 
 }  // namespace pose_graph_node

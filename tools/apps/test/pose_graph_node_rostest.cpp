@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <nav_msgs/Odometry.h>
 #include <nav_msgs/Path.h>
+#include <visualization_msgs/Marker.h>
 #include <ros/ros.h>
 #include <tf2_ros/static_transform_broadcaster.h>
 #include <tf2_eigen/tf2_eigen.h>
@@ -62,6 +63,13 @@ TEST(PoseGraphNode, LoopClosuresCorrectThePublishedPath) {
   tf2_ros::Buffer tf_buffer;
   tf2_ros::TransformListener tf_listener(tf_buffer);
   LatestPath mounted, no_tf;
+  std::mutex marker_mutex;
+  visualization_msgs::Marker loop_marker;
+  ros::Subscriber e = nh.subscribe<visualization_msgs::Marker>(
+      "/pose_graph/loops", 5, [&](const visualization_msgs::Marker::ConstPtr& m) {
+        std::lock_guard<std::mutex> lock(marker_mutex);
+        loop_marker = *m;
+      });
   ros::Subscriber c = nh.subscribe("/pose_graph_mounted/path", 5, &LatestPath::on, &mounted);
   ros::Subscriber d = nh.subscribe("/pose_graph_no_tf/path", 5, &LatestPath::on, &no_tf);
   ros::Publisher odom = nh.advertise<nav_msgs::Odometry>("/odom", 1000);
@@ -136,6 +144,18 @@ TEST(PoseGraphNode, LoopClosuresCorrectThePublishedPath) {
   tf2::fromMsg(corrected.path.poses.back().pose, map_T_base);
   EXPECT_TRUE((map_T_odom * odom_T_base).isApprox(map_T_base, 1e-6));
   EXPECT_GT(map_T_odom.translation().norm(), 1.0);  // the drift it undoes
+  // The loops as lines between the query's and the match's corrected
+  // positions: 29 loops (every 10th keyframe from 310).
+  {
+    std::lock_guard<std::mutex> lock(marker_mutex);
+    ASSERT_EQ(loop_marker.points.size(), 58u);
+    EXPECT_EQ(loop_marker.type, visualization_msgs::Marker::LINE_LIST);
+    EXPECT_EQ(loop_marker.header.frame_id, "map");
+    const auto& q = corrected.path.poses[310].pose.position;
+    const auto& m = corrected.path.poses[10].pose.position;
+    EXPECT_NEAR(loop_marker.points[0].x, q.x, 1e-9);
+    EXPECT_NEAR(loop_marker.points[1].y, m.y, 1e-9);
+  }
   // With the mounting from TF: the loops hold the bodies together within
   // hypot(0.15, 0.1) m; without the transform they wait, and the path is
   // the odometry's.
