@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <memory>
 #include <stdexcept>
 
 namespace bowg {
@@ -48,54 +49,50 @@ TEST(PoseGraph, WithoutLoopsTheOdometryChainIsTheOptimum) {
   EXPECT_NEAR(yawDeg(g.pose(2)), 30, 1e-7);
 }
 
-TEST(PoseGraph, ALoopSpreadsTheDisagreementAsLeastSquaresDo) {
-  // Odometry: +1 m, +1 m along x; the loop: node 2 is where node 0 is.
-  // Minimise (x1 - 1)^2 + (x2 - x1 - 1)^2 + x2^2 (equal sigmas):
-  // d/dx1 = 0 -> x2 = 2 x1; d/dx2 = 0 -> 2 x2 - x1 = 1 -> x1 = 1/3, x2 = 2/3.
-  // (With the rotations held by a tight sigma: free, a small yaw of node 1
-  // would trade a little rotation cost for position cost.)
+/// Two odometry steps of +1 m along x and a loop saying node 2 is where
+/// node 0 is (its sigma widened by `extra_sigma`); optimised. The rotations
+/// are held by a tight sigma: free, a small yaw of node 1 would trade a
+/// little rotation cost for position cost, away from the 1-D optimum.
+std::unique_ptr<PoseGraph> lineWithALoop(double extra_sigma, SolveSummary* summary) {
   PoseGraphOptions o = quadratic();
   o.odometry_rotation_floor_deg = 1e-4;
-  PoseGraph g(o);
-  g.addPose(pose(0, 0, 0));
-  g.addPose(pose(1, 0, 0));
-  g.addPose(pose(2, 0, 0));
-  g.addOdometry(0, 1, pose(1, 0, 0));
-  g.addOdometry(1, 2, pose(1, 0, 0));
+  std::unique_ptr<PoseGraph> g(new PoseGraph(o));
+  for (int i = 0; i < 3; ++i) g->addPose(pose(i, 0, 0));
+  g->addOdometry(0, 1, pose(1, 0, 0));
+  g->addOdometry(1, 2, pose(1, 0, 0));
   LoopEdge loop;
   loop.query = 2;
   loop.match = 0;
-  g.addLoop(loop);
-  const SolveSummary s = g.optimize();
+  loop.extra_position_sigma = extra_sigma;
+  g->addLoop(loop);
+  *summary = g->optimize();
+  return g;
+}
+
+TEST(PoseGraph, ALoopSpreadsTheDisagreementAsLeastSquaresDo) {
+  // Minimise (x1 - 1)^2 + (x2 - x1 - 1)^2 + x2^2 (equal sigmas):
+  // d/dx1 = 0 -> x2 = 2 x1; d/dx2 = 0 -> 2 x2 - x1 = 1 -> x1 = 1/3, x2 = 2/3.
+  SolveSummary s;
+  const auto g = lineWithALoop(0.0, &s);
   EXPECT_TRUE(s.converged) << s.report;
-  EXPECT_NEAR(g.pose(0).translation().x(), 0, 1e-12);  // the anchor
-  EXPECT_NEAR(g.pose(1).translation().x(), 1.0 / 3, 1e-6);
-  EXPECT_NEAR(g.pose(2).translation().x(), 2.0 / 3, 1e-6);
-  EXPECT_NEAR(g.pose(2).translation().y(), 0, 1e-6);
+  EXPECT_NEAR(g->pose(0).translation().x(), 0, 1e-12);  // the anchor
+  EXPECT_NEAR(g->pose(1).translation().x(), 1.0 / 3, 1e-6);
+  EXPECT_NEAR(g->pose(2).translation().x(), 2.0 / 3, 1e-6);
+  EXPECT_NEAR(g->pose(2).translation().y(), 0, 1e-6);
 }
 
 TEST(PoseGraph, ALoopsExtraSigmaWeakensItInQuadrature) {
-  // As above, with the loop's sigma sqrt(0.1^2 + 0.1^2) = 0.1 sqrt(2): its
-  // weight halves. Minimise (x1 - 1)^2 + (x2 - x1 - 1)^2 + x2^2 / 2:
+  // The loop's sigma sqrt(0.1^2 + 0.1^2) = 0.1 sqrt(2): its weight halves.
+  // Minimise (x1 - 1)^2 + (x2 - x1 - 1)^2 + x2^2 / 2:
   // x2 = 2 x1 and 1.5 x2 - x1 = 1 -> x1 = 1/2, x2 = 1.
-  PoseGraphOptions o = quadratic();
-  o.odometry_rotation_floor_deg = 1e-4;
-  PoseGraph g(o);
-  g.addPose(pose(0, 0, 0));
-  g.addPose(pose(1, 0, 0));
-  g.addPose(pose(2, 0, 0));
-  g.addOdometry(0, 1, pose(1, 0, 0));
-  g.addOdometry(1, 2, pose(1, 0, 0));
-  LoopEdge loop;
-  loop.query = 2;
-  loop.match = 0;
-  loop.extra_position_sigma = 0.1;
-  g.addLoop(loop);
-  g.optimize();
-  EXPECT_NEAR(g.pose(1).translation().x(), 0.5, 1e-6);
-  EXPECT_NEAR(g.pose(2).translation().x(), 1.0, 1e-6);
-  loop.extra_position_sigma = -1;
-  EXPECT_THROW(g.addLoop(loop), std::invalid_argument);
+  SolveSummary s;
+  const auto g = lineWithALoop(0.1, &s);
+  EXPECT_NEAR(g->pose(1).translation().x(), 0.5, 1e-6);
+  EXPECT_NEAR(g->pose(2).translation().x(), 1.0, 1e-6);
+  LoopEdge bad;
+  bad.query = 2;
+  bad.extra_position_sigma = -1;
+  EXPECT_THROW(g->addLoop(bad), std::invalid_argument);
 }
 
 TEST(PoseGraph, ALoopWithARotationSharesTheYawError) {
