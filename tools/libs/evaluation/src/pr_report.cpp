@@ -91,7 +91,11 @@ cv::Mat drawPrCurves(const std::vector<NamedCurve>& curves, const std::string& t
       cv::circle(img, pts[i], 4, colour, -1, cv::LINE_AA);
       char label[24];
       std::snprintf(label, sizeof label, "%g", curves[k].curve[i].threshold);
-      const cv::Point at = pts[i] + cv::Point(6, -6 - 12 * static_cast<int>(k % 3));
+      // Above and right of the point, staggered per curve; below or left of
+      // it where that would leave the plot.
+      cv::Point at = pts[i] + cv::Point(6, -6 - 12 * static_cast<int>(k % 3));
+      if (at.y < plot.y + 10) at.y = pts[i].y + 16 + 12 * static_cast<int>(k % 3);
+      if (at.x > plot.x + plot.width - 28) at.x = pts[i].x - 34;  // left of points at recall ~1
       if (std::abs(at.x - last_label.x) < 28 && std::abs(at.y - last_label.y) < 12) continue;
       cv::putText(img, label, at, font, 0.38, colour, 1, cv::LINE_AA);
       last_label = at;
