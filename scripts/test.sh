@@ -37,6 +37,10 @@ echo "== install space: catkin_make install, then roslaunch and rosrun from it a
 install_failed=0
 bash "$repo/scripts/check_install_space.sh" || install_failed=1
 
+echo "== ThreadSanitizer: the nodelet's threads (live tuning, persistence, services during processing)"
+tsan_failed=0
+bash "$repo/scripts/check_thread_sanitizer.sh" || tsan_failed=1
+
 echo "== AddressSanitizer/UBSan: file loaders and persistence on corrupt input"
 asan_dir="$ws/asan"
 cmake -S "$repo/engine" -B "$asan_dir" -DBOWG_SANITIZE=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo \
@@ -75,12 +79,14 @@ if [ -z "$tests" ] || [ "$tests" -eq 0 ]; then
   echo "FAIL: no test ran" >&2
   exit 1
 fi
-# Besides catkin's tests: the asan tests, the fuzz run, the workspace and the
-# install space checks.
-bad=$(( ${errors:-0} + ${failures:-0} + asan_failed + fuzz_failed + link_failed + install_failed ))
-echo "$(( tests + ${#asan_tests[@]} + 3 - bad - ${skipped:-0} )) passed, $bad failed, ${skipped:-0} skipped"
+# Besides catkin's tests: the asan tests, the fuzz run, the workspace, the
+# install space and the ThreadSanitizer checks.
+bad=$(( ${errors:-0} + ${failures:-0} + asan_failed + fuzz_failed + link_failed + install_failed
+  + tsan_failed ))
+echo "$(( tests + ${#asan_tests[@]} + 4 - bad - ${skipped:-0} )) passed, $bad failed, ${skipped:-0} skipped"
 [ "$asan_failed" -eq 0 ] || exit 1
 [ "$fuzz_failed" -eq 0 ] || exit 1
 [ "$link_failed" -eq 0 ] || exit 1
 [ "$install_failed" -eq 0 ] || exit 1
+[ "$tsan_failed" -eq 0 ] || exit 1
 exit $status

@@ -152,6 +152,11 @@ class LoopDetectorNodelet : public nodelet::Nodelet {
                      std::size_t num_features, std::size_t database_size, double convert_ms,
                      double feature_ms);
 
+  /// Forgets every keyframe's image kept for the debug image (full images
+  /// and thumbnails): after a reset, a load or a new run their ids name
+  /// other keyframes. Called under the detector lock.
+  void forgetKeyframeImages();
+
   void reconfigure(BoWGConfig& config, uint32_t level);
   bool saveDatabase(SaveDatabase::Request& req, SaveDatabase::Response& res);
   bool loadDatabase(LoadDatabase::Request& req, LoadDatabase::Response& res);

@@ -8,6 +8,11 @@
 
 namespace bowg_ros {
 
+void LoopDetectorNodelet::forgetKeyframeImages() {
+  debug_cache_.clear();
+  thumbnails_.clear();
+}
+
 void LoopDetectorNodelet::publishResult(const Frame& frame, const bowg::LoopResult& result,
                                         const cv::Mat& grey, std::size_t num_features,
                                         std::size_t database_size, double convert_ms,

@@ -57,8 +57,7 @@ bool LoopDetectorNodelet::loadDatabase(LoadDatabase::Request& req, LoadDatabase:
   std::lock_guard<std::mutex> lock(detector_mutex_);
   try {
     detector_->load(path);  // keeps the running database on any error
-    debug_cache_.clear();
-    thumbnails_.clear();  // the loaded keyframes' images are not in the file
+    forgetKeyframeImages();  // the loaded keyframes' images are not in the file
     {
       // Stamps restart from the loaded database's; let the gate follow
       // (frames up to its last keyframe are skipped and counted there).
@@ -85,8 +84,7 @@ bool LoopDetectorNodelet::resetDatabase(std_srvs::Trigger::Request&,
   std::lock_guard<std::mutex> lock(detector_mutex_);
   const std::size_t n = detector_->database().size();
   detector_->reset();
-  debug_cache_.clear();
-  thumbnails_.clear();
+  forgetKeyframeImages();
   {
     std::lock_guard<std::mutex> gate_lock(gate_mutex_);
     gate_.reset();

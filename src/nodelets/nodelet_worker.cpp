@@ -55,8 +55,7 @@ void LoopDetectorNodelet::processFrame(const Frame& frame) {
     NODELET_WARN("new run after a time jump: forgetting %zu keyframes",
                  detector_->database().size());
     detector_->reset();
-    debug_cache_.clear();
-    thumbnails_.clear();
+    forgetKeyframeImages();
     worker_epoch_ = frame.epoch;
   }
   t0 = Clock::now();
