@@ -14,27 +14,14 @@ namespace bowg {
 DirectIndex directIndexFromWords(const Vocabulary& vocabulary, const std::vector<WordId>& words,
                                  int level) {
   const auto& nodes = vocabulary.nodes();
-  // (ancestor node, feature) pairs sorted once: cheaper than a map of lists
-  // (this runs for every keyframe added).
-  std::vector<std::pair<NodeId, std::uint32_t>> pairs;
-  pairs.reserve(words.size());
+  DirectIndex out;
+  out.reserve(words.size());
   for (std::uint32_t f = 0; f < words.size(); ++f) {
     NodeId n = vocabulary.nodeOfWord(words[f]);
     while (static_cast<int>(nodes[n].level) > level && n != 0) n = nodes[n].parent;
-    pairs.emplace_back(n, f);
+    out.emplace_back(n, f);
   }
-  std::sort(pairs.begin(), pairs.end());
-  DirectIndex out;
-  for (std::size_t i = 0; i < pairs.size();) {
-    std::size_t j = i;
-    while (j < pairs.size() && pairs[j].first == pairs[i].first) ++j;
-    DirectIndexEntry e;
-    e.first = pairs[i].first;
-    e.second.reserve(j - i);
-    for (std::size_t k = i; k < j; ++k) e.second.push_back(pairs[k].second);
-    out.push_back(std::move(e));
-    i = j;
-  }
+  std::sort(out.begin(), out.end());
   return out;
 }
 
@@ -76,9 +63,8 @@ void Database::setScoring(ScoringType scoring) {
 }
 
 void Database::setDirectLevel(int level) {
-  if (level == direct_level_) return;
+  // Nothing to rebuild: direct indexes are made from the words on demand.
   direct_level_ = level;
-  for (auto& e : entries_) e.direct = directIndexFromWords(*vocabulary_, e.words, level);
 }
 
 void Database::setFanBins(int m) {
@@ -134,7 +120,6 @@ EntryId Database::add(DatabaseEntry e, bool bow_normalised) {
   // Only the TF part of eq. 1 is stored (in the group inverse index): the IDF
   // part changes with every keyframe and is applied at query time.
   const GroupVector group_tf = groupTermFrequencies(e.raw_groups);
-  e.direct = directIndexFromWords(*vocabulary_, e.words, direct_level_);
   const std::vector<double> dist =
       distributionVector(e.keypoints, e.centre_x, e.centre_y, fan_bins_);
   distributions_.insert(distributions_.end(), dist.begin(), dist.end());
@@ -264,9 +249,7 @@ std::size_t Database::memoryBytes() const {
   std::size_t bytes = vectorHeapBytes(entries_);
   for (const auto& e : entries_) {
     bytes += vectorHeapBytes(e.keypoints) + vectorHeapBytes(e.descriptors) +
-             vectorHeapBytes(e.words) + vectorHeapBytes(e.bow) + vectorHeapBytes(e.raw_groups) +
-             vectorHeapBytes(e.direct);
-    for (const auto& d : e.direct) bytes += vectorHeapBytes(d.second);
+             vectorHeapBytes(e.words) + vectorHeapBytes(e.bow) + vectorHeapBytes(e.raw_groups);
   }
   bytes += vectorHeapBytes(distributions_) + vectorHeapBytes(odometers_);
   for (const auto& l : word_index_) bytes += vectorHeapBytes(l);

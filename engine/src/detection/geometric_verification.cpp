@@ -21,12 +21,20 @@ struct MatchScratch {
   std::vector<std::size_t> best_m;    // per query feature
 };
 
+// The features of one node: a run of a DirectIndex's (node, feature) pairs.
+struct Run {
+  const DirectIndex::value_type* begin;
+  std::size_t n;
+  std::size_t size() const { return n; }
+  bool empty() const { return n == 0; }
+  std::uint32_t operator[](std::size_t i) const { return begin[i].second; }
+};
+
 // Matches the query features `qs` against the match features `ms` (one node of
 // the direct index, or everything when exhaustive) and appends the pairs that
 // pass the distance, ratio and mutual tests.
-void matchGroup(const std::vector<Descriptor>& qd, const std::vector<std::uint32_t>& qs,
-                const std::vector<Descriptor>& md, const std::vector<std::uint32_t>& ms,
-                const GeometricVerificationOptions& options, MatchScratch* scratch,
+void matchGroup(const std::vector<Descriptor>& qd, Run qs, const std::vector<Descriptor>& md,
+                Run ms, const GeometricVerificationOptions& options, MatchScratch* scratch,
                 std::vector<Pair>* out) {
   if (qs.empty() || ms.empty()) return;
   const int kInf = std::numeric_limits<int>::max();
@@ -89,24 +97,32 @@ std::vector<Pair> findCorrespondences(const VerificationView& query, const Verif
   std::vector<Pair> out;
   MatchScratch scratch;
   if (options.exhaustive) {
-    std::vector<std::uint32_t> qs(query.descriptors->size()), ms(match.descriptors->size());
-    for (std::uint32_t i = 0; i < qs.size(); ++i) qs[i] = i;
-    for (std::uint32_t i = 0; i < ms.size(); ++i) ms[i] = i;
-    matchGroup(*query.descriptors, qs, *match.descriptors, ms, options, &scratch, &out);
+    // Every feature under one node.
+    DirectIndex qs(query.descriptors->size()), ms(match.descriptors->size());
+    for (std::uint32_t i = 0; i < qs.size(); ++i) qs[i] = {0, i};
+    for (std::uint32_t i = 0; i < ms.size(); ++i) ms[i] = {0, i};
+    matchGroup(*query.descriptors, Run{qs.data(), qs.size()}, *match.descriptors,
+               Run{ms.data(), ms.size()}, options, &scratch, &out);
   } else {
-    // Both direct indexes are sorted by node id: walk them together.
-    auto qi = query.direct->begin();
-    auto mi = match.direct->begin();
-    while (qi != query.direct->end() && mi != match.direct->end()) {
-      if (qi->first < mi->first) {
+    // Both direct indexes are sorted by node: walk them together, one run of
+    // equal nodes at a time.
+    const DirectIndex& q = *query.direct;
+    const DirectIndex& m = *match.direct;
+    std::size_t qi = 0, mi = 0;
+    while (qi < q.size() && mi < m.size()) {
+      if (q[qi].first < m[mi].first) {
         ++qi;
-      } else if (mi->first < qi->first) {
+      } else if (m[mi].first < q[qi].first) {
         ++mi;
       } else {
-        matchGroup(*query.descriptors, qi->second, *match.descriptors, mi->second, options,
-                   &scratch, &out);
-        ++qi;
-        ++mi;
+        const NodeId node = q[qi].first;
+        std::size_t qj = qi, mj = mi;
+        while (qj < q.size() && q[qj].first == node) ++qj;
+        while (mj < m.size() && m[mj].first == node) ++mj;
+        matchGroup(*query.descriptors, Run{q.data() + qi, qj - qi}, *match.descriptors,
+                   Run{m.data() + mi, mj - mi}, options, &scratch, &out);
+        qi = qj;
+        mi = mj;
       }
     }
   }

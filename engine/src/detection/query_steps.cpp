@@ -152,12 +152,17 @@ bool scoreCandidates(const QueryContext& ctx, const DatabaseQuery& q,
 }
 
 // The two sides of a geometric verification. The query's direct index is
-// built on the first verification only: with one verified candidate most
-// queries stop at the temporal check before it.
+// built on the first verification only (with one verified candidate most
+// queries stop at the temporal check before it), a database entry's for each
+// verification of it: the database keeps words, not direct indexes.
 class Verifier {
  public:
   Verifier(const QueryContext& ctx, const DatabaseEntry& query, const CameraIntrinsics& k)
-      : ctx_(ctx), query_(query), intrinsics_(k), built_(ctx.options.geometric.exhaustive) {}
+      : ctx_(ctx),
+        query_(query),
+        intrinsics_(k),
+        exhaustive_(ctx.options.geometric.exhaustive),
+        built_(exhaustive_) {}
 
   VerificationView query() {
     if (!built_) {
@@ -167,9 +172,14 @@ class Verifier {
     return VerificationView{&query_.keypoints, &query_.descriptors, &direct_};
   }
 
-  VerificationView match(EntryId id) const {
+  /// Valid until the next call.
+  VerificationView match(EntryId id) {
     const DatabaseEntry& m = ctx_.database.entry(id);
-    return VerificationView{&m.keypoints, &m.descriptors, &m.direct};
+    if (!exhaustive_) {
+      match_direct_ =
+          directIndexFromWords(ctx_.vocabulary, m.words, ctx_.database.directLevel());
+    }
+    return VerificationView{&m.keypoints, &m.descriptors, &match_direct_};
   }
 
   const CameraIntrinsics& intrinsics() const { return intrinsics_; }
@@ -178,7 +188,8 @@ class Verifier {
   const QueryContext& ctx_;
   const DatabaseEntry& query_;
   const CameraIntrinsics& intrinsics_;
-  DirectIndex direct_;
+  DirectIndex direct_, match_direct_;
+  bool exhaustive_;
   bool built_;
 };
 

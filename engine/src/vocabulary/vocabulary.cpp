@@ -231,23 +231,6 @@ double wordValue(WeightingType weighting, double count, double inv_n, double idf
   return 0.0;
 }
 
-// The direct index: the features of each node, nodes in increasing order.
-void groupByNode(std::vector<std::pair<NodeId, std::uint32_t>>* node_of, DirectIndex* direct) {
-  std::sort(node_of->begin(), node_of->end());
-  const std::size_t n = node_of->size();
-  for (std::size_t i = 0; i < n;) {
-    const NodeId node = (*node_of)[i].first;
-    std::size_t j = i;
-    while (j < n && (*node_of)[j].first == node) ++j;
-    DirectIndexEntry entry;
-    entry.first = node;
-    entry.second.reserve(j - i);
-    for (std::size_t m = i; m < j; ++m) entry.second.push_back((*node_of)[m].second);
-    direct->push_back(std::move(entry));
-    i = j;
-  }
-}
-
 }  // namespace
 
 Vocabulary::Vocabulary(int branching, int depth, WeightingType weighting, ScoringType scoring,
@@ -383,7 +366,10 @@ void Vocabulary::transform(const std::vector<Descriptor>& descriptors, BowVector
   }
   normaliseBowVector(scoring_, bow);
 
-  if (direct != nullptr) groupByNode(&node_of, direct);
+  if (direct != nullptr) {
+    std::sort(node_of.begin(), node_of.end());
+    *direct = std::move(node_of);
+  }
 }
 
 }  // namespace bowg

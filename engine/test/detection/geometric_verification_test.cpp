@@ -223,7 +223,8 @@ TEST(GeometricVerification, CorrespondenceRules) {
   EXPECT_TRUE(findCorrespondences(q2, m3, o).empty());
   // Direct index: features in different nodes are never compared.
   o.exhaustive = false;
-  const DirectIndex qdi{{5, {0, 1}}}, mdi_other{{6, {0, 1, 2}}}, mdi_same{{5, {0, 1, 2}}};
+  const DirectIndex qdi{{5, 0}, {5, 1}}, mdi_other{{6, 0}, {6, 1}, {6, 2}},
+      mdi_same{{5, 0}, {5, 1}, {5, 2}};
   q2.direct = &qdi;
   m.direct = &mdi_other;
   EXPECT_TRUE(findCorrespondences(q2, m, o).empty());

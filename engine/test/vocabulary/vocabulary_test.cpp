@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -213,23 +214,17 @@ TEST(Vocabulary, DirectIndexAtLevel) {
   BowVector bow;
   DirectIndex direct;
   v.transform(image(), &bow, &direct, 1);
-  // Level 1: features 0, 1, 2 under node 1; feature 3 on leaf 2.
-  ASSERT_EQ(direct.size(), 2u);
-  EXPECT_EQ(direct[0].first, 1u);
-  EXPECT_EQ(direct[0].second, (std::vector<std::uint32_t>{0, 1, 2}));
-  EXPECT_EQ(direct[1].first, 2u);
-  EXPECT_EQ(direct[1].second, (std::vector<std::uint32_t>{3}));
+  // Level 1: features 0, 1, 2 under node 1; feature 3 on leaf 2. One
+  // (node, feature) pair per feature, sorted by node, then feature.
+  EXPECT_EQ(direct, (DirectIndex{{1, 0}, {1, 1}, {1, 2}, {2, 3}}));
   v.transform(image(), &bow, &direct, 2);
   // Level 2: node 2 (shallow leaf) {3}, node 3 {0}, node 4 {1, 2}.
-  ASSERT_EQ(direct.size(), 3u);
-  EXPECT_EQ(direct[0], (DirectIndexEntry{2, {3}}));
-  EXPECT_EQ(direct[1], (DirectIndexEntry{3, {0}}));
-  EXPECT_EQ(direct[2], (DirectIndexEntry{4, {1, 2}}));
+  EXPECT_EQ(direct, (DirectIndex{{2, 3}, {3, 0}, {4, 1}, {4, 2}}));
 }
 
 TEST(Vocabulary, EmptyImageGivesEmptyOutputs) {
   BowVector bow{{1, 1.0}};
-  DirectIndex direct{{1, {0}}};
+  DirectIndex direct{{1, 0}};
   std::vector<WordId> words{3};
   tiny().transform({}, &bow, &direct, 1, &words);
   EXPECT_TRUE(bow.empty());
@@ -279,9 +274,9 @@ TEST(Vocabulary, BatchedImageTransformAgreesWithSingleDescents) {
     v.transform(descriptors, &bow, &direct, level, &words);
     ASSERT_EQ(words.size(), descriptors.size());
     std::vector<NodeId> node_of(descriptors.size(), 0);
-    for (const auto& entry : direct) {
-      for (std::uint32_t i : entry.second) node_of[i] = entry.first;
-    }
+    ASSERT_EQ(direct.size(), descriptors.size());
+    ASSERT_TRUE(std::is_sorted(direct.begin(), direct.end()));
+    for (const auto& pair : direct) node_of[pair.second] = pair.first;
     for (std::size_t i = 0; i < descriptors.size(); ++i) {
       NodeId node = 0;
       EXPECT_EQ(words[i], v.transform(descriptors[i], &node, level));

@@ -3,8 +3,9 @@
 //  - the word inverse index (word -> (entry, normalised BoW weight)), as DBoW2;
 //  - the online word-group table (eq. 1's IDF totals) and the word-group
 //    inverse index (group -> (entry, TF part of eq. 1));
-//  - the direct index of every entry at the configured vocabulary level (for
-//    the correspondence search of the geometric verification, Sec. III-D);
+//  - the level of the direct index (Sec. III-D's correspondence search): an
+//    entry's direct index is rebuilt from its words when it is verified
+//    (directIndexFromWords, a few microseconds), not kept per entry;
 //  - the distribution table: per entry the keypoint positions and the fan
 //    centre (enough to rebuild the vector for ANY m) plus the cached vectors
 //    for the current m (Sec. III-C).
@@ -38,8 +39,8 @@ namespace bowg {
 class Vocabulary;
 
 /// Per-feature ancestors of the words at depth `level` of the vocabulary
-/// (parent links; a leaf shallower than `level` stands for itself), grouped
-/// as a DirectIndex. Equal to the direct index Vocabulary::transform builds.
+/// (parent links; a leaf shallower than `level` stands for itself), as a
+/// DirectIndex. Equal to the direct index Vocabulary::transform builds.
 DirectIndex directIndexFromWords(const Vocabulary& vocabulary, const std::vector<WordId>& words,
                                  int level);
 
@@ -61,9 +62,8 @@ struct DatabaseEntry {
   /// Metres driven since the first keyframe (KeyframeInput::odometer); NaN
   /// when unknown.
   double odometer = std::numeric_limits<double>::quiet_NaN();
-  // Derived (rebuilt on option changes, never saved):
-  DirectIndex direct;  ///< at Database::directLevel()
-  // The distribution vector for the current m lives in the database's
+  // Derived (never saved): the direct index at Database::directLevel() is
+  // made from `words` when needed (directIndexFromWords); the distribution vector for the current m lives in the database's
   // contiguous distribution table (Database::distribution()).
 };
 
@@ -111,7 +111,7 @@ class Database {
 
   /// Option changes. Each rebuilds only what depends on it: the scoring type
   /// renormalises every BoW vector and rebuilds the word inverse index; the
-  /// level rebuilds every direct index from the stored words; m rebuilds
+  /// direct-index level applies to the next verification; m rebuilds
   /// every cached distribution vector from the stored keypoints.
   void setScoring(ScoringType scoring);
   void setDirectLevel(int level);
