@@ -4,7 +4,9 @@
 # words, the paper's method as written and the configured method over each
 # with the exact PR sweep, and prints one table (recall at 100 % precision per
 # row, loops found where there is no revisit) with its minimum and median per
-# half; writes suite.csv and suite.png.
+# half; writes suite.csv and suite.png; then the last row's recall by the
+# revisits' distance to the earlier pass's nearest keyframe
+# (tools/suite/revisit_offsets.py, revisit_offsets.csv).
 #   ./scripts/robustness_suite.sh                       # every sequence
 #   BOWG_SUITE_HALF=tuning ./scripts/robustness_suite.sh  # only the tuning half
 #   BOWG_SUITE_QUICK=1 ./scripts/robustness_suite.sh      # README command 1's subset
@@ -100,4 +102,9 @@ done <"$list"
 [ ${#ran[@]} -gt 0 ] || { echo "suite: no sequence selected" >&2; exit 1; }
 /usr/bin/python3 "$repo/tools/suite/suite_report.py" --results "$out/results" --rows "$rows" \
   --csv "$out/suite.csv" --plot "$out/suite.png" "${ran[@]}"
+# Where recall is lost: revisit queries by their distance to the earlier
+# pass's nearest keyframe of the same place (rendered sequences, last row).
+last_row="${rows##*,}"
+/usr/bin/python3 "$repo/tools/suite/revisit_offsets.py" --suite "$out" --row "$last_row" \
+  --csv "$out/revisit_offsets.csv" "${ran[@]%%:*}" || echo "suite: no revisit offsets (see above)"
 echo "suite done in $(( $(date +%s) - start )) s; table: $out/suite.csv, plot: $out/suite.png"

@@ -49,6 +49,16 @@ TEST(RobustnessSuite, RendersEvaluatesAndTabulatesAListOfSequences) {
   EXPECT_NE(csv.find("\ncircuit_twice,tuning,"), std::string::npos) << csv;
   // No revisit: the recall cells are empty and no row reports a loop.
   EXPECT_NE(csv.find("\nstraight_once,test,0,,0,,0,,0\n"), std::string::npos) << csv;
+  // Recall by the revisits' offset to the earlier pass's nearest keyframe:
+  // the rendered circuit's revisits only (the other sequence has none).
+  EXPECT_NE(printed.find("revisit queries by offset to the nearest true match (configured "
+                         "row; circuit_twice)"),
+            std::string::npos)
+      << printed;
+  const std::string offsets = tool_test::readAll(kDir + "/out/revisit_offsets.csv");
+  EXPECT_EQ(offsets.find("offset,queries,closed,recall,median_inliers_true,verified_true\n"), 0u)
+      << offsets;
+  EXPECT_NE(offsets.find(" cm,"), std::string::npos) << offsets;
 
   // The quick subset keeps only the sequences marked "yes"; a second run
   // reuses the rendered frames (the generator is not run again).
@@ -64,6 +74,52 @@ TEST(RobustnessSuite, RendersEvaluatesAndTabulatesAListOfSequences) {
                            log),
             2);
   EXPECT_NE(tool_test::readAll(log).find("missing.txt"), std::string::npos);
+}
+
+// tools/suite/revisit_offsets.py on a suite folder written by hand: two
+// revisit queries whose offsets, bins, closures and inliers are worked out
+// below.
+TEST(RobustnessSuite, RevisitOffsetsBinTheQueriesByTheirDistanceToTheNearestTrueMatch) {
+  const std::string dir = kDir + "_offsets";
+  ASSERT_EQ(tool_test::run("rm -rf " + dir + " && mkdir -p " + dir + "/sequences/hand " + dir +
+                           "/results/hand"),
+            0);
+  {
+    // Frames 0-2 of a first pass 10 cm apart; frame 3 revisits 3.5 cm past
+    // frame 0 (and 6.5 cm before frame 1), frame 4 0.5 cm past frame 1 and
+    // 3 cm sideways: sqrt(0.5^2 + 3^2) = 3.04 cm from frame 1.
+    std::ofstream poses(dir + "/sequences/hand/poses.csv");
+    poses << "frame,stamp,x,y,z\n0,0,0,0,0\n1,1,0.1,0,0\n2,2,0.2,0,0\n"
+          << "3,3,0.035,0,0\n4,4,0.105,0.03,0\n";
+    std::ofstream truth(dir + "/sequences/hand/ground_truth.txt");
+    truth << "# query: matches\n3: 0 1\n4: 1\n";
+    // Query 3 closed correctly on frame 0 with 50 inliers; query 4 stopped
+    // at too_few_inliers on its true match 1 with 20.
+    std::ofstream keyframes(dir + "/results/hand/keyframes_configured.csv");
+    keyframes << "frame,status,candidate,inliers,correct\n0,database_too_small,,0,\n"
+              << "1,database_too_small,,0,\n2,no_score_above_threshold,,0,\n"
+              << "3,loop_detected,0,50,1\n4,too_few_inliers,1,20,\n";
+  }
+  const std::string log = dir + "/offsets.log";
+  ASSERT_EQ(tool_test::run("/usr/bin/python3 " + std::string(BOWG_REPO_DIR) +
+                               "/tools/suite/revisit_offsets.py --suite " + dir + " --csv " +
+                               dir + "/offsets.csv",
+                           log),
+            0)
+      << tool_test::readAll(log);
+  // Offsets 3.5 cm (the nearer of 3.5 and 6.5) and 3.04 cm: both in 3-4 cm;
+  // one of the two closed; inliers 50 and 20, median 35.
+  EXPECT_EQ(tool_test::readAll(dir + "/offsets.csv"),
+            "offset,queries,closed,recall,median_inliers_true,verified_true\n"
+            "3-4 cm,2,1,0.5000,35.0,2\n");
+  // A results file that is missing is an error that names it.
+  ASSERT_EQ(tool_test::run("rm " + dir + "/results/hand/keyframes_configured.csv"), 0);
+  EXPECT_NE(tool_test::run("/usr/bin/python3 " + std::string(BOWG_REPO_DIR) +
+                               "/tools/suite/revisit_offsets.py --suite " + dir + " hand",
+                           log),
+            0);
+  EXPECT_NE(tool_test::readAll(log).find("keyframes_configured.csv"), std::string::npos)
+      << tool_test::readAll(log);
 }
 
 }  // namespace
