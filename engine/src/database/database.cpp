@@ -56,10 +56,7 @@ void Database::setScoring(ScoringType scoring) {
   if (scoring == scoring_) return;
   scoring_ = scoring;
   for (auto& l : word_index_) l.clear();
-  for (auto& e : entries_) {
-    normaliseBowVector(scoring_, &e.bow);
-    indexWords(e);
-  }
+  for (const auto& e : entries_) indexWords(e.id, bow(e.id));
 }
 
 void Database::setDirectLevel(int level) {
@@ -79,15 +76,21 @@ void Database::setFanBins(int m) {
   }
 }
 
-void Database::indexWords(const DatabaseEntry& e) {
-  for (const auto& w : e.bow) word_index_[w.first].emplace_back(e.id, w.second);
+void Database::indexWords(EntryId id, const BowVector& bow) {
+  for (const auto& w : bow) word_index_[w.first].emplace_back(id, w.second);
+}
+
+BowVector Database::bow(EntryId id) const {
+  BowVector v = vocabulary_->bowFromWords(entries_.at(id).words);
+  normaliseBowVector(scoring_, &v);
+  return v;
 }
 
 void Database::indexGroups(EntryId id, const GroupVector& group_tf) {
   for (const auto& g : group_tf) group_index_[g.first].emplace_back(id, g.second);
 }
 
-EntryId Database::add(DatabaseEntry e, bool bow_normalised) {
+EntryId Database::add(DatabaseEntry e) {
   const std::size_t n = e.keypoints.size();
   if (e.descriptors.size() != n || e.words.size() != n) {
     throw std::invalid_argument("Database::add: keypoints (" + std::to_string(n) +
@@ -98,9 +101,6 @@ EntryId Database::add(DatabaseEntry e, bool bow_normalised) {
   const std::size_t W = vocabulary_->wordCount();
   for (WordId w : e.words) {
     if (w >= W) throw std::invalid_argument("Database::add: word id out of range");
-  }
-  for (const auto& b : e.bow) {
-    if (b.first >= W) throw std::invalid_argument("Database::add: BoW word id out of range");
   }
   for (const auto& g : e.raw_groups) {
     if (g.first >= W) throw std::invalid_argument("Database::add: group id out of range");
@@ -116,7 +116,6 @@ EntryId Database::add(DatabaseEntry e, bool bow_normalised) {
     throw std::invalid_argument("Database::add: odometer must be NaN (unknown) or finite >= 0");
   }
   e.id = static_cast<EntryId>(entries_.size());
-  if (!bow_normalised) normaliseBowVector(scoring_, &e.bow);
   // Only the TF part of eq. 1 is stored (in the group inverse index): the IDF
   // part changes with every keyframe and is applied at query time.
   const GroupVector group_tf = groupTermFrequencies(e.raw_groups);
@@ -128,7 +127,7 @@ EntryId Database::add(DatabaseEntry e, bool bow_normalised) {
                                                 : odometers_.back());
   entries_.push_back(std::move(e));
   const DatabaseEntry& stored = entries_.back();
-  indexWords(stored);
+  indexWords(stored.id, bow(stored.id));
   indexGroups(stored.id, group_tf);
   return stored.id;
 }
@@ -226,7 +225,7 @@ EntryScores Database::score(const DatabaseQuery& q, EntryId id) const {
   const DatabaseEntry& e = entries_.at(id);
   EntryScores s;
   s.entry = id;
-  s.s_w = scoreBowVectors(scoring_, q.bow, e.bow);
+  s.s_w = scoreBowVectors(scoring_, q.bow, bow(id));
   s.s_g = groupScore(q.refined_groups, refineGroupWeights(e.raw_groups, group_table_));
   if (!q.distribution.empty()) s.s_d = distributionScore(q.distribution, cachedDistribution(id));
   return s;
@@ -249,7 +248,7 @@ std::size_t Database::memoryBytes() const {
   std::size_t bytes = vectorHeapBytes(entries_);
   for (const auto& e : entries_) {
     bytes += vectorHeapBytes(e.keypoints) + vectorHeapBytes(e.descriptors) +
-             vectorHeapBytes(e.words) + vectorHeapBytes(e.bow) + vectorHeapBytes(e.raw_groups);
+             vectorHeapBytes(e.words) + vectorHeapBytes(e.raw_groups);
   }
   bytes += vectorHeapBytes(distributions_) + vectorHeapBytes(odometers_);
   for (const auto& l : word_index_) bytes += vectorHeapBytes(l);

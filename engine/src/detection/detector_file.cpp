@@ -56,7 +56,7 @@ void saveDetectorFile(const std::string& path, const Database& database,
       for (std::uint64_t b : e.descriptors[i].bits) w.u64(b);
       w.u32(e.words[i]);
     }
-    w.pairs(e.bow);
+    w.pairs(database.bow(e.id));  // kept in the format; rebuilt from the words
     w.pairs(e.raw_groups);
   }
   w.pairs(state.previous_etas);

@@ -3,6 +3,7 @@
 // left before anything is allocated, so a corrupt count cannot trigger a huge
 // allocation; the checksum is verified before any content is interpreted;
 // every value restored is checked against what a run can produce.
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <fstream>
@@ -124,21 +125,37 @@ void readFeatures(Reader* p, const std::string& entry, DatabaseEntry* e) {
   }
 }
 
-DatabaseEntry readEntry(Reader* p, std::size_t i, ScoringType stored_scoring) {
+DatabaseEntry readEntry(Reader* p, std::size_t i, ScoringType stored_scoring,
+                        const Vocabulary& vocabulary) {
   DatabaseEntry e;
   const std::string entry = "entry " + std::to_string(i);
   readEntryHeader(p, entry, &e);
   readFeatures(p, entry, &e);
-  e.bow = p->pairs("BoW vector");
+  const BowVector bow = p->pairs("BoW vector");
   e.raw_groups = p->pairs("word groups");
   // Stored weights are > 0 (words of weight 0 are never stored) and, for
   // every scoring type but the dot product, normalised to at most 1.
   const bool normalised = stored_scoring != ScoringType::kDotProduct;
-  for (const auto& b : e.bow) {
+  for (const auto& b : bow) {
     if (!(b.second > 0.0) || (normalised && b.second > 1.0 + 1e-9)) {
       p->fail(entry + " has a BoW weight " + std::to_string(b.second) + " outside (0, " +
               (normalised ? "1]" : "inf)"));
     }
+  }
+  // The database rebuilds the vector from the words (Database::bow): the
+  // stored one must be that vector, or the file contradicts itself. (Word
+  // ids out of range are the database's to reject, with its message.)
+  const bool words_in_range = std::all_of(e.words.begin(), e.words.end(),
+                                          [&](WordId w) { return w < vocabulary.wordCount(); });
+  if (words_in_range) {
+    BowVector expected = vocabulary.bowFromWords(e.words);
+    normaliseBowVector(stored_scoring, &expected);
+    bool same = expected.size() == bow.size();
+    for (std::size_t k = 0; same && k < bow.size(); ++k) {
+      same = expected[k].first == bow[k].first &&
+             std::abs(expected[k].second - bow[k].second) <= 1e-9 * expected[k].second;
+    }
+    if (!same) p->fail(entry + " has a BoW vector that is not the one its words give");
   }
   for (const auto& g : e.raw_groups) {
     if (!(g.second > 0.0)) p->fail(entry + " has a word-group weight <= 0");
@@ -274,8 +291,6 @@ std::unique_ptr<Database> loadDetectorFile(const std::string& path,
   if (stored_scoring > static_cast<std::uint32_t>(ScoringType::kDotProduct)) {
     p.fail("unknown scoring type " + std::to_string(stored_scoring));
   }
-  // Vectors stored for the same scoring type are used bit for bit.
-  const bool bow_normalised = static_cast<ScoringType>(stored_scoring) == scoring;
   const std::size_t n = p.count(kEntryFixedBytes, "entries");
   // Entries join the database once the state after them (their odometers,
   // version 3) has been read.
@@ -283,7 +298,7 @@ std::unique_ptr<Database> loadDetectorFile(const std::string& path,
   entries.reserve(n);
   try {
     for (std::size_t i = 0; i < n; ++i) {
-      entries.push_back(readEntry(&p, i, static_cast<ScoringType>(stored_scoring)));
+      entries.push_back(readEntry(&p, i, static_cast<ScoringType>(stored_scoring), *vocabulary));
     }
     StoredChain chain;
     readPreviousScoresAndChain(&p, n, state, &chain);
@@ -292,7 +307,7 @@ std::unique_ptr<Database> loadDetectorFile(const std::string& path,
     if (version >= 4) readHypotheses(&p, n, &chain);
     for (DatabaseEntry& e : entries) {
       db->addToGroupTable(e.raw_groups);
-      db->add(std::move(e), bow_normalised);
+      db->add(std::move(e));
     }
     restoreChain(&p, *db, &chain, state);
   } catch (const std::invalid_argument& e) {

@@ -176,9 +176,9 @@ LoopResult LoopDetector::process(const KeyframeInput& keyframe) {
   database_->addToGroupTable(entry.raw_groups);
   const bool with_groups = options_.word_groups.enabled;
   const bool with_distribution = options_.distribution.enabled;
-  const DatabaseQuery q = database_->makeQuery(bow, entry.raw_groups, f.keypoints, entry.centre_x,
-                                               entry.centre_y, with_distribution);
-  entry.bow = std::move(bow);
+  // The entry keeps its words; the database rebuilds its BoW from them.
+  const DatabaseQuery q = database_->makeQuery(std::move(bow), entry.raw_groups, f.keypoints,
+                                               entry.centre_x, entry.centre_y, with_distribution);
   const auto t2 = Clock::now();
   r.timings.word_groups_ms = msBetween(t1, t2);
 

@@ -345,7 +345,17 @@ void Vocabulary::transform(const std::vector<Descriptor>& descriptors, BowVector
     for (std::size_t i = 0; i < n; ++i) (*words)[i] = word_of[i].first;
   }
   std::sort(word_of.begin(), word_of.end());
+  weighSortedWords(word_of, bow);
 
+  if (direct != nullptr) {
+    std::sort(node_of.begin(), node_of.end());
+    *direct = std::move(node_of);
+  }
+}
+
+void Vocabulary::weighSortedWords(const std::vector<std::pair<WordId, std::uint32_t>>& word_of,
+                                  BowVector* bow) const {
+  const std::size_t n = word_of.size();
   // Weighting as DBoW2 (T-RO 2012, Sec. IV): with n_id occurrences of word
   // i in image d of n_d features and idf_i the word's weight,
   //   TF-IDF: (n_id / n_d) * idf_i,  TF: n_id / n_d,
@@ -365,11 +375,21 @@ void Vocabulary::transform(const std::vector<Descriptor>& descriptors, BowVector
     i = j;
   }
   normaliseBowVector(scoring_, bow);
+}
 
-  if (direct != nullptr) {
-    std::sort(node_of.begin(), node_of.end());
-    *direct = std::move(node_of);
+BowVector Vocabulary::bowFromWords(const std::vector<WordId>& words) const {
+  BowVector bow;
+  if (words.empty()) return bow;
+  std::vector<std::pair<WordId, std::uint32_t>> word_of(words.size());
+  for (std::uint32_t i = 0; i < words.size(); ++i) {
+    if (words[i] >= word_to_node_.size())
+      throw std::out_of_range("Vocabulary::bowFromWords: word id " + std::to_string(words[i]) +
+                              " >= " + std::to_string(word_to_node_.size()));
+    word_of[i] = {words[i], i};
   }
+  std::sort(word_of.begin(), word_of.end());
+  weighSortedWords(word_of, &bow);
+  return bow;
 }
 
 }  // namespace bowg

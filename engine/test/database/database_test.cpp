@@ -38,7 +38,6 @@ DatabaseEntry entryFromKeyframe(const Vocabulary& voc, const KeyframeInput& kf, 
   e.centre_x = 320;
   e.centre_y = 240;
   voc.transform(e.descriptors, bow, nullptr, 0, &e.words);
-  e.bow = *bow;
   e.raw_groups = buildWordGroups(e.keypoints, e.words, WordGroupOptions());
   return e;
 }
@@ -74,7 +73,7 @@ TEST_P(DatabaseScoring, InverseIndexWordScoreEqualsScoreBowVectors) {
   // Exactly the entries < limit that share a word with the query.
   std::set<EntryId> expected;
   for (EntryId id = 0; id < limit; ++id) {
-    for (const auto& w : db.entry(id).bow) {
+    for (const auto& w : db.bow(id)) {
       if (std::binary_search(
               q.bow.begin(), q.bow.end(), BowEntry(w.first, 0.0),
               [](const BowEntry& a, const BowEntry& b) { return a.first < b.first; })) {
@@ -86,7 +85,7 @@ TEST_P(DatabaseScoring, InverseIndexWordScoreEqualsScoreBowVectors) {
   ASSERT_GT(scores.size(), 5u);
   for (const EntryScores& e : scores) {
     EXPECT_TRUE(expected.count(e.entry));
-    EXPECT_NEAR(e.s_w, scoreBowVectors(s, q.bow, db.entry(e.entry).bow), 1e-12)
+    EXPECT_NEAR(e.s_w, scoreBowVectors(s, q.bow, db.bow(e.entry)), 1e-12)
         << toString(s) << " entry " << e.entry;
     EXPECT_NEAR(e.s_w, db.score(q, e.entry).s_w, 1e-12);
   }
@@ -201,11 +200,45 @@ TEST(Database, ScoringChangeRenormalisesAndReindexes) {
   db.setScoring(ScoringType::kL2);
   const DatabaseQuery q = db.makeQuery(qbow, qe.raw_groups, qe.keypoints, 320, 240, false);
   for (const EntryScores& e : db.query(q, 30, false)) {
-    BowVector a = qbow, b = db.entry(e.entry).bow;
+    BowVector a = qbow, b = db.bow(e.entry);
     normaliseBowVector(ScoringType::kL2, &a);
     normaliseBowVector(ScoringType::kL2, &b);
     EXPECT_NEAR(e.s_w, scoreBowVectors(ScoringType::kL2, a, b), 1e-12);
   }
+}
+
+// The entry keeps its words, not its vector: the vector the database rebuilds
+// is, bit for bit, the transform's of the keyframe normalised for the
+// database's scoring (what the word inverse index holds).
+TEST(Database, BowIsRebuiltFromTheWordsBitForBit) {
+  for (ScoringType s : {ScoringType::kL1, ScoringType::kL2, ScoringType::kChiSquare}) {
+    Database db(vocabulary(), s, 2, 8);
+    const testing::Corridor c = testing::makeCorridor(5, 50, 3);
+    std::mt19937_64 rng(7);
+    BowVector bow;
+    DatabaseEntry e =
+        entryFromKeyframe(db.vocabulary(), testing::observeCorridor(c, 0.5, 1.0, rng, 2), &bow);
+    db.addToGroupTable(e.raw_groups);
+    const EntryId id = db.add(std::move(e));
+    normaliseBowVector(s, &bow);
+    ASSERT_FALSE(bow.empty());
+    EXPECT_EQ(db.bow(id), bow) << toString(s);
+  }
+  // Hand-worked: TF-IDF over words {w, w, v} of the synthetic vocabulary,
+  // L1: w has 2/3 * idf_w, v 1/3 * idf_v, each divided by their sum.
+  const Vocabulary& voc = *vocabulary();
+  WordId w = 0, v = 1;
+  while (!(voc.wordWeight(w) > 0)) ++w;
+  v = w + 1;
+  while (!(voc.wordWeight(v) > 0)) ++v;
+  const BowVector b = voc.bowFromWords({w, v, w});
+  const double bw = 2.0 / 3.0 * voc.wordWeight(w), bv = 1.0 / 3.0 * voc.wordWeight(v);
+  ASSERT_EQ(b.size(), 2u);
+  EXPECT_EQ(b[0].first, w);
+  EXPECT_EQ(b[1].first, v);
+  EXPECT_NEAR(b[0].second, bw / (bw + bv), 1e-15);
+  EXPECT_NEAR(b[1].second, bv / (bw + bv), 1e-15);
+  EXPECT_THROW(voc.bowFromWords({static_cast<WordId>(voc.wordCount())}), std::out_of_range);
 }
 
 TEST(Database, AddRejectsInconsistentEntries) {

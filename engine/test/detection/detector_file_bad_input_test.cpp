@@ -167,6 +167,14 @@ TEST(DatabaseIo, ForgedContentIsRefusedByName) {
   for (const double w : {-5.0, 1e300, 0.0}) {
     forge("bow.bowgdb", bow + 4 + 4, &w, 8, "entry 0 has a BoW weight");
   }
+  // A weight in range that is not the one the entry's words give (the
+  // database rebuilds its vectors from the words: the file would contradict
+  // itself): half the first weight.
+  double first = 0;
+  std::memcpy(&first, &good[bow + 4 + 4], 8);
+  const double half = 0.5 * first;
+  forge("bow_words.bowgdb", bow + 4 + 4, &half, 8,
+        "entry 0 has a BoW vector that is not the one its words give");
   // The chain length: before the normaliser history (u32 + 50 x 24), the
   // two missed-query counters (8), the odometers (u32 + 52 x 8), the two
   // query odometers (16), the hypothesis count (4) and the checksum (8).

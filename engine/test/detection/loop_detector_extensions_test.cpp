@@ -203,11 +203,15 @@ TEST(LoopDetector, ScoresFollowTheNormaliserAndTemporalEquations) {
     if (!det.lastCandidates().empty()) {
       ASSERT_GT(r.word_normaliser, 0.0);
       const DatabaseEntry& prev = db.entry(r.query_id - 1);
-      EXPECT_NEAR(r.word_normaliser, scoreBowVectors(o.scoring, q.bow, prev.bow), 1e-12);
+      EXPECT_NEAR(r.word_normaliser,
+                  scoreBowVectors(o.scoring, det.database().bow(q.id), det.database().bow(prev.id)),
+                  1e-12);
       for (const CandidateScores& cs : det.lastCandidates()) {
         const DatabaseEntry& e = db.entry(cs.entry);
         EXPECT_LT(cs.entry, r.query_id - o.islands.recent_exclusion + 1);
-        EXPECT_NEAR(cs.eta_w * r.word_normaliser, scoreBowVectors(o.scoring, q.bow, e.bow), 1e-12);
+        EXPECT_NEAR(cs.eta_w * r.word_normaliser,
+                    scoreBowVectors(o.scoring, det.database().bow(q.id), det.database().bow(e.id)),
+                    1e-12);
         EXPECT_NEAR(cs.eta_d * r.distribution_normaliser,
                     distributionScore(db.distribution(r.query_id), db.distribution(cs.entry)),
                     1e-12);
@@ -261,7 +265,9 @@ TEST(LoopDetector, NormaliserFloorDividesByTheRecentMedianAfterAnUnusualKeyframe
       const DatabaseEntry& q = det.database().entry(r.query_id);
       for (const CandidateScores& cs : det.lastCandidates()) {
         const DatabaseEntry& e = det.database().entry(cs.entry);
-        EXPECT_NEAR(cs.eta_w * r.word_divisor, scoreBowVectors(o.scoring, q.bow, e.bow), 1e-12);
+        EXPECT_NEAR(cs.eta_w * r.word_divisor,
+                    scoreBowVectors(o.scoring, det.database().bow(q.id), det.database().bow(e.id)),
+                    1e-12);
       }
       (r.word_divisor > r.word_normaliser ? floored : kept) += 1;
     }
@@ -335,10 +341,13 @@ TEST(LoopDetector, NormaliserDistanceSkipsTheKeyframesOfAStop) {
     }
     const DatabaseEntry& q = det.database().entry(r.query_id);
     const DatabaseEntry& e = det.database().entry(c.expected);
-    EXPECT_NEAR(r.word_normaliser, scoreBowVectors(o.scoring, q.bow, e.bow), 1e-12);
+    EXPECT_NEAR(r.word_normaliser,
+                scoreBowVectors(o.scoring, det.database().bow(q.id), det.database().bow(e.id)),
+                1e-12);
     const DatabaseEntry& duplicate = det.database().entry(11);
     if (c.expected != 11) {
-      EXPECT_LT(r.word_normaliser, scoreBowVectors(o.scoring, q.bow, duplicate.bow));
+      EXPECT_LT(r.word_normaliser, scoreBowVectors(o.scoring, det.database().bow(q.id),
+                                                   det.database().bow(duplicate.id)));
     }
   }
   LoopDetectorOptions bad = defaultOptions();
@@ -377,7 +386,7 @@ TEST(LoopDetector, OptionsChangeBetweenKeyframesRebuildsWhatDependsOnThem) {
     EXPECT_EQ(det.database().distribution(e.id),
               distributionVector(e.keypoints, e.centre_x, e.centre_y, 5));
     double n2 = 0;
-    for (const auto& w : e.bow) n2 += w.second * w.second;
+    for (const auto& w : det.database().bow(e.id)) n2 += w.second * w.second;
     EXPECT_NEAR(n2, 1.0, 1e-9);  // L2-normalised now
   }
   o.similarity.lambda_1 = 2.0;

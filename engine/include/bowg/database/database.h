@@ -1,6 +1,8 @@
 // The BoWG database (paper Sec. III-A "BoWG Database"): the keyframes seen so
 // far and every index the queries need:
-//  - the word inverse index (word -> (entry, normalised BoW weight)), as DBoW2;
+//  - the word inverse index (word -> (entry, normalised BoW weight)), as
+//    DBoW2; an entry's BoW vector itself is rebuilt from its words when
+//    needed (bow()), not kept;
 //  - the online word-group table (eq. 1's IDF totals) and the word-group
 //    inverse index (group -> (entry, TF part of eq. 1));
 //  - the level of the direct index (Sec. III-D's correspondence search): an
@@ -55,15 +57,15 @@ struct DatabaseEntry {
   std::vector<Keypoint> keypoints;
   std::vector<Descriptor> descriptors;
   std::vector<WordId> words;          ///< word of each feature (index-aligned)
-  BowVector bow;                      ///< normalised for the database's scoring type
   GroupVector raw_groups;             ///< raw w_{g,t}^(i) (before eq. 1)
   double centre_x = 0, centre_y = 0;  ///< centre of the distribution fan
   CameraIntrinsics intrinsics;
   /// Metres driven since the first keyframe (KeyframeInput::odometer); NaN
   /// when unknown.
   double odometer = std::numeric_limits<double>::quiet_NaN();
-  // Derived (never saved): the direct index at Database::directLevel() is
-  // made from `words` when needed (directIndexFromWords); the distribution vector for the current m lives in the database's
+  // Derived from `words` when needed, not kept: the BoW vector
+  // (Database::bow()) and the direct index at Database::directLevel()
+  // (directIndexFromWords). The distribution vector for the current m lives in the database's
   // contiguous distribution table (Database::distribution()).
 };
 
@@ -110,7 +112,7 @@ class Database {
   int fanBins() const { return fan_bins_; }
 
   /// Option changes. Each rebuilds only what depends on it: the scoring type
-  /// renormalises every BoW vector and rebuilds the word inverse index; the
+  /// rebuilds every BoW vector and the word inverse index; the
   /// direct-index level applies to the next verification; m rebuilds
   /// every cached distribution vector from the stored keypoints.
   void setScoring(ScoringType scoring);
@@ -121,12 +123,17 @@ class Database {
   void addToGroupTable(const GroupVector& raw) { group_table_.add(raw); }
 
   /// Step 5: appends `entry` (its id is set to size()), computes its derived
-  /// fields and adds it to the inverse indexes. Its raw groups must already
-  /// be in the table (addToGroupTable). Returns the id. `bow_normalised`:
-  /// the BoW is already normalised for scoring() (a reload; normalising
-  /// twice would change the last bits of the weights).
+  /// fields and adds it to the inverse indexes (its BoW vector from its
+  /// words, as bow() does). Its raw groups must already be in the table
+  /// (addToGroupTable). Returns the id.
   /// Throws std::invalid_argument on inconsistent sizes or word ids.
-  EntryId add(DatabaseEntry entry, bool bow_normalised = false);
+  EntryId add(DatabaseEntry entry);
+
+  /// Entry `id`'s BoW vector normalised for scoring(): the vocabulary's
+  /// transform of its words (Vocabulary::bowFromWords), normalised; the
+  /// weights the word inverse index holds for it. Rebuilt on each call (a
+  /// few microseconds): keeping it would cost ~5 kB per keyframe.
+  BowVector bow(EntryId id) const;
 
   /// Step 4: the query's normalised BoW and refined groups.
   DatabaseQuery makeQuery(BowVector bow, const GroupVector& raw_groups,
@@ -150,7 +157,7 @@ class Database {
   void clear();
 
  private:
-  void indexWords(const DatabaseEntry& e);
+  void indexWords(EntryId id, const BowVector& bow);
   /// Entry `id`'s vector copied into a reused scratch buffer (no allocation).
   const std::vector<double>& cachedDistribution(EntryId id) const;
   void indexGroups(EntryId id, const GroupVector& group_tf);

@@ -73,6 +73,12 @@ class Vocabulary {
                  DirectIndex* direct = nullptr, int direct_level = 0,
                  std::vector<WordId>* words = nullptr) const;
 
+  /// The `bow` that transform() gives for an image whose features have these
+  /// words (bit for bit: the same weighting and normalisation), so that a
+  /// database can keep words and rebuild vectors on demand. Throws
+  /// std::out_of_range for a word id >= wordCount().
+  BowVector bowFromWords(const std::vector<WordId>& words) const;
+
   /// 64-bit content hash over k, L, the weighting scheme and every node (not
   /// the scoring type, which is a run-time choice); databases record it so
   /// they are never loaded against another vocabulary.
@@ -83,6 +89,10 @@ class Vocabulary {
   void setScoring(ScoringType s) { scoring_ = s; }
 
  private:
+  /// transform()'s weighting and normalisation over the image's
+  /// (word, feature) pairs sorted by word.
+  void weighSortedWords(const std::vector<std::pair<WordId, std::uint32_t>>& word_of,
+                        BowVector* bow) const;
   // The .bowgvoc loader hashes its node block once for its file checksum
   // and the fingerprint together (engine/src/vocabulary/vocabulary_records.h).
   friend struct VocabularyRecords;
