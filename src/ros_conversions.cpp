@@ -97,10 +97,16 @@ KeyframeFeatures toMessage(const bowg::ImageFeatures& features, const std_msgs::
   return msg;
 }
 
-void fillRelativePoseCovariance(bool has_pose, int inliers, double* c) {
+void fillRelativePoseCovariance(bool has_pose, int inliers, const double* translation_covariance,
+                                double* c) {
   const double big = LoopClosure::UNOBSERVABLE_SCALE_VARIANCE;
   for (int i = 0; i < 36; ++i) c[i] = 0.0;
   for (int i = 0; i < 3; ++i) c[i * 7] = big;
+  if (has_pose && translation_covariance) {
+    for (int r = 0; r < 3; ++r) {
+      for (int k = 0; k < 3; ++k) c[r * 6 + k] = translation_covariance[r * 3 + k];
+    }
+  }
   double rotation_variance = big;
   if (has_pose && inliers > 0) {
     // 0.05 rad (about 3 degrees) at the default min_inliers = 15, shrinking
@@ -129,7 +135,7 @@ LoopClosure toLoopClosure(const bowg::LoopResult& r, const std_msgs::Header& hea
   msg.correspondences = static_cast<std::uint32_t>(std::max(0, r.correspondences));
   msg.inliers = static_cast<std::uint32_t>(std::max(0, r.inliers));
   msg.has_relative_pose = r.has_relative_pose;
-  msg.translation_scale_known = false;
+  msg.translation_scale_known = r.has_relative_pose && r.translation_scale_known;
   geometry_msgs::Pose& pose = msg.relative_pose.pose;
   pose.orientation.w = 1.0;
   if (r.has_relative_pose) {
@@ -142,11 +148,14 @@ LoopClosure toLoopClosure(const bowg::LoopResult& r, const std_msgs::Header& hea
     pose.orientation.y = q.y();
     pose.orientation.z = q.z();
     pose.orientation.w = q.w();
-    pose.position.x = r.translation_direction[0];
-    pose.position.y = r.translation_direction[1];
-    pose.position.z = r.translation_direction[2];
+    const double* t = msg.translation_scale_known ? r.translation_m : r.translation_direction;
+    pose.position.x = t[0];
+    pose.position.y = t[1];
+    pose.position.z = t[2];
   }
-  fillRelativePoseCovariance(r.has_relative_pose, r.inliers, msg.relative_pose.covariance.data());
+  fillRelativePoseCovariance(r.has_relative_pose, r.inliers,
+                             msg.translation_scale_known ? r.translation_covariance : nullptr,
+                             msg.relative_pose.covariance.data());
   if (with_correspondences) {
     for (const bowg::Correspondence& c : r.inlier_correspondences) {
       msg.query_indices.push_back(c.query_index);

@@ -97,19 +97,35 @@ TEST(RosConversions, CovarianceMarksTheScaleUnobservable) {
   const double big = LoopClosure::UNOBSERVABLE_SCALE_VARIANCE;
   double c[36];
   // 15 inliers: sigma = 0.05 * sqrt(15/15) = 0.05 rad -> variance 0.0025.
-  fillRelativePoseCovariance(true, 15, c);
+  fillRelativePoseCovariance(true, 15, nullptr, c);
   for (int i = 0; i < 3; ++i) EXPECT_EQ(c[i * 7], big);
   for (int i = 3; i < 6; ++i) EXPECT_NEAR(c[i * 7], 0.0025, 1e-15);
   // 60 inliers: sigma = 0.05 * sqrt(15/60) = 0.025 -> 0.000625.
-  fillRelativePoseCovariance(true, 60, c);
+  fillRelativePoseCovariance(true, 60, nullptr, c);
   EXPECT_NEAR(c[21], 0.000625, 1e-15);
   for (int r = 0; r < 6; ++r) {
     for (int k = 0; k < 6; ++k) {
       if (r != k) EXPECT_EQ(c[r * 6 + k], 0.0);
     }
   }
-  fillRelativePoseCovariance(false, 60, c);
+  fillRelativePoseCovariance(false, 60, nullptr, c);
   for (int i = 0; i < 6; ++i) EXPECT_EQ(c[i * 7], big);
+}
+
+TEST(RosConversions, CovarianceCarriesTheMetricTranslationsBlock) {
+  double c[36];
+  const double t[9] = {1e-4, 2e-5, 0, 2e-5, 4e-4, 0, 0, 0, 9e-4};
+  fillRelativePoseCovariance(true, 15, t, c);
+  EXPECT_EQ(c[0], 1e-4);
+  EXPECT_EQ(c[1], 2e-5);
+  EXPECT_EQ(c[6], 2e-5);
+  EXPECT_EQ(c[7], 4e-4);
+  EXPECT_EQ(c[14], 9e-4);
+  EXPECT_NEAR(c[21], 0.0025, 1e-15);  // the rotation block as without the scale
+  // No pose, no translation: the block says nothing is known.
+  fillRelativePoseCovariance(false, 15, t, c);
+  EXPECT_EQ(c[0], LoopClosure::UNOBSERVABLE_SCALE_VARIANCE);
+  EXPECT_EQ(c[1], 0.0);
 }
 
 bowg::LoopResult aLoop() {
@@ -189,6 +205,29 @@ TEST(RosConversions, LoopClosureCarriesIdsFramePoseAndOptionalPoints) {
   EXPECT_EQ(m.relative_pose.pose.orientation.w, 1.0);
   EXPECT_EQ(m.relative_pose.pose.position.x, 0.0);
   EXPECT_EQ(m.relative_pose.covariance[35], LoopClosure::UNOBSERVABLE_SCALE_VARIANCE);
+}
+
+TEST(RosConversions, AMetricTranslationIsPublishedWithItsCovariance) {
+  bowg::LoopResult r = aLoop();
+  r.translation_scale_known = true;
+  r.translation_m[0] = 0.12;
+  r.translation_m[1] = -0.03;
+  r.translation_m[2] = 0.04;
+  r.translation_covariance[0] = 4e-4;
+  r.translation_covariance[8] = 1e-4;
+  std_msgs::Header h;
+  LoopClosure m = toLoopClosure(r, h, false);
+  EXPECT_TRUE(m.translation_scale_known);
+  EXPECT_EQ(m.relative_pose.pose.position.x, 0.12);
+  EXPECT_EQ(m.relative_pose.pose.position.y, -0.03);
+  EXPECT_EQ(m.relative_pose.pose.position.z, 0.04);
+  EXPECT_EQ(m.relative_pose.covariance[0], 4e-4);
+  EXPECT_EQ(m.relative_pose.covariance[14], 1e-4);
+  // Without a pose a scale means nothing.
+  r.has_relative_pose = false;
+  m = toLoopClosure(r, h, false);
+  EXPECT_FALSE(m.translation_scale_known);
+  EXPECT_EQ(m.relative_pose.pose.position.x, 0.0);
 }
 
 TEST(RosConversions, KeyframeStatusEchoesResultAndOptions) {

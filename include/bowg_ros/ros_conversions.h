@@ -24,12 +24,14 @@ bowg::ImageFeatures fromMessage(const KeyframeFeatures& msg);
 KeyframeFeatures toMessage(const bowg::ImageFeatures& features, const std_msgs::Header& header);
 
 /// The covariance of LoopClosure.relative_pose (6x6 row-major, x y z rx ry rz):
-/// translation variances UNOBSERVABLE_SCALE_VARIANCE (two views do not fix
-/// the scale); rotation variance sigma^2 with sigma = 0.05 rad * sqrt(15 /
-/// inliers), a heuristic that shrinks as 1/sqrt(n) with the RANSAC inlier
-/// count. Without a pose every diagonal entry is
-/// UNOBSERVABLE_SCALE_VARIANCE.
-void fillRelativePoseCovariance(bool has_pose, int inliers, double* covariance36);
+/// the translation block is `translation_covariance` (3x3 row-major, m^2)
+/// when the odometry gave the scale, else UNOBSERVABLE_SCALE_VARIANCE on its
+/// diagonal (two views do not fix the scale); rotation variance sigma^2 with
+/// sigma = 0.05 rad * sqrt(15 / inliers), a heuristic that shrinks as
+/// 1/sqrt(n) with the RANSAC inlier count. Without a pose every diagonal
+/// entry is UNOBSERVABLE_SCALE_VARIANCE.
+void fillRelativePoseCovariance(bool has_pose, int inliers, const double* translation_covariance,
+                                double* covariance36);
 
 /// A LoopClosure from a result with status kLoopDetected. `header` is the
 /// query image's header (its frame_id the query camera's optical frame).

@@ -43,6 +43,19 @@ void GeometricVerificationOptions::validate() const {
   requireIntAtLeast("geometric.candidates", candidates, 1);
 }
 
+void MetricTranslationOptions::validate() const {
+  requireFinitePositive("metric.min_baseline_m", min_baseline_m);
+  requireFinitePositive("metric.max_baseline_m", max_baseline_m);
+  if (max_baseline_m < min_baseline_m) {
+    fail("metric.max_baseline_m", "must be >= metric.min_baseline_m", str(max_baseline_m));
+  }
+  // Six points fix a pose; two more make the RANSAC's inlier count mean something.
+  requireIntAtLeast("metric.min_points", min_points, 6);
+  requireFiniteAtLeast("metric.odometer_sigma", odometer_sigma, 0.0);
+  // A spread needs two samples.
+  requireIntAtLeast("metric.covariance_samples", covariance_samples, 2);
+}
+
 void LoopDetectorOptions::validate() const {
   const int s = static_cast<int>(scoring);
   if (s < static_cast<int>(ScoringType::kL1) || s > static_cast<int>(ScoringType::kDotProduct)) {
@@ -55,6 +68,7 @@ void LoopDetectorOptions::validate() const {
   islands.validate();
   temporal_verification.validate();
   geometric.validate();
+  metric.validate();
 }
 
 }  // namespace bowg

@@ -173,13 +173,15 @@ class Verifier {
   }
 
   /// Valid until the next call.
-  VerificationView match(EntryId id) {
+  VerificationView match(EntryId id) { return entry(id, &match_direct_); }
+
+  /// Entry `id`'s view with its direct index in `storage`.
+  VerificationView entry(EntryId id, DirectIndex* storage) const {
     const DatabaseEntry& m = ctx_.database.entry(id);
     if (!exhaustive_) {
-      match_direct_ =
-          directIndexFromWords(ctx_.vocabulary, m.words, ctx_.database.directLevel());
+      *storage = directIndexFromWords(ctx_.vocabulary, m.words, ctx_.database.directLevel());
     }
-    return VerificationView{&m.keypoints, &m.descriptors, &match_direct_};
+    return VerificationView{&m.keypoints, &m.descriptors, storage};
   }
 
   const CameraIntrinsics& intrinsics() const { return intrinsics_; }
@@ -236,8 +238,10 @@ IslandChoice chooseIsland(const std::vector<Island>& islands,
     const int n = static_cast<int>(pairs[i].size());
     if (n < go.min_inliers || (have && n < c.g.inliers)) break;
     if (have && n == c.g.inliers && i > c.chosen) continue;
+    // No intrinsics: the relative pose (an essential matrix) is only worth
+    // its cost for the loop, once it is accepted (verifyMatch).
     GeometricVerificationResult gi = verifyCorrespondences(
-        pairs[i], qv, verifier->match(islands[i].best_entry), verifier->intrinsics(), go);
+        pairs[i], qv, verifier->match(islands[i].best_entry), CameraIntrinsics(), go);
     if (!have || gi.inliers > c.g.inliers || (gi.inliers == c.g.inliers && i < c.chosen)) {
       c.g = std::move(gi);
       c.chosen = i;
@@ -249,8 +253,53 @@ IslandChoice chooseIsland(const std::vector<Island>& islands,
   return c;
 }
 
+// The loop's translation in metres from the odometer between the match and
+// a neighbour of it (metric_translation.h); the PnP pose replaces the
+// essential matrix's so that rotation and translation belong together.
+void estimateScale(const QueryContext& ctx, const Verifier& verifier, LoopResult* r) {
+  const MetricTranslationOptions& mo = ctx.options.metric;
+  if (!r->has_relative_pose) return;
+  if (!mo.enabled) {
+    r->metric_status = MetricTranslationStatus::kDisabled;
+    return;
+  }
+  const auto& entries = ctx.database.entries();
+  if (!std::isfinite(entries[r->match_id].odometer)) {
+    r->metric_status = MetricTranslationStatus::kNoOdometry;
+    return;
+  }
+  const std::vector<EntryId> ids = chooseScaleNeighbours(entries, r->match_id, mo);
+  if (ids.empty()) {
+    r->metric_status = MetricTranslationStatus::kNoNeighbour;
+    return;
+  }
+  const DatabaseEntry& m = entries[r->match_id];
+  DirectIndex match_direct;
+  std::vector<DirectIndex> direct(ids.size());
+  std::vector<ScaleNeighbour> neighbours(ids.size());
+  for (std::size_t i = 0; i < ids.size(); ++i) {
+    neighbours[i].view = verifier.entry(ids[i], &direct[i]);
+    neighbours[i].baseline_m = std::fabs(entries[ids[i]].odometer - m.odometer);
+  }
+  const MetricTranslation t = estimateMetricTranslation(
+      r->inlier_correspondences, verifier.intrinsics(), verifier.entry(r->match_id, &match_direct),
+      neighbours, m.intrinsics, ctx.options.geometric, mo);
+  r->metric_status = t.status;
+  if (t.status != MetricTranslationStatus::kEstimated) return;
+  r->translation_scale_known = true;
+  std::copy(t.translation, t.translation + 3, r->translation_m);
+  std::copy(t.covariance, t.covariance + 9, r->translation_covariance);
+  std::copy(t.rotation, t.rotation + 9, r->rotation);
+  const double norm =
+      std::sqrt(t.translation[0] * t.translation[0] + t.translation[1] * t.translation[1] +
+                t.translation[2] * t.translation[2]);
+  if (norm > 0) {
+    for (int i = 0; i < 3; ++i) r->translation_direction[i] = t.translation[i] / norm;
+  }
+}
+
 // Geometric verification of the best entry of the chosen island (done
-// already when re-ranking); the loop and its relative pose.
+// already when re-ranking); the loop, its relative pose and its scale.
 void verifyMatch(const QueryContext& ctx, const Island& island, IslandChoice* choice,
                  Verifier* verifier, Clock::time_point t_verify, LoopResult* r) {
   const GeometricVerificationOptions& go = ctx.options.geometric;
@@ -275,10 +324,17 @@ void verifyMatch(const QueryContext& ctx, const Island& island, IslandChoice* ch
     r->match_stamp = 0;
     return;
   }
+  if (!g.has_relative_pose && verifier->intrinsics().valid) {
+    g.has_relative_pose = relativePoseFromCorrespondences(
+        g.inlier_correspondences, verifier->intrinsics(), go.ransac_threshold_px,
+        go.ransac_confidence, g.rotation, g.translation_direction);
+  }
   r->inlier_correspondences = std::move(g.inlier_correspondences);
   r->has_relative_pose = g.has_relative_pose;
   std::copy(g.rotation, g.rotation + 9, r->rotation);
   std::copy(g.translation_direction, g.translation_direction + 3, r->translation_direction);
+  estimateScale(ctx, *verifier, r);
+  r->timings.verification_ms = choice->rerank_ms + msBetween(t_verify, Clock::now());
 }
 
 }  // namespace

@@ -89,6 +89,28 @@ void addDetectionRows(std::vector<Row>* rows) {
                          "Geometric re-ranking: verify the best entries of this many top islands "
                          "and keep the one with the most inliers among those with at least "
                          "min_inliers correspondences (1 = the paper)"));
+  // --- Metric translation of a loop (odometry between the match and a neighbour).
+  rows->push_back(boolRow("metric_translation", det, "metric.enabled", false,
+                          BOWG_FIELD(bool, detector.metric.enabled),
+                          "Loop translation in metres from the odometer between the match and a "
+                          "neighbour keyframe (needs odometry and intrinsics)"));
+  rows->push_back(doubleRow("metric_min_baseline_m", det, "metric.min_baseline_m", 1e-4, 100.0,
+                            false, BOWG_FIELD(double, detector.metric.min_baseline_m),
+                            "The neighbour is the nearest keyframe at least this far from the "
+                            "match (m)"));
+  rows->push_back(doubleRow("metric_max_baseline_m", det, "metric.max_baseline_m", 1e-4, 100.0,
+                            false, BOWG_FIELD(double, detector.metric.max_baseline_m),
+                            "... and at most this far (m): path length stands for displacement "
+                            "only over short stretches"));
+  rows->push_back(intRow("metric_min_points", det, "metric.min_points", 6, 10000, false,
+                         BOWG_FIELD(int, detector.metric.min_points),
+                         "Triangulated loop inliers the PnP fit needs and keeps"));
+  rows->push_back(doubleRow("metric_odometer_sigma", det, "metric.odometer_sigma", 0.0, 1.0, false,
+                            BOWG_FIELD(double, detector.metric.odometer_sigma),
+                            "Relative odometer error over the baseline (covariance along t)"));
+  rows->push_back(intRow("metric_covariance_samples", det, "metric.covariance_samples", 2, 1000,
+                         false, BOWG_FIELD(int, detector.metric.covariance_samples),
+                         "Bootstrap resamples the translation's covariance is measured from"));
 }
 
 }  // namespace parameter_rows

@@ -196,7 +196,7 @@ TEST(DatabaseIo, ForgedContentIsRefusedByName) {
   const std::size_t normalisers = missed - 50 * 24;
   forge("query_odometer.bowgdb", query_odometers, &negative, 8,
         "a stored query odometer is invalid");
-  forge("odometer.bowgdb", odometers + 8, &negative, 8,
+  forge("entry_odometer.bowgdb", odometers + 8, &negative, 8,
         "entry 1 has a negative, non-finite or decreasing odometer");
   const std::int32_t many = 1000;
   forge("missed.bowgdb", missed, &many, 4, "missed-query count outside 0..52");

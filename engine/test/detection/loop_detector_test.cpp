@@ -64,6 +64,62 @@ TEST(LoopDetector, FindsTheRevisitWithTheRightIds) {
   std::printf("[          ] %d loops in the 60 return keyframes\n", loops);
 }
 
+// The corridor revisit with odometers (metres driven): loops get their
+// translation in metres, the match camera's position in the query camera
+// (x_match - x_query along the wall: X_Q = X_M + (x_m - x_q, 0, 0)).
+TEST(LoopDetector, WithOdometersTheLoopsTranslationIsMetric) {
+  for (const bool enabled : {true, false}) {
+    LoopDetectorOptions o = defaultOptions();
+    o.metric.enabled = enabled;
+    o.metric.max_baseline_m = 2.0;  // keyframes 1 m apart
+    LoopDetector det(vocabulary(), o);
+    const testing::Corridor c = testing::makeCorridor(70, 50, 3);
+    std::mt19937_64 rng(103);
+    std::vector<double> x;
+    for (int i = 0; i < 60; ++i) x.push_back(i);
+    for (int i = 0; i < 60; ++i) x.push_back(59.5 - i);
+    double odometer = 0;
+    int loops = 0, metric = 0;
+    for (std::size_t t = 0; t < x.size(); ++t) {
+      if (t > 0) odometer += std::fabs(x[t] - x[t - 1]);
+      KeyframeInput in = testing::observeCorridor(c, x[t], 1.0 + t, rng, 2, 0.5);
+      in.odometer = odometer;
+      const LoopResult r = det.process(in);
+      if (r.status != LoopStatus::kLoopDetected) continue;
+      ++loops;
+      if (!enabled) {
+        EXPECT_EQ(r.metric_status, MetricTranslationStatus::kDisabled);
+        EXPECT_FALSE(r.translation_scale_known);
+        continue;
+      }
+      if (!r.translation_scale_known) continue;
+      ++metric;
+      EXPECT_EQ(r.metric_status, MetricTranslationStatus::kEstimated);
+      const double dx = x[r.match_id] - x[t];
+      // Within 5 cm and the odometer_sigma of 5 % of the distance.
+      EXPECT_NEAR(r.translation_m[0], dx, 0.05 + 0.05 * std::fabs(dx))
+          << "query " << t << " match " << r.match_id;
+      EXPECT_NEAR(r.translation_m[1], 0, 0.05);
+      EXPECT_NEAR(r.translation_m[2], 0, 0.05);
+      // The covariance says centimetres (plus the odometer's 5 % of the
+      // distance along it), not metres, and is symmetric.
+      for (int i = 0; i < 3; ++i) {
+        EXPECT_GT(r.translation_covariance[4 * i], 0);
+        EXPECT_LT(std::sqrt(r.translation_covariance[4 * i]), 0.02 + 0.06 * std::fabs(dx));
+        EXPECT_EQ(r.translation_covariance[3 * i + (i + 1) % 3],
+                  r.translation_covariance[3 * ((i + 1) % 3) + i]);
+      }
+      // The pose's direction is the metric translation's.
+      const double n = std::sqrt(r.translation_m[0] * r.translation_m[0] +
+                                 r.translation_m[1] * r.translation_m[1] +
+                                 r.translation_m[2] * r.translation_m[2]);
+      EXPECT_NEAR(r.translation_direction[0], r.translation_m[0] / n, 1e-12);
+    }
+    EXPECT_GE(loops, 30);
+    if (enabled) EXPECT_GE(metric, loops * 3 / 4) << metric << " of " << loops;
+  }
+}
+
 TEST(LoopDetector, FindsNoLoopWithoutRevisit) {
   LoopDetector det(vocabulary(), defaultOptions());
   const CorridorRun run = runCorridor(&det, false, 100);

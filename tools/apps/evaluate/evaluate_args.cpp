@@ -28,9 +28,13 @@ const char* const kUsage =
     "  --images DIR               image folder (png/jpg/jpeg/pgm/bmp, sorted by file name)\n"
     "  --rate HZ                  stamps of folder images: frame n at n / HZ s [1]\n"
     "  --max-frames N             use the first N images only [all]\n"
+    "  --intrinsics FILE          camera of folder images (CSV 'fx,fy,cx,cy', one row; the\n"
+    "                             generator's intrinsics.csv): loops get their relative pose\n"
     "  --odometry FILE            metres driven per frame (CSV with 'frame' and 'odometer' or\n"
-    "                             'distance' columns, e.g. the generator's poses.csv): the\n"
-    "                             recent-exclusion window in metres (recent_exclusion_m)\n"
+    "                             'distance' columns, e.g. the generator's poses.csv, or a pose\n"
+    "                             file's x,y,z: its path length, e.g. the drifting\n"
+    "                             odometry.csv): the windows in metres (recent_exclusion_m) and\n"
+    "                             with --intrinsics the loops' metric translation\n"
     "Engine:\n"
     "  --vocabulary FILE          any format bowg::loadVocabulary reads (required)\n"
     "  --config FILE              parameter file, e.g. config/pipe.yaml [engine defaults]\n"
@@ -151,6 +155,8 @@ Args parseArgs(int argc, char** argv) {
       a.dump_candidates = v;
     else if (flag == "--odometry")
       a.odometry = v;
+    else if (flag == "--intrinsics")
+      a.intrinsics = v;
     else if (flag == "--rows") {
       a.rows = splitList(v);
       if (a.rows.empty()) throw std::invalid_argument("--rows needs at least one row");
@@ -174,6 +180,9 @@ Args parseArgs(int argc, char** argv) {
     throw std::invalid_argument("--sweep must be rerun or score, not " + a.sweep);
   }
   if (!(a.rate > 0)) throw std::invalid_argument("--rate must be > 0");
+  if (!a.intrinsics.empty() && a.images.empty()) {
+    throw std::invalid_argument("--intrinsics is for --images (a bag's camera_info gives them)");
+  }
   if (a.max_frames < 0) throw std::invalid_argument("--max-frames must be >= 0");
   return a;
 }

@@ -14,6 +14,7 @@
 
 #include "bowg/core/errors.h"
 #include "bowg_evaluation/image_file.h"
+#include "bowg_evaluation/intrinsics_file.h"
 #include "bowg_evaluation/odometry_file.h"
 #include "bowg_ros/bag_images.h"
 #include "bowg_ros/ros_conversions.h"
@@ -65,6 +66,8 @@ std::vector<FrameInput> loadFrames(const Args& a, const FeatureExtractor& extrac
   };
   ProgressBar bar("features", a.quiet);
   if (!a.images.empty()) {
+    const CameraIntrinsics intrinsics =
+        a.intrinsics.empty() ? CameraIntrinsics() : eval::readIntrinsics(a.intrinsics);
     std::vector<std::string> files = listImages(a.images);
     if (a.max_frames > 0 && files.size() > static_cast<std::size_t>(a.max_frames))
       files.resize(a.max_frames);
@@ -79,7 +82,7 @@ std::vector<FrameInput> loadFrames(const Args& a, const FeatureExtractor& extrac
                      files[i].c_str(), why.c_str());
         ++skipped;
       }
-      add(grey, i / a.rate, CameraIntrinsics());
+      add(grey, i / a.rate, intrinsics);
       bar(i + 1, files.size());
     }
     if (skipped > 0) {

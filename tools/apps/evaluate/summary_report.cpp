@@ -132,6 +132,8 @@ void writeReport(const Args& a, const std::vector<RowResult>& results, std::size
     writeFileAtomically(a.output + "/keyframes_" + r.run.name + ".csv", keyframesCsv(r.run, gt));
     writeFileAtomically(a.output + "/detections_" + r.run.name + ".csv",
                         detectionsToCsv(detectionsOf(r.run)));
+    writeFileAtomically(a.output + "/loop_poses_" + r.run.name + ".csv",
+                        loopPosesToCsv(loopPosesOf(r.run)));
   }
   std::ostringstream s;
   s << "input: " << (a.bag.empty() ? a.images : a.bag) << " (" << frames << " frames)\n"
@@ -154,7 +156,9 @@ void writeReport(const Args& a, const std::vector<RowResult>& results, std::size
                 "BoWG precision-recall (" + std::to_string(frames) + " frames)");
   }
   s << "\noutputs in " << a.output << ": summary.txt, keyframes_<row>.csv, detections_<row>.csv, "
-    << "time_vs_database_size.csv, memory_vs_database_size.csv" << (gt ? ", pr_curves.csv, pr_curve.png" : "") << "\n";
+    << "loop_poses_<row>.csv, "
+    << "time_vs_database_size.csv, memory_vs_database_size.csv"
+    << (gt ? ", pr_curves.csv, pr_curve.png" : "") << "\n";
   writeFileAtomically(a.output + "/summary.txt", s.str());
   std::cout << s.str();
 }

@@ -8,13 +8,13 @@
 
 #include <cmath>
 #include <cstdio>
+#include <opencv2/imgcodecs.hpp>
 #include <ostream>
 #include <stdexcept>
 #include <string>
 
-#include <opencv2/imgcodecs.hpp>
-
 #include "bowg/core/atomic_file.h"
+#include "bowg_evaluation/intrinsics_file.h"
 #include "bowg_pipe_sim/pipe_renderer.h"
 
 namespace bowg {
@@ -63,7 +63,7 @@ eval::TravelPose travelPoseOf(const pipe_sim::FrameState& f) {
 }  // namespace
 
 SequenceOutputs::SequenceOutputs(const Args& args)
-    : images_(args.images), odometry_(args.odometry) {
+    : images_(args.images), camera_(args.camera), odometry_(args.odometry) {
   if (!args.images.empty()) makeImageFolder(args.images);
   if (!args.bag.empty()) {
     bag_.reset(new BagOutput(args.bag, args.compression, args.bag_images, args.camera));
@@ -96,6 +96,13 @@ void SequenceOutputs::finish() {
   if (!images_.empty()) {
     bowg::writeFileAtomically(images_ + "/poses.csv", poses_csv_.str());
     bowg::writeFileAtomically(images_ + "/odometry.csv", odometry_csv_.str());
+    CameraIntrinsics k;
+    k.valid = true;
+    k.fx = camera_.fx;
+    k.fy = camera_.fy;
+    k.cx = camera_.cx;
+    k.cy = camera_.cy;
+    bowg::writeFileAtomically(images_ + "/intrinsics.csv", eval::intrinsicsToCsv(k));
   }
 }
 

@@ -1,19 +1,20 @@
 // Everything bowg_generate_pipe_sequence writes frame by frame: the bag
-// (--bag), the PNG files, poses.csv and odometry.csv (--images), and the
+// (--bag), the PNG files, poses.csv, odometry.csv and intrinsics.csv
+// (--images), and the
 // driven poses the ground truth is computed from afterwards. The odometry is
 // simulated here, one frame after the other, from the true poses.
 #pragma once
 
 #include <memory>
+#include <opencv2/core.hpp>
 #include <sstream>
 #include <string>
 #include <vector>
 
-#include <opencv2/core.hpp>
-
 #include "bag_output.h"
 #include "bowg_evaluation/ground_truth.h"
 #include "bowg_pipe_sim/odometry_model.h"
+#include "bowg_pipe_sim/pipe_renderer.h"
 #include "bowg_pipe_sim/pipe_sequence.h"
 #include "generator_args.h"
 
@@ -29,7 +30,7 @@ class SequenceOutputs {
   /// (the odometry integrates from one to the next).
   void add(const pipe_sim::FrameState& f, const cv::Mat& image);
 
-  /// Completes the bag and writes poses.csv and odometry.csv.
+  /// Completes the bag and writes poses.csv, odometry.csv and intrinsics.csv.
   void finish();
 
   /// The poses of the frames added so far, for eval::groundTruthFromPoses.
@@ -41,6 +42,7 @@ class SequenceOutputs {
 
  private:
   std::string images_;  // --images, empty without
+  pipe_sim::CameraModel camera_;
   std::unique_ptr<BagOutput> bag_;
   std::ostringstream poses_csv_, odometry_csv_;
   std::vector<eval::TravelPose> travel_;

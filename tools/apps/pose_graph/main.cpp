@@ -1,21 +1,25 @@
 // bowg_pose_graph: the pose-graph example. Odometry and the detector's loops
 // in, the optimised trajectory and its error against the truth out, so that
 // one command shows what the loop closures are for (scripts/pose_graph_demo.sh).
+#include <sys/stat.h>
+
 #include <cstdio>
 #include <fstream>
 #include <iostream>
+#include <map>
+#include <opencv2/imgcodecs.hpp>
 #include <sstream>
 #include <stdexcept>
 #include <string>
-#include <sys/stat.h>
 #include <vector>
-
-#include <opencv2/imgcodecs.hpp>
 
 #include "bowg/core/atomic_file.h"
 #include "bowg/core/errors.h"
+#include "bowg_evaluation/loop_pose_file.h"
 #include "bowg_evaluation/metrics.h"
 #include "bowg_evaluation/text_file.h"
+#include "bowg_pose_graph/camera_frames.h"
+#include "bowg_pose_graph/loop_translation_error.h"
 #include "bowg_pose_graph/pose_graph.h"
 #include "bowg_pose_graph/trajectory_error.h"
 #include "bowg_pose_graph/trajectory_file.h"
@@ -39,6 +43,22 @@ std::string describe(const char* what, const pose_graph::TrajectoryError& e) {
   return line;
 }
 
+// The metric loop edge of a loop pose, for the generator's camera (at the
+// body's origin, looking along x).
+pose_graph::LoopEdge metricEdge(const eval::LoopPose& p) {
+  Eigen::Isometry3d q_T_m = Eigen::Isometry3d::Identity();
+  Eigen::Matrix3d R, C;
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) {
+      R(r, c) = p.rotation[3 * r + c];
+      C(r, c) = p.covariance[3 * r + c];
+    }
+  }
+  q_T_m.linear() = R;
+  q_T_m.translation() = Eigen::Vector3d(p.translation[0], p.translation[1], p.translation[2]);
+  return pose_graph::metricLoopEdge(q_T_m, C, pose_graph::cameraAtBodyOrigin());
+}
+
 int run(const Args& a) {
   const std::vector<pose_graph::FramePose> truth = pose_graph::readTrajectory(a.truth);
   const std::vector<pose_graph::FramePose> odometry = pose_graph::readTrajectory(a.odometry);
@@ -59,6 +79,17 @@ int run(const Args& a) {
   const std::vector<eval::Detection> detections =
       eval::parseDetectionsCsv(eval::readTextFile(a.loops, "loop"), a.loops);
 
+  // The loops with a metric translation, by (query, match).
+  std::map<std::pair<int, int>, eval::LoopPose> metric_poses;
+  if (!a.loop_poses.empty()) {
+    for (const eval::LoopPose& p :
+         eval::parseLoopPosesCsv(eval::readTextFile(a.loop_poses, "loop poses"), a.loop_poses)) {
+      if (p.metric()) metric_poses[{p.query, p.match}] = p;
+    }
+  }
+  std::vector<pose_graph::LoopEdge> metric_edges;
+  std::vector<Eigen::Isometry3d> metric_truth;
+
   pose_graph::PoseGraph graph(a.graph);
   for (const auto& p : odometry) graph.addPose(p.isometry());
   for (std::size_t i = 1; i < odometry.size(); ++i) {
@@ -76,6 +107,13 @@ int run(const Args& a) {
       return node_of_frame[frame];
     };
     pose_graph::LoopEdge edge;
+    const auto pose = metric_poses.find({d.query, d.match});
+    if (pose != metric_poses.end()) {
+      edge = metricEdge(pose->second);
+      metric_edges.push_back(edge);
+      metric_truth.push_back(truth[node(d.match)].isometry().inverse() *
+                             truth[node(d.query)].isometry());
+    }
     edge.query = node(d.query);
     edge.match = node(d.match);
     graph.addLoop(edge);
@@ -95,7 +133,21 @@ int run(const Args& a) {
   char head[160];
   std::snprintf(head, sizeof head, "%zu frames, %.1f m driven, %zu loops\n", truth.size(), driven,
                 loops.size());
-  report << head << describe("odometry only       ", before) << "\n"
+  report << head;
+  if (!a.loop_poses.empty()) {
+    const pose_graph::LoopTranslationError m =
+        pose_graph::loopTranslationError(metric_edges, metric_truth);
+    char line[320];
+    std::snprintf(line, sizeof line,
+                  "metric loops        : %zu of %zu (the rest at the match's place +- %.2f m)\n"
+                  "  position error     : median %.3f m, 90 %% %.3f m (the same-place edge's: "
+                  "median %.3f m, 90 %% %.3f m)\n"
+                  "  truth inside the 95 %% covariance ellipsoid: %.0f %%\n",
+                  m.loops, loops.size(), a.graph.loop_position_sigma, m.median, m.p90,
+                  m.same_place_median, m.same_place_p90, 100 * m.inside_95);
+    report << line;
+  }
+  report << describe("odometry only       ", before) << "\n"
          << describe("pose graph + loops  ", after) << "\n";
   char factor[96];
   std::snprintf(factor, sizeof factor, "RMSE ratio odometry / pose graph: %.2f\n",

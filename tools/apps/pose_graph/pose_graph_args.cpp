@@ -9,8 +9,8 @@ namespace pose_graph_app {
 
 const char* const kUsage =
     "usage: bowg_pose_graph --truth POSES.csv --odometry ODOMETRY.csv --loops DETECTIONS.csv\n"
-    "                       [--output DIR] [--loop-sigma M] [--odometry-sigma FRACTION]\n"
-    "                       [--robust SIGMAS]\n"
+    "                       [--loop-poses LOOP_POSES.csv] [--output DIR] [--loop-sigma M]\n"
+    "                       [--odometry-sigma FRACTION] [--robust SIGMAS]\n"
     "\n"
     "The pose-graph example: one node per frame of the odometry, odometry edges between\n"
     "consecutive frames, one loop edge per detection (the query at the match's place,\n"
@@ -22,6 +22,10 @@ const char* const kUsage =
     "                      odometry.csv); the same frames as --truth\n"
     "  --loops FILE        query,match,score per loop, frame indices (bowg_evaluate's\n"
     "                      detections_<row>.csv)\n"
+    "  --loop-poses FILE   the loops' relative poses (bowg_evaluate's loop_poses_<row>.csv):\n"
+    "                      a loop with a metric translation puts the query where it says,\n"
+    "                      with its covariance (camera at the body's origin looking along\n"
+    "                      x, the generator's); also prints that translation's error\n"
     "  --output DIR        writes trajectories.csv, summary.txt and trajectories.png\n"
     "  --loop-sigma M      sigma of the query's position at the match's place [0.15]\n"
     "  --odometry-sigma F  sigma of an odometry step's position, fraction of its length [0.05]\n"
@@ -41,6 +45,8 @@ Args parseArgs(int argc, char** argv) {
       a.odometry = value();
     } else if (flag == "--loops") {
       a.loops = value();
+    } else if (flag == "--loop-poses") {
+      a.loop_poses = value();
     } else if (flag == "--output") {
       a.output = value();
     } else if (flag == "--loop-sigma") {

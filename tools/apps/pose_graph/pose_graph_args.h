@@ -12,6 +12,10 @@ struct Args {
   std::string truth;     ///< --truth: true body poses (the generator's poses.csv)
   std::string odometry;  ///< --odometry: drifting odometry (the generator's odometry.csv)
   std::string loops;     ///< --loops: bowg_evaluate's detections_<row>.csv (query,match,score)
+  /// --loop-poses: bowg_evaluate's loop_poses_<row>.csv; loops with a metric
+  /// translation become metric edges (camera at the body's origin, looking
+  /// along x: the generator's camera).
+  std::string loop_poses;
   std::string output;    ///< --output DIR: trajectories.csv, summary.txt, trajectories.png
   pose_graph::PoseGraphOptions graph;
 };

@@ -1,8 +1,9 @@
 #include "live_pose_graph.h"
 
-#include <cmath>
-
 #include <tf2_eigen/tf2_eigen.h>
+
+#include <cmath>
+#include <stdexcept>
 
 #include "bowg_pose_graph/camera_frames.h"
 
@@ -48,6 +49,7 @@ LivePoseGraph::LivePoseGraph(ros::NodeHandle& nh, ros::NodeHandle& pnh) {
             options_.odometry_rotation_deg_per_sqrt_m);
   pnh.param("robust_sigmas", options_.loop_robust_sigmas, options_.loop_robust_sigmas);
   pnh.param("use_loop_rotation", use_loop_rotation_, false);
+  pnh.param("use_metric_translation", use_metric_translation_, true);
   pnh.param<std::string>("map_frame", map_frame_, "map");
   pnh.param<std::string>("base_frame", base_frame_, "");
   pnh.param("publish_tf", publish_tf_, true);
@@ -85,6 +87,7 @@ void LivePoseGraph::restart(const std::string& why) {
   node_odometry_.clear();
   loop_nodes_.clear();
   loops_ = 0;
+  metric_loops_ = 0;
   last_tf_stamp_ = -1;
 }
 
@@ -161,11 +164,37 @@ bool LivePoseGraph::addReadyLoops() {
       continue;
     }
     const geometry_msgs::Quaternion& o = it->relative_pose.pose.orientation;
+    const Eigen::Quaterniond rotation(o.w, o.x, o.y, o.z);
     pose_graph::LoopEdge edge = pose_graph::loopEdgeForCamera(
-        Eigen::Quaterniond(o.w, o.x, o.y, o.z), camera, use_loop_rotation_ && it->has_relative_pose);
+        rotation, camera, use_loop_rotation_ && it->has_relative_pose);
     edge.query = q->second;
     edge.match = m->second;
-    graph_->addLoop(edge);
+    bool added_metric = false;
+    if (use_metric_translation_ && it->has_relative_pose && it->translation_scale_known) {
+      // The query where the metric translation puts it, with its covariance.
+      Eigen::Isometry3d q_T_m = Eigen::Isometry3d::Identity();
+      q_T_m.linear() = rotation.normalized().toRotationMatrix();
+      const geometry_msgs::Point& t = it->relative_pose.pose.position;
+      q_T_m.translation() = Eigen::Vector3d(t.x, t.y, t.z);
+      Eigen::Matrix3d c;
+      for (int r = 0; r < 3; ++r) {
+        for (int k = 0; k < 3; ++k) c(r, k) = it->relative_pose.covariance[r * 6 + k];
+      }
+      pose_graph::LoopEdge metric = pose_graph::metricLoopEdge(q_T_m, c, camera);
+      metric.query = edge.query;
+      metric.match = edge.match;
+      try {
+        graph_->addLoop(metric);
+        added_metric = true;
+        ++metric_loops_;
+      } catch (const std::invalid_argument& e) {
+        ROS_WARN(
+            "bowg_pose_graph_node: loop %u -> %u: its metric translation is unusable (%s); "
+            "added as a same-place loop",
+            it->query_id, it->match_id, e.what());
+      }
+    }
+    if (!added_metric) graph_->addLoop(edge);
     loop_nodes_.emplace_back(edge.query, edge.match);
     ++loops_;
     added = true;
@@ -173,8 +202,8 @@ bool LivePoseGraph::addReadyLoops() {
   }
   if (added) {
     const pose_graph::SolveSummary s = graph_->optimize();
-    ROS_INFO("bowg_pose_graph_node: %zu keyframes, %zu loops: %s", graph_->size(), loops_,
-             s.report.c_str());
+    ROS_INFO("bowg_pose_graph_node: %zu keyframes, %zu loops (%zu metric): %s", graph_->size(),
+             loops_, metric_loops_, s.report.c_str());
   }
   return added;
 }

@@ -62,6 +62,7 @@ class LivePoseGraph {
 
   pose_graph::PoseGraphOptions options_;
   bool use_loop_rotation_ = false;
+  bool use_metric_translation_ = true;
   std::string map_frame_, base_frame_;
   std::string odom_frame_;  ///< the odometry's frame_id, for map -> odom
   bool publish_tf_ = true;
@@ -77,7 +78,7 @@ class LivePoseGraph {
   std::vector<std::pair<std::size_t, std::size_t>> loop_nodes_;  // query, match
   std::vector<double> node_stamps_;
   std::vector<Eigen::Isometry3d, Eigen::aligned_allocator<Eigen::Isometry3d>> node_odometry_;
-  std::size_t loops_ = 0, skipped_keyframes_ = 0, lost_keyframes_ = 0;
+  std::size_t loops_ = 0, metric_loops_ = 0, skipped_keyframes_ = 0, lost_keyframes_ = 0;
 
   ros::Subscriber odom_sub_, keyframe_sub_, loop_sub_;
   ros::Publisher path_pub_, odometry_path_pub_, loops_pub_;

@@ -103,6 +103,28 @@ struct GeometricVerificationOptions {
   void validate() const;
 };
 
+/// The loop's translation in metres (metric_translation.h): from the
+/// odometer's distance between the match and a neighbour keyframe, when
+/// the keyframes carry odometers and intrinsics are known.
+struct MetricTranslationOptions {
+  bool enabled = true;
+  /// The neighbour is the nearest keyframe at least this far from the match
+  /// (m): a shorter baseline triangulates depth poorly ...
+  double min_baseline_m = 0.03;
+  /// ... and at most this far: the odometer's path length stands for the
+  /// camera's displacement only over short, nearly straight stretches.
+  double max_baseline_m = 0.5;
+  /// Triangulated loop inliers the perspective-n-point fit needs and keeps.
+  int min_points = 8;
+  /// Relative error of the odometer over the baseline (the covariance's
+  /// scale term).
+  double odometer_sigma = 0.05;
+  /// Bootstrap resamples the covariance is measured from (each one
+  /// essential matrix and one PnP fit).
+  int covariance_samples = 20;
+  void validate() const;
+};
+
 /// Everything the loop detector needs per keyframe.
 struct LoopDetectorOptions {
   ScoringType scoring = ScoringType::kL1;
@@ -113,6 +135,7 @@ struct LoopDetectorOptions {
   IslandOptions islands;
   TemporalVerificationOptions temporal_verification;
   GeometricVerificationOptions geometric;
+  MetricTranslationOptions metric;
 
   /// Throws InvalidParameter("<stage>.<field>: <why>") on the first invalid
   /// value, e.g. "similarity.lambda_1 + similarity.lambda_2 must be <= 1".

@@ -16,6 +16,7 @@
 #include "bowg/detection/detection_options.h"
 #include "bowg/detection/geometric_verification.h"
 #include "bowg/detection/loop_status.h"
+#include "bowg/detection/metric_translation.h"
 
 namespace bowg {
 
@@ -76,9 +77,18 @@ struct LoopResult {
   /// Relative pose of the match camera in the query camera frame, from the
   /// essential matrix, when intrinsics are known: R (row-major 3x3) and the
   /// unit translation direction (scale is unobservable from two views).
+  /// With the metric translation, R and the direction are the PnP fit's
+  /// (metric_translation.h), which the metric translation belongs to.
   bool has_relative_pose = false;
   double rotation[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
   double translation_direction[3] = {0, 0, 0};
+  /// The translation in metres, when the odometry gives its scale
+  /// (MetricTranslationOptions; metric_status says why not otherwise): T_Q_M
+  /// as above and its covariance (row-major 3x3, m^2, query optical frame).
+  MetricTranslationStatus metric_status = MetricTranslationStatus::kNoOdometry;
+  bool translation_scale_known = false;
+  double translation_m[3] = {0, 0, 0};
+  double translation_covariance[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
 
   /// Normaliser scores against the previous keyframe (s(I_t, I_t-1)).
   double word_normaliser = 0, group_normaliser = 0, distribution_normaliser = 0;

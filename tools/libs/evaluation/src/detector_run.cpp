@@ -57,6 +57,18 @@ DetectorRun runDetector(std::shared_ptr<const Vocabulary> vocabulary,
     k.correspondences = r.correspondences;
     k.inliers = r.inliers;
     k.timings = r.timings;
+    if (r.status == LoopStatus::kLoopDetected && r.has_relative_pose) {
+      k.has_pose = true;
+      k.pose.query = k.frame;
+      k.pose.match = k.match;
+      k.pose.metric_status = toString(r.metric_status);
+      std::copy(r.rotation, r.rotation + 9, k.pose.rotation);
+      const double* t = r.translation_scale_known ? r.translation_m : r.translation_direction;
+      std::copy(t, t + 3, k.pose.translation);
+      if (r.translation_scale_known) {
+        std::copy(r.translation_covariance, r.translation_covariance + 9, k.pose.covariance);
+      }
+    }
     run.keyframes.push_back(k);
     if (progress) progress(i + 1, frames.size());
     // Outside the timings above; memoryBytes() walks the whole database.
@@ -72,6 +84,14 @@ std::vector<Detection> detectionsOf(const DetectorRun& run) {
   std::vector<Detection> out;
   for (const KeyframeRecord& k : run.keyframes) {
     if (k.status == LoopStatus::kLoopDetected) out.push_back({k.frame, k.match, k.candidate_score});
+  }
+  return out;
+}
+
+std::vector<LoopPose> loopPosesOf(const DetectorRun& run) {
+  std::vector<LoopPose> out;
+  for (const KeyframeRecord& k : run.keyframes) {
+    if (k.has_pose) out.push_back(k.pose);
   }
   return out;
 }

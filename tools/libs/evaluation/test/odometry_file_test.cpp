@@ -43,9 +43,30 @@ TEST(OdometryFile, FallsBackToDistanceAndLeavesMissingFramesUnknown) {
   EXPECT_DOUBLE_EQ(o[4], 3.0);
 }
 
+TEST(OdometryFile, APoseFileGivesThePathLengthThroughItsPositions) {
+  // The drifting odometry.csv: steps of 0.3 (3-4-5 scaled), 0.1 back along
+  // x (backing up counts as driven), then 0.2 along z.
+  const std::string text =
+      "frame,stamp,x,y,z,qx,qy,qz,qw\n"
+      "0,0.0,1.0,2.0,0.0,0,0,0,1\n"
+      "1,0.5,1.18,2.24,0.0,0,0,0,1\n"
+      "2,1.0,1.08,2.24,0.0,0,0,0,1\n"
+      "4,2.0,1.08,2.24,0.2,0,0,0,1\n";
+  const std::vector<double> o = parseOdometry(text, "odometry.csv");
+  ASSERT_EQ(o.size(), 5u);
+  EXPECT_DOUBLE_EQ(o[0], 0.0);
+  EXPECT_NEAR(o[1], 0.3, 1e-12);
+  EXPECT_NEAR(o[2], 0.4, 1e-12);
+  EXPECT_TRUE(std::isnan(o[3]));
+  EXPECT_NEAR(o[4], 0.6, 1e-12);
+  EXPECT_EQ(errorOf("frame,x,y,z\n0,1,2,inf\n"),
+            "poses.csv:2: position 'inf' is not a finite number");
+}
+
 TEST(OdometryFile, BadFilesNameTheFileAndLine) {
   EXPECT_EQ(errorOf("frame,x\n0,1\n"),
-            "poses.csv:1: the header needs a 'frame' and an 'odometer' (or 'distance') column");
+            "poses.csv:1: the header needs a 'frame' column and an 'odometer' (or 'distance') "
+            "column, or x, y and z");
   EXPECT_EQ(errorOf("frame,odometer\n0,1\n1,0.5\n"),
             "poses.csv:3: the odometer decreases (0.5 after 1.000000)");
   EXPECT_EQ(errorOf("frame,odometer\n0,-1\n"),

@@ -46,5 +46,24 @@ LoopEdge loopEdgeForCamera(const Eigen::Quaterniond& query_R_match_optical,
   return edge;
 }
 
+LoopEdge metricLoopEdge(const Eigen::Isometry3d& query_T_match_optical,
+                        const Eigen::Matrix3d& translation_covariance,
+                        const Eigen::Isometry3d& body_T_optical) {
+  const Eigen::Isometry3d match_T_query_body =
+      body_T_optical * query_T_match_optical.inverse() * body_T_optical.inverse();
+  LoopEdge edge;
+  edge.has_rotation = true;
+  edge.rotation = Eigen::Quaterniond(match_T_query_body.rotation()).normalized();
+  edge.position = match_T_query_body.translation();
+  const Eigen::Matrix3d J =
+      body_T_optical.rotation() * query_T_match_optical.rotation().transpose();
+  edge.has_position_covariance = true;
+  edge.position_covariance = J * translation_covariance * J.transpose();
+  // Exactly symmetric: the graph checks it.
+  edge.position_covariance =
+      0.5 * (edge.position_covariance + edge.position_covariance.transpose()).eval();
+  return edge;
+}
+
 }  // namespace pose_graph
 }  // namespace bowg

@@ -4,6 +4,7 @@
 #include <ceres/ceres.h>
 #include <ceres/version.h>
 
+#include <Eigen/Cholesky>
 #include <cmath>
 #include <stdexcept>
 
@@ -25,12 +26,14 @@ void requireNonNegative(double v, const char* name) {
 }
 
 /// Error of a measured relative pose b-in-a: position difference in a's
-/// frame over its sigma, and the rotation difference (twice the vector part
-/// of the error quaternion: the angle for small errors) over its sigma.
+/// frame whitened by its square-root information (1/sigma for an isotropic
+/// sigma), and the rotation difference (twice the vector part of the error
+/// quaternion: the angle for small errors) over its sigma.
 struct RelativePoseError {
   Eigen::Vector3d position;
   Eigen::Quaterniond rotation;
-  double position_weight, rotation_weight;
+  Eigen::Matrix3d position_weight;
+  double rotation_weight;
   EIGEN_MAKE_ALIGNED_OPERATOR_NEW
 
   template <typename T>
@@ -41,8 +44,9 @@ struct RelativePoseError {
     const Eigen::Matrix<T, 3, 1> p_ab = a_inv * (p_b - p_a);
     const Eigen::Quaternion<T> q_ab = a_inv * q_b;
     const Eigen::Quaternion<T> error = rotation.cast<T>().conjugate() * q_ab;
+    const Eigen::Matrix<T, 3, 1> e = position_weight.cast<T>() * (p_ab - position.cast<T>());
     for (int i = 0; i < 3; ++i) {
-      residual[i] = (p_ab[i] - T(position[i])) * T(position_weight);
+      residual[i] = e[i];
       residual[3 + i] = T(2.0) * error.vec()[i] * T(rotation_weight);
     }
     return true;
@@ -52,17 +56,28 @@ struct RelativePoseError {
 /// The same for the position only (a loop whose rotation is unknown).
 struct RelativePositionError {
   Eigen::Vector3d position;
-  double position_weight;
+  Eigen::Matrix3d position_weight;
+  EIGEN_MAKE_ALIGNED_OPERATOR_NEW
 
   template <typename T>
   bool operator()(const T* pa, const T* qa, const T* pb, T* residual) const {
     const Eigen::Map<const Eigen::Matrix<T, 3, 1>> p_a(pa), p_b(pb);
     const Eigen::Map<const Eigen::Quaternion<T>> q_a(qa);
     const Eigen::Matrix<T, 3, 1> p_ab = q_a.conjugate() * (p_b - p_a);
-    for (int i = 0; i < 3; ++i) residual[i] = (p_ab[i] - T(position[i])) * T(position_weight);
+    const Eigen::Matrix<T, 3, 1> e = position_weight.cast<T>() * (p_ab - position.cast<T>());
+    for (int i = 0; i < 3; ++i) residual[i] = e[i];
     return true;
   }
 };
+
+Eigen::Matrix3d isotropic(double sigma) { return Eigen::Matrix3d::Identity() / sigma; }
+
+/// U with U^T U = covariance^-1: the residual U e has e^T covariance^-1 e as
+/// its squared norm.
+Eigen::Matrix3d squareRootInformation(const Eigen::Matrix3d& covariance) {
+  const Eigen::LLT<Eigen::Matrix3d> llt(covariance.inverse());
+  return llt.matrixL().transpose();
+}
 
 void setQuaternionManifold(ceres::Problem* problem, double* q) {
   // Ceres 2.1 replaced local parameterizations by manifolds (2.2 dropped
@@ -108,6 +123,15 @@ void PoseGraph::addLoop(const LoopEdge& loop) {
   if (!(loop.extra_position_sigma >= 0.0) || !std::isfinite(loop.extra_position_sigma)) {
     throw std::invalid_argument("pose graph: a loop's extra position sigma must be finite and >= 0");
   }
+  if (loop.has_position_covariance) {
+    const Eigen::Matrix3d& c = loop.position_covariance;
+    const Eigen::LLT<Eigen::Matrix3d> llt(c);
+    if (!c.allFinite() || !c.isApprox(c.transpose(), 1e-9) || llt.info() != Eigen::Success) {
+      throw std::invalid_argument(
+          "pose graph: a loop's position covariance must be finite, symmetric and positive "
+          "definite");
+    }
+  }
   if (loop.query >= size() || loop.match >= size() || loop.query == loop.match) {
     throw std::invalid_argument("pose graph: loop edge " + std::to_string(loop.query) + " -> " +
                                 std::to_string(loop.match) + " does not join two nodes of " +
@@ -133,9 +157,8 @@ SolveSummary PoseGraph::optimize() {
     const double sigma_r = (options_.odometry_rotation_deg_per_sqrt_m * std::sqrt(length) +
                             options_.odometry_rotation_floor_deg) * kDegree;
     auto* cost = new ceres::AutoDiffCostFunction<RelativePoseError, 6, 3, 4, 3, 4>(
-        new RelativePoseError{o.from_T_to.translation(),
-                              Eigen::Quaterniond(o.from_T_to.rotation()), 1.0 / sigma_p,
-                              1.0 / sigma_r});
+        new RelativePoseError{o.from_T_to.translation(), Eigen::Quaterniond(o.from_T_to.rotation()),
+                              isotropic(sigma_p), 1.0 / sigma_r});
     problem.AddResidualBlock(cost, nullptr, positions_[o.from].data(), rotations_[o.from].coeffs().data(),
                              positions_[o.to].data(), rotations_[o.to].coeffs().data());
   }
@@ -145,18 +168,25 @@ SolveSummary PoseGraph::optimize() {
     return a > 0 ? new ceres::CauchyLoss(a) : nullptr;
   };
   for (const LoopEdge& l : loops_) {
-    const double sigma_p = std::hypot(options_.loop_position_sigma, l.extra_position_sigma);
+    // A measured position brings its covariance; else the query is at the
+    // match's place within loop_position_sigma.
+    const Eigen::Matrix3d weight =
+        l.has_position_covariance
+            ? squareRootInformation(l.position_covariance + Eigen::Matrix3d::Identity() *
+                                                                l.extra_position_sigma *
+                                                                l.extra_position_sigma)
+            : isotropic(std::hypot(options_.loop_position_sigma, l.extra_position_sigma));
     // The match is the older keyframe: the query's pose is expressed in it.
     if (l.has_rotation) {
-      auto* cost = new ceres::AutoDiffCostFunction<RelativePoseError, 6, 3, 4, 3, 4>(
-          new RelativePoseError{l.position, l.rotation, 1.0 / sigma_p,
-                                1.0 / (options_.loop_rotation_sigma_deg * kDegree)});
+      auto* cost =
+          new ceres::AutoDiffCostFunction<RelativePoseError, 6, 3, 4, 3, 4>(new RelativePoseError{
+              l.position, l.rotation, weight, 1.0 / (options_.loop_rotation_sigma_deg * kDegree)});
       problem.AddResidualBlock(cost, loss(), positions_[l.match].data(),
                                rotations_[l.match].coeffs().data(), positions_[l.query].data(),
                                rotations_[l.query].coeffs().data());
     } else {
       auto* cost = new ceres::AutoDiffCostFunction<RelativePositionError, 3, 3, 4, 3>(
-          new RelativePositionError{l.position, 1.0 / sigma_p});
+          new RelativePositionError{l.position, weight});
       problem.AddResidualBlock(cost, loss(), positions_[l.match].data(),
                                rotations_[l.match].coeffs().data(), positions_[l.query].data());
     }

@@ -58,6 +58,46 @@ TEST(CameraFrames, ACameraAheadOfTheBodyPutsTheQueryBodyWhereItsCameraStood) {
   EXPECT_TRUE(origin.position.isZero(1e-12));
 }
 
+TEST(CameraFrames, AMetricLoopPutsTheQueryBodyWhereTheTranslationSays) {
+  // Camera at the body's origin, same heading; X_Q = X_M + (0, 0, -0.5):
+  // the match camera stood 0.5 m behind the query along the optical z, so
+  // the query body is 0.5 m ahead of the match body along body x.
+  Eigen::Isometry3d q_T_m = Eigen::Isometry3d::Identity();
+  q_T_m.translation() = Eigen::Vector3d(0, 0, -0.5);
+  // Optical variances: x (right) 0.01, y (down) 0.04, z (forward) 0.09.
+  const Eigen::Matrix3d C = Eigen::Vector3d(0.01, 0.04, 0.09).asDiagonal();
+  const LoopEdge e = metricLoopEdge(q_T_m, C, cameraAtBodyOrigin());
+  EXPECT_TRUE(e.has_rotation);
+  EXPECT_TRUE(e.has_position_covariance);
+  EXPECT_TRUE(e.position.isApprox(Eigen::Vector3d(0.5, 0, 0), 1e-12)) << e.position.transpose();
+  EXPECT_NEAR(Eigen::AngleAxisd(e.rotation).angle(), 0, 1e-12);
+  // In the body: forward (x) 0.09, left (y) 0.01, up (z) 0.04.
+  const Eigen::Matrix3d body = Eigen::Vector3d(0.09, 0.01, 0.04).asDiagonal();
+  EXPECT_TRUE(e.position_covariance.isApprox(body, 1e-12)) << e.position_covariance;
+
+  // The query turned 90 deg left (yaw) at the match's place, its camera
+  // 0.5 m ahead of its body. Query camera axes in the match camera: a yaw
+  // left is a turn about optical -y, so q_T_m's rotation (match axes in the
+  // query camera) is +90 deg about optical y. Cameras 0.2 m apart along the
+  // match's optical x (right): t = R * (-c) with c = (0.2, 0, 0).
+  Eigen::Isometry3d camera = cameraAtBodyOrigin();
+  camera.translation() = Eigen::Vector3d(0.5, 0, 0);
+  Eigen::Isometry3d turned = Eigen::Isometry3d::Identity();
+  turned.linear() = Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitY()).toRotationMatrix();
+  turned.translation() = turned.linear() * Eigen::Vector3d(-0.2, 0, 0);
+  const LoopEdge t = metricLoopEdge(turned, Eigen::Matrix3d::Identity() * 1e-4, camera);
+  // The query camera stands 0.2 m right of the match camera: 0.5 m ahead of
+  // the match body and 0.2 m to its right, (0.5, -0.2, 0). Its body is 0.5 m
+  // behind it along its own x, which points to the match body's +y (a left
+  // turn): (0.5, -0.2 - 0.5, 0).
+  EXPECT_TRUE(t.position.isApprox(Eigen::Vector3d(0.5, -0.7, 0), 1e-12)) << t.position.transpose();
+  const Eigen::AngleAxisd yaw(t.rotation);
+  EXPECT_NEAR(yaw.angle(), M_PI / 2, 1e-12);
+  EXPECT_TRUE(yaw.axis().isApprox(Eigen::Vector3d::UnitZ(), 1e-12));
+  // An isotropic covariance stays isotropic.
+  EXPECT_TRUE(t.position_covariance.isApprox(Eigen::Matrix3d::Identity() * 1e-4, 1e-12));
+}
+
 }  // namespace
 }  // namespace pose_graph
 }  // namespace bowg

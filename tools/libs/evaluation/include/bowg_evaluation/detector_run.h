@@ -15,6 +15,7 @@
 #include "bowg/detection/loop_detector.h"
 #include "bowg/vocabulary/vocabulary.h"
 #include "bowg_evaluation/ground_truth.h"
+#include "bowg_evaluation/loop_pose_file.h"
 #include "bowg_evaluation/metrics.h"
 #include "bowg_evaluation/timing_stats.h"
 
@@ -49,6 +50,9 @@ struct KeyframeRecord {
   std::size_t database_size = 0;  ///< entries before this keyframe was added
   StageTimings timings;
   double feature_ms = 0;
+  /// The loop's relative pose, when it has one (match >= 0 and intrinsics).
+  bool has_pose = false;
+  LoopPose pose;
 };
 
 /// Memory while the database grows: the process's resident set and the
@@ -83,6 +87,9 @@ DetectorRun runDetector(std::shared_ptr<const Vocabulary> vocabulary,
 
 /// The loops a run found, scored by their final score eta.
 std::vector<Detection> detectionsOf(const DetectorRun& run);
+
+/// The relative poses of the run's loops (loop_pose_file.h).
+std::vector<LoopPose> loopPosesOf(const DetectorRun& run);
 
 /// The run's operating point: every loop it found scored against `gt`, the
 /// point's threshold being the run's min_score (one point of the exact PR

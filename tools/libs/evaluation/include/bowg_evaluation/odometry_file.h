@@ -6,7 +6,9 @@
 // Format: CSV with a header line naming the columns (the generator's
 // poses.csv is one): `frame` (0-based index, rows in increasing order) and
 // `odometer` (metres driven, never decreasing), or `distance` where no
-// `odometer` column exists. Other columns are ignored.
+// `odometer` column exists, or else `x`, `y`, `z`: a pose file (the
+// generator's drifting odometry.csv), whose metres driven are the path length
+// through its positions from the first row. Other columns are ignored.
 #pragma once
 
 #include <string>

@@ -30,6 +30,18 @@ Eigen::Quaterniond queryInMatchBody(const Eigen::Quaterniond& query_R_match_opti
 LoopEdge loopEdgeForCamera(const Eigen::Quaterniond& query_R_match_optical,
                            const Eigen::Isometry3d& body_T_optical, bool use_rotation);
 
+/// The loop edge of a metric loop (LoopClosure.translation_scale_known):
+/// the match camera's pose in the query's optical frame, query_T_match
+/// (rotation and metres), and the covariance of its translation (m^2, query
+/// optical frame), for a camera mounted at `body_T_optical`. The edge holds
+/// the query body's pose in the match body, B query_T_match^-1 B^-1 (B =
+/// body_T_optical), with the translation's covariance carried into the match
+/// body frame to first order: the position is -B_R R^T t + const, so its
+/// covariance is (B_R R^T) C (B_R R^T)^T.
+LoopEdge metricLoopEdge(const Eigen::Isometry3d& query_T_match_optical,
+                        const Eigen::Matrix3d& translation_covariance,
+                        const Eigen::Isometry3d& body_T_optical);
+
 /// body_T_optical of a camera at the body's origin looking along body x.
 Eigen::Isometry3d cameraAtBodyOrigin();
 

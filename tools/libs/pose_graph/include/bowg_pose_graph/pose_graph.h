@@ -3,13 +3,15 @@
 // between consecutive keyframes and loop edges from the loop detector,
 // optimised with Ceres (robust loss on the loops, first pose held fixed).
 //
-// What a loop edge says: in a pipe, a loop means "the same place" within the
-// detector's tolerance, so the query's position in the match's body frame is
+// What a loop edge says: with a metric translation (the detector's, scaled
+// by the odometry: LoopClosure.translation_scale_known) the query's pose in
+// the match body frame as measured, with the measurement's covariance.
+// Without it, in a pipe a loop means "the same place" within the detector's
+// tolerance, so the query's position in the match body frame is
 // 0 +- position_sigma (a few keyframes of spacing); the relative rotation is
 // added when it is known (the essential matrix's, in the body frame) and
-// left free otherwise (the robot may pass the place rolled differently). Two
-// views do not fix the translation's scale, which is why the translation is
-// not taken from the image pair. ROS-free.
+// left free otherwise (the robot may pass the place rolled differently).
+// ROS-free.
 #pragma once
 
 #include <Eigen/Geometry>
@@ -51,6 +53,10 @@ struct LoopEdge {
   /// know of the position, such as a camera's offset from the body when the
   /// rotation is unknown (m, >= 0).
   double extra_position_sigma = 0;
+  /// A measured position: its covariance (m^2, match body frame) replaces
+  /// loop_position_sigma (extra_position_sigma still adds to its diagonal).
+  bool has_position_covariance = false;
+  Eigen::Matrix3d position_covariance = Eigen::Matrix3d::Identity();
   EIGEN_MAKE_ALIGNED_OPERATOR_NEW
 };
 
@@ -71,6 +77,8 @@ class PoseGraph {
   /// Measured motion from node `from` to node `to`: the pose of `to` in the
   /// body frame of `from`.
   void addOdometry(std::size_t from, std::size_t to, const Eigen::Isometry3d& from_T_to);
+  /// Throws std::invalid_argument for nodes it does not join, a negative
+  /// extra sigma or a position covariance that is not one.
   void addLoop(const LoopEdge& loop);
 
   SolveSummary optimize();
