@@ -2,8 +2,10 @@
 # The pose-graph example on a rendered pipe network (docs/pose_graph.md):
 # renders a sequence with drifting odometry (the suite's fig8_varspeed_5cm:
 # the T-junction network, speed changing between passes), runs the detector
-# on it (config/pipe.yaml, the default vocabulary), then bowg_pose_graph, and
-# prints the trajectory error without and with the loops, with a plot.
+# on it (config/pipe.yaml, the default vocabulary, the drifting odometry's
+# metres driven), then bowg_pose_graph, and prints the trajectory error
+# without and with the loops (at the match's place; metric where measured),
+# the metric translations' error, with a plot.
 #   ./scripts/pose_graph_demo.sh            # outputs in <repo>/output/pose_graph
 # Environment: BOWG_WS (workspace), BOWG_JOBS, BOWG_SKIP_DEPS=1,
 # BOWG_SKIP_BUILD=1 with BOWG_TOOLS_DIR (prebuilt tools), BOWG_POSE_GRAPH_DIR
@@ -37,15 +39,24 @@ grep -E '^(ground truth|odometry):' "$out/generate.log" | sed 's/ ->.*//; s/^/  
 rate=2
 for i in "${!argv[@]}"; do [ "${argv[$i]}" != --rate ] || rate="${argv[$((i + 1))]}"; done
 
+# The detector sees what a robot has: the drifting odometry's metres driven
+# (odometry.csv, with its slip) and the camera's intrinsics, so that loops
+# get a metric translation.
 echo "== detect (bowg_evaluate, config/pipe.yaml)"
 "$tools/bowg_evaluate" --images "$out/sequence" --rate "$rate" --gt "$out/ground_truth.txt" \
-  --odometry "$out/sequence/poses.csv" --vocabulary "$repo/data/default_vocabulary.bowgvoc" \
-  --config "$repo/config/pipe.yaml" --rows configured --quiet --output "$out/detection" \
+  --odometry "$out/sequence/odometry.csv" --intrinsics "$out/sequence/intrinsics.csv" \
+  --vocabulary "$repo/data/default_vocabulary.bowgvoc" --config "$repo/config/pipe.yaml" \
+  --rows configured --quiet --output "$out/detection" \
   >"$out/detection.log" 2>&1 || { tail -n 20 "$out/detection.log" >&2; exit 1; }
 sed -n '/^row /,/^$/p' "$out/detection/summary.txt" | sed '/^$/d; s/^/   /'
 
-echo "== pose graph (bowg_pose_graph)"
+echo "== pose graph, every loop at the match's place (bowg_pose_graph)"
 "$tools/bowg_pose_graph" --truth "$out/sequence/poses.csv" --odometry "$out/sequence/odometry.csv" \
-  --loops "$out/detection/detections_configured.csv" --output "$out/graph" | sed 's/^/   /'
+  --loops "$out/detection/detections_configured.csv" --output "$out/graph_same_place" |
+  grep -v '^outputs' | sed 's/^/   /'
+echo "== pose graph, metric loops where the detector measured them (--loop-poses)"
+"$tools/bowg_pose_graph" --truth "$out/sequence/poses.csv" --odometry "$out/sequence/odometry.csv" \
+  --loops "$out/detection/detections_configured.csv" \
+  --loop-poses "$out/detection/loop_poses_configured.csv" --output "$out/graph" | sed 's/^/   /'
 echo
 echo "pose-graph demo done in $(( $(date +%s) - start )) s; plot: $out/graph/trajectories.png"

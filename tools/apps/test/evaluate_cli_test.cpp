@@ -151,6 +151,9 @@ TEST_F(EvaluateCli, BadOptionsAreRefusedWithAMessage) {
   EXPECT_NE(readAll(log).find("--thresholds"), std::string::npos) << readAll(log);
   EXPECT_NE(run(evaluate("--sweep sideways", "bad"), log), 0);
   EXPECT_NE(readAll(log).find("--sweep"), std::string::npos) << readAll(log);
+  // A missing intrinsics file is named.
+  EXPECT_NE(run(evaluate("--intrinsics " + kDir + "/no_intrinsics.csv", "bad"), log), 0);
+  EXPECT_NE(readAll(log).find(kDir + "/no_intrinsics.csv"), std::string::npos) << readAll(log);
 }
 
 }  // namespace

@@ -86,6 +86,12 @@ class GeneratePipeSequence : public ::testing::Test {
   }
 };
 
+TEST_F(GeneratePipeSequence, IntrinsicsCsvHoldsTheRenderersCamera) {
+  // 64 x 48 at the default 90 deg horizontal field of view: fx = fy = 32
+  // (half the width), the centre of the pixel grid (31.5, 23.5).
+  EXPECT_EQ(readAll(kDir + "/drift/intrinsics.csv"), "fx,fy,cx,cy\n32,32,31.5,23.5\n");
+}
+
 TEST_F(GeneratePipeSequence, OdometryCsvHasThePosesFramesAndStampsAndStartsAtTheTruth) {
   const Table poses = readCsv(kDir + "/drift/poses.csv");
   const Table odometry = readCsv(kDir + "/drift/odometry.csv");

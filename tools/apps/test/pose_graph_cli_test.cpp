@@ -72,6 +72,41 @@ TEST(PoseGraphCli, LoopsBringTheTrajectoryBackToTheTruth) {
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 601);
 }
 
+// Out 2 m and back along x, facing +x; the last frame stands 4 cm ahead of
+// the first. A metric loop that says so (optical z forward: the match camera
+// 4 cm behind the query, X_Q = X_M + (0, 0, -0.04)) is reported with no
+// error; the same-place edge's error is the 4 cm.
+TEST(PoseGraphCli, MetricLoopsAreMeasuredAgainstTheTruth) {
+  run("mkdir -p " + kOut);
+  writePoses(kOut + "/line.csv", {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {1.02, 0, 0}, {0.04, 0, 0}});
+  writePoses(kOut + "/line_odometry.csv",
+             {{0, 0, 0}, {1.03, 0, 0}, {2.06, 0, 0}, {1.05, 0, 0}, {0.05, 0, 0}});
+  {
+    std::ofstream d(kOut + "/line_loops.csv");
+    d << "query,match,score\n4,0,1.0\n";
+    std::ofstream p(kOut + "/line_poses.csv");
+    p << "query,match,metric_status,r00,r01,r02,r10,r11,r12,r20,r21,r22,tx,ty,tz,cxx,cxy,cxz,"
+         "cyy,cyz,czz\n"
+         "4,0,estimated,1,0,0,0,1,0,0,0,1,0,0,-0.04,1e-6,0,0,1e-6,0,1e-6\n";
+  }
+  const std::string log = kOut + "/line.log";
+  ASSERT_EQ(run(std::string(BOWG_POSE_GRAPH_BIN) + " --truth " + kOut + "/line.csv --odometry " +
+                    kOut + "/line_odometry.csv --loops " + kOut + "/line_loops.csv --loop-poses " +
+                    kOut + "/line_poses.csv",
+                log),
+            0)
+      << readAll(log);
+  const std::string out = readAll(log);
+  EXPECT_NE(out.find("metric loops        : 1 of 1"), std::string::npos) << out;
+  EXPECT_NEAR(number(out, "position error     : median "), 0.0, 1e-3) << out;
+  EXPECT_NEAR(number(out, "the same-place edge's: median "), 0.04, 1e-3) << out;
+  EXPECT_NE(out.find("inside the 95 % covariance ellipsoid: 100 %"), std::string::npos) << out;
+  // The metric loop pulls the last frame to 4 cm ahead of the first.
+  const double after = number(out, "pose graph + loops  : position RMSE ");
+  const double before = number(out, "odometry only       : position RMSE ");
+  EXPECT_LT(after, before) << out;
+}
+
 TEST(PoseGraphCli, BadInputNamesTheFile) {
   run("mkdir -p " + kOut);
   writePoses(kOut + "/short.csv", {{0, 0, 0}, {1, 0, 0}});
@@ -96,6 +131,16 @@ TEST(PoseGraphCli, BadInputNamesTheFile) {
   EXPECT_NE(readAll(log).find("cannot read the trajectory file " + kOut +
                               "/missing.csv: No such file or directory"),
             std::string::npos);
+  {
+    std::ofstream f(kOut + "/bad_poses.csv");
+    f << "query,match\n";
+  }
+  EXPECT_EQ(run(bin + " --truth " + kOut + "/short.csv --odometry " + kOut + "/short.csv --loops " +
+                    kOut + "/far.csv --loop-poses " + kOut + "/bad_poses.csv",
+                log),
+            1);
+  EXPECT_NE(readAll(log).find(kOut + "/bad_poses.csv:1: expected the header"), std::string::npos)
+      << readAll(log);
   EXPECT_EQ(run(bin + " --truth x", log), 2);
   EXPECT_NE(readAll(log).find("--truth, --odometry and --loops are required"), std::string::npos);
   EXPECT_EQ(run(bin + " --truth a --odometry b --loops c --loop-sigma -1", log), 2);

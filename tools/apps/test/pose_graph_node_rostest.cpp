@@ -70,6 +70,9 @@ TEST(PoseGraphNode, LoopClosuresCorrectThePublishedPath) {
         std::lock_guard<std::mutex> lock(marker_mutex);
         loop_marker = *m;
       });
+  LatestPath metric;
+  ros::Subscriber f = nh.subscribe("/pose_graph_metric/path", 5, &LatestPath::on, &metric);
+  ros::Publisher metric_loop = nh.advertise<bowg_ros::LoopClosure>("/loop_closure_metric", 100);
   ros::Subscriber c = nh.subscribe("/pose_graph_mounted/path", 5, &LatestPath::on, &mounted);
   ros::Subscriber d = nh.subscribe("/pose_graph_no_tf/path", 5, &LatestPath::on, &no_tf);
   ros::Publisher odom = nh.advertise<nav_msgs::Odometry>("/odom", 1000);
@@ -80,7 +83,8 @@ TEST(PoseGraphNode, LoopClosuresCorrectThePublishedPath) {
   ros::Subscriber b = nh.subscribe("/pose_graph/odometry_path", 5, &LatestPath::on, &measured);
   const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(30);
   while ((odom.getNumSubscribers() == 0 || status.getNumSubscribers() == 0 ||
-          loop.getNumSubscribers() < 3 || a.getNumPublishers() == 0 ||
+          loop.getNumSubscribers() < 3 || metric_loop.getNumSubscribers() == 0 ||
+          f.getNumPublishers() == 0 || a.getNumPublishers() == 0 ||
           c.getNumPublishers() == 0 || d.getNumPublishers() == 0) &&
          ros::WallTime::now() < deadline) {
     ros::WallDuration(0.05).sleep();
@@ -110,6 +114,28 @@ TEST(PoseGraphNode, LoopClosuresCorrectThePublishedPath) {
       l.match_id = i - 300;
       l.match_stamp = ros::Time(1000.0 + 0.1 * (i - 300));
       loop.publish(l);
+      // The same place measured: the match one keyframe (0.2 m) further
+      // back, its camera's pose in the query's optical frame from the
+      // truth (camera at the body's origin, optical = body (-y, -z, x)),
+      // translation in metres with a 1 cm sigma.
+      const Pose2& q = truth[i];
+      const Pose2& m = truth[i - 301];
+      const double dx = m.x - q.x, dy = m.y - q.y, dyaw = m.yaw - q.yaw;
+      const double fwd = std::cos(q.yaw) * dx + std::sin(q.yaw) * dy;
+      const double left = -std::sin(q.yaw) * dx + std::cos(q.yaw) * dy;
+      bowg_ros::LoopClosure k = l;
+      k.match_id = i - 301;
+      k.match_stamp = ros::Time(1000.0 + 0.1 * (i - 301));
+      k.has_relative_pose = true;
+      k.translation_scale_known = true;
+      k.relative_pose.pose.position.x = -left;  // optical x = body -y
+      k.relative_pose.pose.position.y = 0;      // optical y = body -z
+      k.relative_pose.pose.position.z = fwd;    // optical z = body x
+      // A yaw (about body z = optical -y) by dyaw: about optical y by -dyaw.
+      k.relative_pose.pose.orientation.y = std::sin(-dyaw / 2);
+      k.relative_pose.pose.orientation.w = std::cos(-dyaw / 2);
+      for (int d = 0; d < 6; ++d) k.relative_pose.covariance[d * 7] = d < 3 ? 1e-4 : 1e-3;
+      metric_loop.publish(k);
     }
     bowg_ros::KeyframeStatus s;
     s.header.stamp = stamp;
@@ -119,7 +145,8 @@ TEST(PoseGraphNode, LoopClosuresCorrectThePublishedPath) {
   }
   // The last keyframe needs odometry after its stamp... it has one at it.
   const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(30);
-  while ((corrected.size() < n || measured.size() < n || mounted.size() < n || no_tf.size() < n) &&
+  while ((corrected.size() < n || measured.size() < n || mounted.size() < n || no_tf.size() < n ||
+          metric.size() < n) &&
          ros::WallTime::now() < end) {
     ros::WallDuration(0.05).sleep();
   }
@@ -127,7 +154,7 @@ TEST(PoseGraphNode, LoopClosuresCorrectThePublishedPath) {
   ASSERT_EQ(corrected.size(), n);
   ASSERT_EQ(measured.size(), n);
   std::lock_guard<std::mutex> l1(corrected.mutex), l2(measured.mutex), l3(mounted.mutex),
-      l4(no_tf.mutex);
+      l4(no_tf.mutex), l5(metric.mutex);
   EXPECT_EQ(corrected.path.header.frame_id, "map");
   const double before = rmse(measured.path, truth), after = rmse(corrected.path, truth);
   std::printf("[ MEASURED ] position RMSE: odometry %.3f m, corrected path %.3f m\n", before, after);
@@ -166,6 +193,14 @@ TEST(PoseGraphNode, LoopClosuresCorrectThePublishedPath) {
               without_tf);
   EXPECT_LT(with_tf, before / 3.0);
   EXPECT_NEAR(without_tf, before, 1e-6);
+  // Metric loops, each 0.2 m from its match, at the measured offset: as
+  // good as the same-place loops at the same place (the same-place edge
+  // would put these 0.2 m off, beyond its 0.15 m sigma).
+  ASSERT_EQ(metric.path.poses.size(), n);
+  const double with_metric = rmse(metric.path, truth);
+  std::printf("[ MEASURED ] metric loops 0.2 m from their match: %.3f m\n", with_metric);
+  EXPECT_LT(with_metric, before / 3.0);
+  EXPECT_LT(with_metric, after + 0.05);
 }
 
 }  // namespace
