@@ -12,12 +12,15 @@
 
 #include "bowg/database/database.h"
 #include "bowg/vocabulary/vocabulary.h"
+#include "detection/two_view_camera.h"
 #include "synthetic_vocabulary.h"
 
 namespace bowg {
 namespace {
 
-const double kPi = 3.14159265358979323846;
+using testing::kPi;
+using testing::rotationErrorDeg;
+using testing::twoViewCamera;
 
 struct Mat3 {
   double m[9];
@@ -40,23 +43,6 @@ Mat3 rotY(double a) {
   return {{std::cos(a), 0, std::sin(a), 0, 1, 0, -std::sin(a), 0, std::cos(a)}};
 }
 
-// Angle of the rotation R_a^T R_b (degrees).
-double rotationErrorDeg(const double* a, const double* b) {
-  double trace = 0;
-  for (int r = 0; r < 3; ++r)
-    for (int j = 0; j < 3; ++j) trace += a[3 * j + r] * b[3 * j + r];
-  return std::acos(std::max(-1.0, std::min(1.0, (trace - 1) / 2))) * 180 / kPi;
-}
-
-CameraIntrinsics camera() {
-  CameraIntrinsics k;
-  k.valid = true;
-  k.fx = k.fy = 450;
-  k.cx = 320;
-  k.cy = 240;
-  return k;
-}
-
 struct TwoViews {
   std::vector<Keypoint> qk, mk;
   std::vector<Descriptor> qd, md;
@@ -70,7 +56,7 @@ TwoViews makeTwoViews(const Mat3& R, const double t[3], int n, std::uint64_t see
   std::uniform_real_distribution<double> ux(-3, 3), uz(4, 9);
   std::normal_distribution<double> noise(0, noise_px);
   std::uniform_int_distribution<int> bit(0, 255);
-  const CameraIntrinsics k = camera();
+  const CameraIntrinsics k = twoViewCamera();
   TwoViews v;
   while (static_cast<int>(v.qk.size()) < n) {
     const double X[3] = {ux(rng), ux(rng) * 0.7, uz(rng)};
@@ -124,7 +110,7 @@ TEST(GeometricVerification, RecoversTheRelativePoseOfTwoKnownCameras) {
     const DirectIndex qdi = directIndexFromWords(voc, qw, 2),
                       mdi = directIndexFromWords(voc, mw, 2);
     const VerificationView q{&v.qk, &v.qd, &qdi}, m{&v.mk, &v.md, &mdi};
-    const GeometricVerificationResult r = verifyGeometry(q, m, camera(), o);
+    const GeometricVerificationResult r = verifyGeometry(q, m, twoViewCamera(), o);
     ASSERT_EQ(r.status, LoopStatus::kLoopDetected);
     // 3 flipped bits move some features to another node of the random tree:
     // the direct index keeps fewer pairs than exhaustive matching.
@@ -161,7 +147,7 @@ TEST(GeometricVerification, TooFewCorrespondencesBelowEight) {
   GeometricVerificationOptions o;
   o.exhaustive = true;
   const VerificationView q{&v.qk, &v.qd, nullptr}, m{&v.mk, &v.md, nullptr};
-  const GeometricVerificationResult r = verifyGeometry(q, m, camera(), o);
+  const GeometricVerificationResult r = verifyGeometry(q, m, twoViewCamera(), o);
   EXPECT_EQ(r.status, LoopStatus::kTooFewCorrespondences);
   EXPECT_EQ(r.correspondences, 7);
 }
@@ -180,7 +166,7 @@ TEST(GeometricVerification, TooFewInliersWithoutConsistentGeometry) {
   o.exhaustive = true;
   o.min_inliers = 30;
   const VerificationView q{&v.qk, &v.qd, nullptr}, m{&v.mk, &v.md, nullptr};
-  const GeometricVerificationResult r = verifyGeometry(q, m, camera(), o);
+  const GeometricVerificationResult r = verifyGeometry(q, m, twoViewCamera(), o);
   EXPECT_EQ(r.correspondences, 60);
   EXPECT_EQ(r.status, LoopStatus::kTooFewInliers);
   EXPECT_LT(r.inliers, 30);

@@ -12,12 +12,15 @@
 #include <random>
 
 #include "bowg/core/errors.h"
+#include "detection/two_view_camera.h"
 #include "synthetic_vocabulary.h"
 
 namespace bowg {
 namespace {
 
-const double kPi = 3.14159265358979323846;
+using testing::kPi;
+using testing::rotationErrorDeg;
+using testing::twoViewCamera;
 
 struct Pose {
   double R[9];  // row-major
@@ -32,15 +35,6 @@ struct Pose {
 Pose rotZ(double deg, double tx, double ty, double tz) {
   const double a = deg * kPi / 180;
   return {{std::cos(a), -std::sin(a), 0, std::sin(a), std::cos(a), 0, 0, 0, 1}, {tx, ty, tz}};
-}
-
-CameraIntrinsics camera() {
-  CameraIntrinsics k;
-  k.valid = true;
-  k.fx = k.fy = 450;
-  k.cx = 320;
-  k.cy = 240;
-  return k;
 }
 
 // Points in M's frame, seen by M, by N (X_N = n_from_m(X_M)) and by Q
@@ -60,7 +54,7 @@ Scene makeScene(const Pose& n_from_m, const Pose& q_from_m, int n, double noise_
   // A pipe-like depth range: walls a few metres away at most.
   std::uniform_real_distribution<double> ux(-1.5, 1.5), uz(1.5, 4);
   std::normal_distribution<double> noise(0, noise_px);
-  const CameraIntrinsics k = camera();
+  const CameraIntrinsics k = twoViewCamera();
   Scene s;
   auto pixel = [&](const double X[3], float* u, float* v) {
     *u = static_cast<float>(k.fx * X[0] / X[2] + k.cx + (noise_px > 0 ? noise(rng) : 0));
@@ -122,14 +116,8 @@ MetricTranslation estimate(const Scene& s, double baseline, const MetricTranslat
                            const std::vector<Correspondence>* loop = nullptr) {
   const VerificationView m{&s.mk, &s.md, nullptr};
   const std::vector<ScaleNeighbour> n{{VerificationView{&s.nk, &s.nd, nullptr}, baseline}};
-  return estimateMetricTranslation(loop ? *loop : s.loop, camera(), m, n, camera(), exhaustive(),
+  return estimateMetricTranslation(loop ? *loop : s.loop, twoViewCamera(), m, n, twoViewCamera(), exhaustive(),
                                    o);
-}
-
-double rotationErrorDeg(const double* a, const double* b) {
-  double trace = 0;
-  for (int i = 0; i < 9; ++i) trace += a[i] * b[i];
-  return std::acos(std::max(-1.0, std::min(1.0, (trace - 1) / 2))) * 180 / kPi;
 }
 
 TEST(MetricTranslation, RecoversTheMetricPoseOfTheMatchInTheQuery) {
@@ -191,6 +179,7 @@ TEST(MetricTranslation, WithPixelNoiseTheErrorLiesWithinTheCovariance) {
   const Pose q_from_m = rotZ(40, -0.03, 0.05, 0.1);
   int within = 0;
   const int runs = 20;
+  double mean_error[3] = {0, 0, 0}, mean_sigma[3] = {0, 0, 0};
   for (int seed = 0; seed < runs; ++seed) {
     const Scene s = makeScene(neighbourFromMatch(&b), q_from_m, 150, 0.5, 100 + seed);
     const MetricTranslation m = estimate(s, b, MetricTranslationOptions());
@@ -201,10 +190,18 @@ TEST(MetricTranslation, WithPixelNoiseTheErrorLiesWithinTheCovariance) {
       ok = ok && std::fabs(m.translation[r] - q_from_m.t[r]) <= 3 * std::sqrt(m.covariance[4 * r]);
     }
     within += ok;
-    std::printf("err %.4f %.4f %.4f sig %.4f %.4f %.4f n %d\n", m.translation[0] - q_from_m.t[0],
-                m.translation[1] - q_from_m.t[1], m.translation[2] - q_from_m.t[2],
-                std::sqrt(m.covariance[0]), std::sqrt(m.covariance[4]), std::sqrt(m.covariance[8]),
-                m.inliers);
+    for (int r = 0; r < 3; ++r) {
+      mean_error[r] += (m.translation[r] - q_from_m.t[r]) / runs;
+      mean_sigma[r] += std::sqrt(m.covariance[4 * r]) / runs;
+    }
+  }
+  // No bias: the mean error over the runs is a fraction of one run's sigma
+  // (a PnP fit on the triangulated points alone fell 20-25 % short of t
+  // with points 3-8 m away, several sigmas: refineJointly).
+  for (int r = 0; r < 3; ++r) {
+    std::printf("[ MEASURED ] axis %d: mean error %.4f m, mean sigma %.4f m\n", r, mean_error[r],
+                mean_sigma[r]);
+    EXPECT_LT(std::fabs(mean_error[r]), 0.5 * mean_sigma[r]) << "axis " << r;
   }
   // Three sigmas on each axis: 99 % of runs for a calibrated Gaussian; the
   // bootstrap's 20 samples make the sigmas themselves uncertain.
@@ -222,11 +219,11 @@ TEST(MetricTranslation, SaysWhyWhenItCannotEstimate) {
   CameraIntrinsics none;
   const VerificationView m{&s.mk, &s.md, nullptr};
   const std::vector<ScaleNeighbour> n{{VerificationView{&s.nk, &s.nd, nullptr}, b}};
-  EXPECT_EQ(estimateMetricTranslation(s.loop, none, m, n, camera(), exhaustive(),
+  EXPECT_EQ(estimateMetricTranslation(s.loop, none, m, n, twoViewCamera(), exhaustive(),
                                       MetricTranslationOptions())
                 .status,
             MetricTranslationStatus::kNoOdometry);
-  EXPECT_EQ(estimateMetricTranslation(s.loop, camera(), m, {}, camera(), exhaustive(),
+  EXPECT_EQ(estimateMetricTranslation(s.loop, twoViewCamera(), m, {}, twoViewCamera(), exhaustive(),
                                       MetricTranslationOptions())
                 .status,
             MetricTranslationStatus::kNoOdometry);
@@ -294,9 +291,9 @@ TEST(MetricTranslation, ASecondNeighbourAddsThePointsTheFirstDoesNotSee) {
   const ScaleNeighbour second{VerificationView{&s1.n2k, &s1.n2d, nullptr}, 0.12};
   const MetricTranslationOptions o;
   const MetricTranslation one =
-      estimateMetricTranslation(s1.loop, camera(), m, {first}, camera(), exhaustive(), o);
+      estimateMetricTranslation(s1.loop, twoViewCamera(), m, {first}, twoViewCamera(), exhaustive(), o);
   const MetricTranslation both =
-      estimateMetricTranslation(s1.loop, camera(), m, {first, second}, camera(), exhaustive(), o);
+      estimateMetricTranslation(s1.loop, twoViewCamera(), m, {first, second}, twoViewCamera(), exhaustive(), o);
   ASSERT_EQ(one.status, MetricTranslationStatus::kEstimated);
   ASSERT_EQ(both.status, MetricTranslationStatus::kEstimated);
   EXPECT_LE(one.triangulated, static_cast<int>(half));
