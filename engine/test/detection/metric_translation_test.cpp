@@ -116,8 +116,8 @@ MetricTranslation estimate(const Scene& s, double baseline, const MetricTranslat
                            const std::vector<Correspondence>* loop = nullptr) {
   const VerificationView m{&s.mk, &s.md, nullptr};
   const std::vector<ScaleNeighbour> n{{VerificationView{&s.nk, &s.nd, nullptr}, baseline}};
-  return estimateMetricTranslation(loop ? *loop : s.loop, twoViewCamera(), m, n, twoViewCamera(), exhaustive(),
-                                   o);
+  return estimateMetricTranslation(loop ? *loop : s.loop, twoViewCamera(), m, n, twoViewCamera(),
+                                   exhaustive(), o);
 }
 
 TEST(MetricTranslation, RecoversTheMetricPoseOfTheMatchInTheQuery) {
@@ -290,10 +290,10 @@ TEST(MetricTranslation, ASecondNeighbourAddsThePointsTheFirstDoesNotSee) {
   const ScaleNeighbour first{VerificationView{&s1.nk, &s1.nd, nullptr}, b1};
   const ScaleNeighbour second{VerificationView{&s1.n2k, &s1.n2d, nullptr}, 0.12};
   const MetricTranslationOptions o;
-  const MetricTranslation one =
-      estimateMetricTranslation(s1.loop, twoViewCamera(), m, {first}, twoViewCamera(), exhaustive(), o);
-  const MetricTranslation both =
-      estimateMetricTranslation(s1.loop, twoViewCamera(), m, {first, second}, twoViewCamera(), exhaustive(), o);
+  const MetricTranslation one = estimateMetricTranslation(s1.loop, twoViewCamera(), m, {first},
+                                                          twoViewCamera(), exhaustive(), o);
+  const MetricTranslation both = estimateMetricTranslation(
+      s1.loop, twoViewCamera(), m, {first, second}, twoViewCamera(), exhaustive(), o);
   ASSERT_EQ(one.status, MetricTranslationStatus::kEstimated);
   ASSERT_EQ(both.status, MetricTranslationStatus::kEstimated);
   EXPECT_LE(one.triangulated, static_cast<int>(half));
