@@ -3,7 +3,8 @@
 // map image stamps to frame indices (the ground truth's indexing), listens to
 // the nodelet's LoopClosure and KeyframeStatus outputs, and when the bag is
 // over prints and writes the summary bowg_evaluate prints for the same bag
-// (docs/evaluation.md, "Live evaluation").
+// (docs/evaluation.md, "Live evaluation"), the loops (detections_nodelet.csv)
+// and their relative poses (loop_poses_nodelet.csv).
 //
 // The bag is over when the first of these happens:
 //  - the KeyframeStatus of the bag's last image arrived (plus ~grace, for
@@ -13,6 +14,7 @@
 //  - a std_msgs/Empty on ~done;
 //  - nothing at all arrived within ~startup_timeout (exit code 1).
 // Wall time throughout: with use_sim_time the clock stops with the bag.
+#include <Eigen/Geometry>
 #include <ros/ros.h>
 #include <rosbag/bag.h>
 #include <rosbag/view.h>
@@ -28,6 +30,7 @@
 #include "bowg/core/atomic_file.h"
 #include "bowg/core/errors.h"
 #include "bowg_evaluation/ground_truth.h"
+#include "bowg_evaluation/loop_pose_file.h"
 #include "bowg_evaluation/metrics.h"
 #include "bowg_evaluation/online_run.h"
 #include "bowg_evaluation/stamp_index.h"
@@ -112,9 +115,35 @@ class BagEvaluator {
   void loopCallback(const bowg_ros::LoopClosure::ConstPtr& msg) {
     std::lock_guard<std::mutex> lock(mutex_);
     touch();
-    run_->addLoop(index_->find(static_cast<std::int64_t>(msg->query_stamp.toNSec()), tolerance_ns_),
-                  index_->find(static_cast<std::int64_t>(msg->match_stamp.toNSec()), tolerance_ns_),
-                  msg->score);
+    const int query = index_->find(static_cast<std::int64_t>(msg->query_stamp.toNSec()), tolerance_ns_);
+    const int match = index_->find(static_cast<std::int64_t>(msg->match_stamp.toNSec()), tolerance_ns_);
+    run_->addLoop(query, match, msg->score);
+    if (query >= 0 && match >= 0 && msg->has_relative_pose) {
+      loop_poses_.push_back(loopPoseOf(*msg, query, match));
+    }
+  }
+
+  // The message's relative pose as bowg_evaluate writes it (loop_pose_file.h);
+  // a loop without the scale says "no_scale" (the message does not carry
+  // the detector's reason).
+  static bowg::eval::LoopPose loopPoseOf(const bowg_ros::LoopClosure& m, int query, int match) {
+    bowg::eval::LoopPose p;
+    p.query = query;
+    p.match = match;
+    p.metric_status = m.translation_scale_known ? "estimated" : "no_scale";
+    const geometry_msgs::Quaternion& q = m.relative_pose.pose.orientation;
+    const Eigen::Matrix3d R = Eigen::Quaterniond(q.w, q.x, q.y, q.z).normalized().toRotationMatrix();
+    for (int r = 0; r < 3; ++r) {
+      for (int c = 0; c < 3; ++c) {
+        p.rotation[3 * r + c] = R(r, c);
+        if (m.translation_scale_known) p.covariance[3 * r + c] = m.relative_pose.covariance[6 * r + c];
+      }
+    }
+    const geometry_msgs::Point& t = m.relative_pose.pose.position;
+    p.translation[0] = t.x;
+    p.translation[1] = t.y;
+    p.translation[2] = t.z;
+    return p;
   }
 
   void statusCallback(const bowg_ros::KeyframeStatus::ConstPtr& msg) {
@@ -172,6 +201,8 @@ class BagEvaluator {
       bowg::writeFileAtomically(output_dir_ + "/summary.txt", summary);
       bowg::writeFileAtomically(output_dir_ + "/detections_nodelet.csv",
                                 bowg::eval::detectionsToCsv(run_->detections()));
+      bowg::writeFileAtomically(output_dir_ + "/loop_poses_nodelet.csv",
+                                bowg::eval::loopPosesToCsv(loop_poses_));
     } catch (const std::exception& e) {
       ROS_ERROR("bowg_bag_evaluator: %s", e.what());
       exit_code_ = 1;
@@ -183,6 +214,7 @@ class BagEvaluator {
   std::mutex mutex_;
   std::unique_ptr<StampIndex> index_;
   std::unique_ptr<bowg::eval::OnlineRun> run_;
+  std::vector<bowg::eval::LoopPose> loop_poses_;
   std::int64_t tolerance_ns_ = 0;
   bool has_gt_ = false;
   bowg::eval::GroundTruth gt_;

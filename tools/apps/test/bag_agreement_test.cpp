@@ -13,6 +13,8 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <iterator>
@@ -20,6 +22,7 @@
 #include <string>
 #include <utility>
 
+#include "bowg_evaluation/loop_pose_file.h"
 #include "bowg_evaluation/metrics.h"
 #include "shell_command.h"
 
@@ -108,7 +111,10 @@ class BagAgreement : public ::testing::Test {
   }
 
   // The nodelet fed by `rosbag play` on the bag offlineLoops() wrote.
-  static std::map<std::pair<int, int>, double> liveLoops(const std::string& format) {
+  // `extra`: more launch arguments; the outputs go to <format>/<live>.
+  static std::map<std::pair<int, int>, double> liveLoops(const std::string& format,
+                                                         const std::string& extra = "",
+                                                         const std::string& live = "live") {
     const std::string dir = kDir + "/" + format;
     // A queue that never fills, so that the detector never drops a frame,
     // at the bag's own rate: the nodelet's image subscription has a short
@@ -121,17 +127,17 @@ class BagAgreement : public ::testing::Test {
         "/ros_home timeout -s INT 240 roslaunch -p " + std::to_string(port) +
         " bowg_ros evaluate_bag.launch bag:=" + dir + "/pipe.bag gt:=" + dir +
         "/pipe_gt.txt vocabulary:=" + vocabulary() + " config:=" + config() +
-        " rate:=1 queue_size:=100000 idle_timeout:=30 output_dir:=" + dir + "/live" +
-        (format == "jpeg" ? " use_compressed:=true" : "");
-    run(launch, dir + "/live.log");  // roslaunch's own exit code says little
-    const std::string summary = readAll(dir + "/live/summary.txt");
+        " rate:=1 queue_size:=100000 idle_timeout:=30 output_dir:=" + dir + "/" + live +
+        (format == "jpeg" ? " use_compressed:=true" : "") + extra;
+    run(launch, dir + "/" + live + ".log");  // roslaunch's own exit code says little
+    const std::string summary = readAll(dir + "/" + live + "/summary.txt");
     EXPECT_FALSE(summary.empty()) << "no live summary; roslaunch log:\n"
-                                  << readAll(dir + "/live.log");
+                                  << readAll(dir + "/" + live + ".log");
     EXPECT_NE(summary.find("images in bag: 300\n"), std::string::npos) << summary;
     EXPECT_NE(summary.find("frames dropped: 0\n"), std::string::npos) << summary;
     EXPECT_NE(summary.find("keyframes processed: 300\n"), std::string::npos) << summary;
     EXPECT_NE(summary.find("unmapped stamps: 0\n"), std::string::npos) << summary;
-    return loopsOf(dir + "/live/detections_nodelet.csv");
+    return loopsOf(dir + "/" + live + "/detections_nodelet.csv");
   }
 
   static void expectSameLoops(const std::map<std::pair<int, int>, double>& offline,
@@ -179,6 +185,32 @@ TEST_F(BagAgreement, NodeletOnAPlayedColourBagFindsTheOfflineToolsLoops) {
 TEST_F(BagAgreement, NodeletOnAPlayedCompressedBagFindsTheOfflineToolsLoops) {
   const auto offline = offlineLoops("jpeg");
   expectSameLoops(offline, liveLoops("jpeg"));
+}
+
+// With the bag's odometry played too (as on the robot: /odom beside the
+// camera), the nodelet measures its loops' translations in metres: some
+// loops have translation_scale_known, a translation of centimetres (the
+// revisits pass within a few keyframes of 10 cm) and a covariance.
+TEST_F(BagAgreement, WithTheBagsOdometryTheNodeletMeasuresMetricLoops) {
+  offlineLoops("mono8");
+  const auto live = liveLoops("mono8", " play_odom:=true", "live_odom");
+  EXPECT_GT(live.size(), 0u);
+  const std::string path = kDir + "/mono8/live_odom/loop_poses_nodelet.csv";
+  const std::vector<LoopPose> poses = parseLoopPosesCsv(readAll(path), path);
+  EXPECT_EQ(poses.size(), live.size());  // camera_info given: every loop has a pose
+  int metric = 0;
+  for (const LoopPose& p : poses) {
+    if (!p.metric()) continue;
+    ++metric;
+    const double length = std::sqrt(p.translation[0] * p.translation[0] +
+                                    p.translation[1] * p.translation[1] +
+                                    p.translation[2] * p.translation[2]);
+    EXPECT_LT(length, 0.5) << p.query << " -> " << p.match;
+    for (int i = 0; i < 3; ++i) EXPECT_GT(p.covariance[4 * i], 0.0);
+  }
+  std::printf("[ MEASURED ] %d of %zu live loops with a metric translation\n", metric,
+              poses.size());
+  EXPECT_GT(metric, 0);
 }
 
 }  // namespace
