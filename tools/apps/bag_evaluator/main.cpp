@@ -14,13 +14,13 @@
 //  - a std_msgs/Empty on ~done;
 //  - nothing at all arrived within ~startup_timeout (exit code 1).
 // Wall time throughout: with use_sim_time the clock stops with the bag.
-#include <Eigen/Geometry>
 #include <ros/ros.h>
 #include <rosbag/bag.h>
 #include <rosbag/view.h>
 #include <std_msgs/Empty.h>
 #include <sys/stat.h>
 
+#include <Eigen/Geometry>
 #include <cstdio>
 #include <memory>
 #include <mutex>
@@ -35,8 +35,8 @@
 #include "bowg_evaluation/online_run.h"
 #include "bowg_evaluation/stamp_index.h"
 #include "bowg_ros/KeyframeStatus.h"
-#include "bowg_ros/bag_images.h"
 #include "bowg_ros/LoopClosure.h"
+#include "bowg_ros/bag_images.h"
 
 namespace {
 
@@ -115,8 +115,10 @@ class BagEvaluator {
   void loopCallback(const bowg_ros::LoopClosure::ConstPtr& msg) {
     std::lock_guard<std::mutex> lock(mutex_);
     touch();
-    const int query = index_->find(static_cast<std::int64_t>(msg->query_stamp.toNSec()), tolerance_ns_);
-    const int match = index_->find(static_cast<std::int64_t>(msg->match_stamp.toNSec()), tolerance_ns_);
+    const int query =
+        index_->find(static_cast<std::int64_t>(msg->query_stamp.toNSec()), tolerance_ns_);
+    const int match =
+        index_->find(static_cast<std::int64_t>(msg->match_stamp.toNSec()), tolerance_ns_);
     run_->addLoop(query, match, msg->score);
     if (query >= 0 && match >= 0 && msg->has_relative_pose) {
       loop_poses_.push_back(loopPoseOf(*msg, query, match));
@@ -132,11 +134,13 @@ class BagEvaluator {
     p.match = match;
     p.metric_status = m.translation_scale_known ? "estimated" : "no_scale";
     const geometry_msgs::Quaternion& q = m.relative_pose.pose.orientation;
-    const Eigen::Matrix3d R = Eigen::Quaterniond(q.w, q.x, q.y, q.z).normalized().toRotationMatrix();
+    const Eigen::Matrix3d R =
+        Eigen::Quaterniond(q.w, q.x, q.y, q.z).normalized().toRotationMatrix();
     for (int r = 0; r < 3; ++r) {
       for (int c = 0; c < 3; ++c) {
         p.rotation[3 * r + c] = R(r, c);
-        if (m.translation_scale_known) p.covariance[3 * r + c] = m.relative_pose.covariance[6 * r + c];
+        if (m.translation_scale_known)
+          p.covariance[3 * r + c] = m.relative_pose.covariance[6 * r + c];
       }
     }
     const geometry_msgs::Point& t = m.relative_pose.pose.position;

@@ -202,9 +202,9 @@ TEST_F(BagAgreement, WithTheBagsOdometryTheNodeletMeasuresMetricLoops) {
   for (const LoopPose& p : poses) {
     if (!p.metric()) continue;
     ++metric;
-    const double length = std::sqrt(p.translation[0] * p.translation[0] +
-                                    p.translation[1] * p.translation[1] +
-                                    p.translation[2] * p.translation[2]);
+    const double length =
+        std::sqrt(p.translation[0] * p.translation[0] + p.translation[1] * p.translation[1] +
+                  p.translation[2] * p.translation[2]);
     EXPECT_LT(length, 0.5) << p.query << " -> " << p.match;
     for (int i = 0; i < 3; ++i) EXPECT_GT(p.covariance[4 * i], 0.0);
   }
