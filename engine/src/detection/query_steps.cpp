@@ -154,7 +154,8 @@ bool scoreCandidates(const QueryContext& ctx, const DatabaseQuery& q,
 // The two sides of a geometric verification. The query's direct index is
 // built on the first verification only (with one verified candidate most
 // queries stop at the temporal check before it), a database entry's for each
-// verification of it: the database keeps words, not direct indexes.
+// correspondence search with it: the database keeps words, not direct
+// indexes. RANSAC on correspondences already found needs none (features()).
 class Verifier {
  public:
   Verifier(const QueryContext& ctx, const DatabaseEntry& query, const CameraIntrinsics& k)
@@ -174,6 +175,13 @@ class Verifier {
 
   /// Valid until the next call.
   VerificationView match(EntryId id) { return entry(id, &match_direct_); }
+
+  /// Entry `id`'s keypoints and descriptors without a direct index: enough
+  /// for RANSAC on correspondences already found (verifyCorrespondences).
+  VerificationView features(EntryId id) const {
+    const DatabaseEntry& m = ctx_.database.entry(id);
+    return VerificationView{&m.keypoints, &m.descriptors, nullptr};
+  }
 
   /// Entry `id`'s view with its direct index in `storage`.
   VerificationView entry(EntryId id, DirectIndex* storage) const {
@@ -241,7 +249,7 @@ IslandChoice chooseIsland(const std::vector<Island>& islands,
     // No intrinsics: the relative pose (an essential matrix) is only worth
     // its cost for the loop, once it is accepted (verifyMatch).
     GeometricVerificationResult gi = verifyCorrespondences(
-        pairs[i], qv, verifier->match(islands[i].best_entry), CameraIntrinsics(), go);
+        pairs[i], qv, verifier->features(islands[i].best_entry), CameraIntrinsics(), go);
     if (!have || gi.inliers > c.g.inliers || (gi.inliers == c.g.inliers && i < c.chosen)) {
       c.g = std::move(gi);
       c.chosen = i;
