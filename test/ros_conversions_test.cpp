@@ -110,6 +110,10 @@ TEST(RosConversions, CovarianceMarksTheScaleUnobservable) {
   }
   fillRelativePoseCovariance(false, 60, nullptr, c);
   for (int i = 0; i < 6; ++i) EXPECT_EQ(c[i * 7], big);
+  // Without a translation block, as downstream code calls it.
+  fillRelativePoseCovariance(true, 15, c);
+  EXPECT_EQ(c[0], big);
+  EXPECT_NEAR(c[21], 0.0025, 1e-15);
 }
 
 TEST(RosConversions, CovarianceCarriesTheMetricTranslationsBlock) {

@@ -32,6 +32,10 @@ KeyframeFeatures toMessage(const bowg::ImageFeatures& features, const std_msgs::
 /// entry is UNOBSERVABLE_SCALE_VARIANCE.
 void fillRelativePoseCovariance(bool has_pose, int inliers, const double* translation_covariance,
                                 double* covariance36);
+/// The same without a measured translation (scale unknown).
+inline void fillRelativePoseCovariance(bool has_pose, int inliers, double* covariance36) {
+  fillRelativePoseCovariance(has_pose, inliers, nullptr, covariance36);
+}
 
 /// A LoopClosure from a result with status kLoopDetected. `header` is the
 /// query image's header (its frame_id the query camera's optical frame).
