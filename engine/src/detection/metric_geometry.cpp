@@ -75,23 +75,6 @@ bool triangulate(const cv::Matx33d& K, const NeighbourPose& n, const Corresponde
   return std::acos(std::min(1.0, cosang)) >= kMinParallaxRad;
 }
 
-std::vector<Correspondence> agreeingPairs(const std::vector<Correspondence>& pairs,
-                                          const cv::Matx33d& K, const double r[9],
-                                          const double u[3], double thr) {
-  const cv::Matx33d tx(0, -u[2], u[1], u[2], 0, -u[0], -u[1], u[0], 0);
-  const cv::Matx33d Kinv = K.inv();
-  const cv::Matx33d F = Kinv.t() * tx * cv::Matx33d(r) * Kinv;
-  std::vector<Correspondence> out;
-  for (const Correspondence& c : pairs) {
-    const cv::Vec3d xm(c.query_x, c.query_y, 1), xn(c.match_x, c.match_y, 1);
-    const cv::Vec3d Fxn = F * xn, Ftxm = F.t() * xm;
-    const double e = xm.dot(Fxn);
-    const double d = Fxn[0] * Fxn[0] + Fxn[1] * Fxn[1] + Ftxm[0] * Ftxm[0] + Ftxm[1] * Ftxm[1];
-    if (d > 0 && e * e / d <= thr * thr) out.push_back(c);
-  }
-  return out;
-}
-
 namespace {
 
 // Sampson distances (px) of the pairs (M pixel, N pixel) to the epipolar
@@ -111,6 +94,18 @@ void sampsonResiduals(const std::vector<Correspondence>& pairs, const cv::Matx33
 }
 
 }  // namespace
+
+std::vector<Correspondence> agreeingPairs(const std::vector<Correspondence>& pairs,
+                                          const cv::Matx33d& K, const double r[9],
+                                          const double u[3], double thr) {
+  std::vector<double> residuals;
+  sampsonResiduals(pairs, K.inv(), cv::Matx33d(r), cv::Vec3d(u[0], u[1], u[2]), &residuals);
+  std::vector<Correspondence> out;
+  for (std::size_t i = 0; i < pairs.size(); ++i) {
+    if (std::abs(residuals[i]) <= thr) out.push_back(pairs[i]);
+  }
+  return out;
+}
 
 bool refitPose(const std::vector<Correspondence>& pairs, const cv::Matx33d& K, const double r0[9],
                const double u0[3], double rotation[9], double direction[3]) {
