@@ -23,6 +23,8 @@ endif()
 
 find_package(OpenCV REQUIRED COMPONENTS core imgproc imgcodecs features2d calib3d)
 find_package(ZLIB REQUIRED)
+# The .bowgvoc loader hashes on a helper thread (std::thread).
+find_package(Threads REQUIRED)
 
 if(BOWG_SANITIZE)
   add_compile_options(-fsanitize=address,undefined -fno-omit-frame-pointer)
@@ -42,7 +44,7 @@ target_include_directories(bowg_engine PUBLIC
   $<BUILD_INTERFACE:${BOWG_ENGINE_DIR}/include>)
 target_include_directories(bowg_engine PRIVATE ${BOWG_ENGINE_DIR}/src)
 # OpenCV's imported targets carry their include directories.
-target_link_libraries(bowg_engine PUBLIC ${OpenCV_LIBS} ZLIB::ZLIB)
+target_link_libraries(bowg_engine PUBLIC ${OpenCV_LIBS} ZLIB::ZLIB Threads::Threads)
 target_compile_options(bowg_engine PRIVATE -Wall -Wextra)
 if(BOWG_HAS_MPOPCNT)
   # Hardware popcount for the 256-bit Hamming distance (x86-64 only; ARM
