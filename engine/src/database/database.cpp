@@ -35,17 +35,16 @@ Database::Database(std::shared_ptr<const Vocabulary> vocabulary, ScoringType sco
     throw std::invalid_argument("Database: vocabulary is null or empty");
   }
   if (fan_bins_ < 1) throw std::invalid_argument("Database: fan_bins must be >= 1");
-  word_index_.resize(vocabulary_->wordCount());
-  group_index_.resize(vocabulary_->wordCount());
+  index_.resize(vocabulary_->wordCount());
 }
 
 void Database::clear() {
   entries_.clear();
   odometers_.clear();
   distributions_.clear();
+  group_sums_.clear();
   group_table_.clear();
-  for (auto& l : word_index_) l.clear();
-  for (auto& l : group_index_) l.clear();
+  for (auto& l : index_) l.clear();
   word_acc_.clear();
   group_acc_.clear();
   touched_flag_.clear();
@@ -55,8 +54,23 @@ void Database::clear() {
 void Database::setScoring(ScoringType scoring) {
   if (scoring == scoring_) return;
   scoring_ = scoring;
-  for (auto& l : word_index_) l.clear();
-  for (const auto& e : entries_) indexWords(e.id, bow(e.id));
+  // The same words keep a weight under every scoring (the IDF decides which);
+  // only the normalisation changes. Every posting is reset, then each
+  // entry's vector is written back.
+  for (auto& l : index_) {
+    for (Posting& p : l) p.word = 0.f;
+  }
+  for (const auto& e : entries_) {
+    for (const auto& w : bow(e.id)) {
+      // add() made a posting for every word of the entry's vector; one is
+      // inserted in order should a scoring weigh another word.
+      std::vector<Posting>& l = index_[w.first];
+      auto it = std::lower_bound(l.begin(), l.end(), e.id,
+                                 [](const Posting& p, EntryId id) { return p.entry < id; });
+      if (it == l.end() || it->entry != e.id) it = l.insert(it, Posting{e.id, 0.f, 0.f});
+      it->word = static_cast<float>(w.second);
+    }
+  }
 }
 
 void Database::setDirectLevel(int level) {
@@ -71,13 +85,9 @@ void Database::setFanBins(int m) {
   distributions_.clear();
   distributions_.reserve(entries_.size() * static_cast<std::size_t>(m));
   for (const auto& e : entries_) {
-    const std::vector<double> v = distributionVector(e.keypoints, e.centre_x, e.centre_y, m);
+    const std::vector<double> v = distributionVector(e.points, e.centre_x, e.centre_y, m);
     distributions_.insert(distributions_.end(), v.begin(), v.end());
   }
-}
-
-void Database::indexWords(EntryId id, const BowVector& bow) {
-  for (const auto& w : bow) word_index_[w.first].emplace_back(id, w.second);
 }
 
 BowVector Database::bow(EntryId id) const {
@@ -86,12 +96,27 @@ BowVector Database::bow(EntryId id) const {
   return v;
 }
 
-void Database::indexGroups(EntryId id, const GroupVector& group_tf) {
-  for (const auto& g : group_tf) group_index_[g.first].emplace_back(id, g.second);
+const Posting* Database::posting(WordId w, EntryId id) const {
+  const std::vector<Posting>& l = index_[w];
+  const auto it = std::lower_bound(l.begin(), l.end(), id,
+                                   [](const Posting& p, EntryId e) { return p.entry < e; });
+  return it != l.end() && it->entry == id ? &*it : nullptr;
 }
 
-EntryId Database::add(DatabaseEntry e) {
-  const std::size_t n = e.keypoints.size();
+GroupVector Database::rawGroups(EntryId id) const {
+  std::vector<WordId> words = entries_.at(id).words;
+  std::sort(words.begin(), words.end());
+  words.erase(std::unique(words.begin(), words.end()), words.end());
+  GroupVector out;
+  for (WordId w : words) {
+    const Posting* p = posting(w, id);
+    if (p && p->group > 0.f) out.emplace_back(w, static_cast<double>(p->group));
+  }
+  return out;
+}
+
+EntryId Database::add(DatabaseEntry e, const GroupVector& raw_groups) {
+  const std::size_t n = e.points.size();
   if (e.descriptors.size() != n || e.words.size() != n) {
     throw std::invalid_argument("Database::add: keypoints (" + std::to_string(n) +
                                 "), descriptors (" + std::to_string(e.descriptors.size()) +
@@ -102,8 +127,27 @@ EntryId Database::add(DatabaseEntry e) {
   for (WordId w : e.words) {
     if (w >= W) throw std::invalid_argument("Database::add: word id out of range");
   }
-  for (const auto& g : e.raw_groups) {
-    if (g.first >= W) throw std::invalid_argument("Database::add: group id out of range");
+  {
+    std::vector<WordId> words = e.words;
+    std::sort(words.begin(), words.end());
+    WordId previous = 0;
+    for (std::size_t i = 0; i < raw_groups.size(); ++i) {
+      const GroupEntry& g = raw_groups[i];
+      if (i > 0 && g.first <= previous) {
+        throw std::invalid_argument("Database::add: raw groups not sorted by id without repeats");
+      }
+      previous = g.first;
+      if (!std::binary_search(words.begin(), words.end(), g.first)) {
+        throw std::invalid_argument("Database::add: word group " + std::to_string(g.first) +
+                                    " is not one of the entry's words");
+      }
+      // Whole counts of neighbours (buildWordGroups), exact in a float.
+      if (!(g.second >= 1.0 && g.second < 16777216.0 && g.second == std::floor(g.second))) {
+        throw std::invalid_argument("Database::add: word group " + std::to_string(g.first) +
+                                    " has weight " + std::to_string(g.second) +
+                                    ", not a whole count in [1, 2^24)");
+      }
+    }
   }
   if (!(e.stamp >= 0.0 && e.stamp < kStampLimit)) {
     throw std::invalid_argument("Database::add: stamp " + std::to_string(e.stamp) +
@@ -116,31 +160,44 @@ EntryId Database::add(DatabaseEntry e) {
     throw std::invalid_argument("Database::add: odometer must be NaN (unknown) or finite >= 0");
   }
   e.id = static_cast<EntryId>(entries_.size());
-  // Only the TF part of eq. 1 is stored (in the group inverse index): the IDF
-  // part changes with every keyframe and is applied at query time.
-  const GroupVector group_tf = groupTermFrequencies(e.raw_groups);
-  const std::vector<double> dist =
-      distributionVector(e.keypoints, e.centre_x, e.centre_y, fan_bins_);
+  // The raw group weights are stored (in the inverse index) with their sum:
+  // eq. 1's TF is raw / sum, and its IDF part changes with every keyframe,
+  // so both are applied at query time.
+  double group_sum = 0.0;
+  for (const auto& g : raw_groups) group_sum += g.second;
+  const std::vector<double> dist = distributionVector(e.points, e.centre_x, e.centre_y, fan_bins_);
   distributions_.insert(distributions_.end(), dist.begin(), dist.end());
   odometers_.push_back(!std::isnan(e.odometer) ? e.odometer
                        : odometers_.empty()     ? -std::numeric_limits<double>::infinity()
                                                 : odometers_.back());
+  group_sums_.push_back(group_sum);
   entries_.push_back(std::move(e));
-  const DatabaseEntry& stored = entries_.back();
-  indexWords(stored.id, bow(stored.id));
-  indexGroups(stored.id, group_tf);
-  return stored.id;
+  const EntryId id = entries_.back().id;
+  // One posting per word of the BoW vector or group (both sorted by id).
+  const BowVector v = bow(id);
+  std::size_t i = 0, j = 0;
+  while (i < v.size() || j < raw_groups.size()) {
+    const bool take_word =
+        i < v.size() && (j == raw_groups.size() || v[i].first <= raw_groups[j].first);
+    const bool take_group =
+        j < raw_groups.size() && (i == v.size() || raw_groups[j].first <= v[i].first);
+    const WordId w = take_word ? v[i].first : raw_groups[j].first;
+    index_[w].push_back(Posting{id, take_word ? static_cast<float>(v[i].second) : 0.f,
+                                take_group ? static_cast<float>(raw_groups[j].second) : 0.f});
+    if (take_word) ++i;
+    if (take_group) ++j;
+  }
+  return id;
 }
 
 DatabaseQuery Database::makeQuery(BowVector bow, const GroupVector& raw_groups,
-                                  const std::vector<Keypoint>& keypoints, double centre_x,
+                                  const std::vector<ImagePoint>& points, double centre_x,
                                   double centre_y, bool with_distribution) const {
   DatabaseQuery q;
   q.bow = std::move(bow);
   normaliseBowVector(scoring_, &q.bow);
   q.refined_groups = refineGroupWeights(raw_groups, group_table_);
-  if (with_distribution)
-    q.distribution = distributionVector(keypoints, centre_x, centre_y, fan_bins_);
+  if (with_distribution) q.distribution = distributionVector(points, centre_x, centre_y, fan_bins_);
   return q;
 }
 
@@ -160,16 +217,38 @@ std::vector<EntryScores> Database::query(const DatabaseQuery& q, EntryId limit,
     }
   };
 
-  // Word score, accumulated over the shared words only, term by term as
-  // scoreBowVectors() does (DBoW2's inverse-index scoring).
+  // One walk over the query's words and groups (both sorted by id; a group
+  // without a word weight is possible, e.g. a word of IDF 0). Word score:
+  // accumulated over the shared words only, term by term as
+  // scoreBowVectors() does (DBoW2's inverse-index scoring). Group score: the
+  // dot product of eq. 3, <w~_q, w~_e>, with the entry's refined weight
+  // = raw / sum (its TF, the division applied per entry below) times the
+  // table's CURRENT IDF (eq. 1 applied now).
   const double base = bowScoreBase(scoring_, q.bow);
+  const GroupVector& groups = q.refined_groups;
   // The metric is chosen once per query, not once per posting.
   auto accumulate = [&](auto term) {
-    for (const auto& w : q.bow) {
-      for (const auto& p : word_index_[w.first]) {
-        if (p.first >= n) break;  // lists are in ascending entry order
-        word_acc_[p.first] += term(w.second, p.second);
-        touch(p.first);
+    std::size_t i = 0, j = 0;
+    const std::size_t nw = q.bow.size(), ng = with_groups ? groups.size() : 0;
+    while (i < nw || j < ng) {
+      const bool take_word = i < nw && (j == ng || q.bow[i].first <= groups[j].first);
+      const bool take_group = j < ng && (i == nw || groups[j].first <= q.bow[i].first);
+      const WordId w = take_word ? q.bow[i].first : groups[j].first;
+      const double qw = take_word ? q.bow[i].second : 0.0;
+      const double qg = take_group ? groups[j].second * group_table_.idf(w) : 0.0;
+      if (take_word) ++i;
+      if (take_group) ++j;
+      if (qw == 0.0 && qg == 0.0) continue;
+      for (const Posting& p : index_[w]) {
+        if (p.entry >= n) break;  // lists are in ascending entry order
+        if (qw != 0.0 && p.word != 0.f) {
+          word_acc_[p.entry] += term(qw, static_cast<double>(p.word));
+          touch(p.entry);
+        }
+        if (qg != 0.0 && p.group != 0.f) {
+          group_acc_[p.entry] += qg * static_cast<double>(p.group);
+          touch(p.entry);
+        }
       }
     }
   };
@@ -186,21 +265,6 @@ std::vector<EntryScores> Database::query(const DatabaseQuery& q, EntryId limit,
       break;
   }
 
-  // Group dot product (eq. 3's <w~_q, w~_e>): the entry's refined weight is
-  // its stored TF times the table's CURRENT IDF (eq. 1 applied now).
-  if (with_groups) {
-    for (const auto& g : q.refined_groups) {
-      const double idf = group_table_.idf(g.first);
-      const double qw = g.second * idf;
-      if (qw == 0.0) continue;
-      for (const auto& p : group_index_[g.first]) {
-        if (p.first >= n) break;
-        group_acc_[p.first] += qw * p.second;
-        touch(p.first);
-      }
-    }
-  }
-
   std::sort(touched_.begin(), touched_.end());
   std::vector<EntryScores> out;
   out.reserve(touched_.size());
@@ -210,7 +274,8 @@ std::vector<EntryScores> Database::query(const DatabaseQuery& q, EntryId limit,
     // An entry reached through groups only shares no word: its word score is
     // what scoreBowVectors() gives for disjoint vectors (0, or exp(-base) for KL).
     s.s_w = bowScoreFinish(scoring_, word_acc_[id], base);
-    s.s_g = with_groups ? groupScoreFromDot(group_acc_[id]) : 0.0;
+    const double sum = group_sums_[id];  // > 0 for an entry reached through a group
+    s.s_g = with_groups ? groupScoreFromDot(sum > 0.0 ? group_acc_[id] / sum : 0.0) : 0.0;
     if (!q.distribution.empty()) s.s_d = distributionScore(q.distribution, cachedDistribution(id));
     out.push_back(s);
     word_acc_[id] = 0.0;
@@ -222,11 +287,12 @@ std::vector<EntryScores> Database::query(const DatabaseQuery& q, EntryId limit,
 }
 
 EntryScores Database::score(const DatabaseQuery& q, EntryId id) const {
-  const DatabaseEntry& e = entries_.at(id);
+  if (id >= entries_.size())
+    throw std::out_of_range("Database::score: no entry " + std::to_string(id));
   EntryScores s;
   s.entry = id;
   s.s_w = scoreBowVectors(scoring_, q.bow, bow(id));
-  s.s_g = groupScore(q.refined_groups, refineGroupWeights(e.raw_groups, group_table_));
+  s.s_g = groupScore(q.refined_groups, refineGroupWeights(rawGroups(id), group_table_));
   if (!q.distribution.empty()) s.s_d = distributionScore(q.distribution, cachedDistribution(id));
   return s;
 }
@@ -247,17 +313,12 @@ std::vector<double> Database::distribution(EntryId id) const {
 std::size_t Database::memoryBytes() const {
   std::size_t bytes = vectorHeapBytes(entries_);
   for (const auto& e : entries_) {
-    bytes += vectorHeapBytes(e.keypoints) + vectorHeapBytes(e.descriptors) +
-             vectorHeapBytes(e.words) + vectorHeapBytes(e.raw_groups);
+    bytes += vectorHeapBytes(e.points) + vectorHeapBytes(e.descriptors) + vectorHeapBytes(e.words);
   }
-  bytes += vectorHeapBytes(distributions_) + vectorHeapBytes(odometers_);
-  for (const auto& l : word_index_) bytes += vectorHeapBytes(l);
-  for (const auto& l : group_index_) bytes += vectorHeapBytes(l);
-  bytes += vectorHeapBytes(word_index_) + vectorHeapBytes(group_index_);
-  // The group table's hash map: one node (next pointer, key, value) per
-  // group and one pointer per bucket (about as many buckets as groups).
-  bytes += group_table_.size() *
-           (heapBlockBytes(sizeof(void*) + sizeof(WordId) + sizeof(double)) + sizeof(void*));
+  bytes +=
+      vectorHeapBytes(distributions_) + vectorHeapBytes(odometers_) + vectorHeapBytes(group_sums_);
+  for (const auto& l : index_) bytes += vectorHeapBytes(l);
+  bytes += vectorHeapBytes(index_) + group_table_.heapBytes();
   return bytes;
 }
 

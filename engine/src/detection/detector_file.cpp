@@ -44,12 +44,14 @@ void saveDetectorFile(const std::string& path, const Database& database,
     w.f64(e.intrinsics.fy);
     w.f64(e.intrinsics.cx);
     w.f64(e.intrinsics.cy);
-    w.u32(static_cast<std::uint32_t>(e.keypoints.size()));
-    for (std::size_t i = 0; i < e.keypoints.size(); ++i) {
-      const Keypoint& k = e.keypoints[i];
-      w.f32(k.x);
-      w.f32(k.y);
-      w.f32(k.size);
+    w.u32(static_cast<std::uint32_t>(e.points.size()));
+    for (std::size_t i = 0; i < e.points.size(); ++i) {
+      // The database keeps keypoint positions only: size, angle, response and
+      // octave are written as a keypoint without them (0, -1, 0, 0).
+      const Keypoint k;
+      w.f32(e.points[i].x);
+      w.f32(e.points[i].y);
+      w.f32(0.f);
       w.f32(k.angle);
       w.f32(k.response);
       w.i32(k.octave);
@@ -57,7 +59,7 @@ void saveDetectorFile(const std::string& path, const Database& database,
       w.u32(e.words[i]);
     }
     w.pairs(database.bow(e.id));  // kept in the format; rebuilt from the words
-    w.pairs(e.raw_groups);
+    w.pairs(database.rawGroups(e.id));
   }
   w.pairs(state.previous_etas);
   writeIsland(&w, state.consistency.lastIsland());

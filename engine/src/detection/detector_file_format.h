@@ -23,7 +23,9 @@ constexpr char kMagic[8] = {'B', 'O', 'W', 'G', 'D', 'B', 0, 0};
 // odometers (u32 count = entries, f64 each, NaN = unknown). Older files still
 // load, with an empty history, zero counters and unknown odometers. Version 4
 // appends the temporal verification's other hypotheses (u32 count, then an
-// island and an i32 chain length each); older files load with none.
+// island and an i32 chain length each); older files load with none. A
+// keypoint's size, angle, response and octave are read and checked but not
+// kept (the database keeps positions only); they are written as 0, -1, 0, 0.
 constexpr std::uint32_t kVersion = 4;
 constexpr std::uint32_t kOldestVersion = 1;
 // magic + version + fingerprint + payload size | ... | checksum

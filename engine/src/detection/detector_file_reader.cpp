@@ -104,11 +104,12 @@ void readEntryHeader(Reader* p, const std::string& entry, DatabaseEntry* e) {
 // Keypoints, descriptors and words of one entry.
 void readFeatures(Reader* p, const std::string& entry, DatabaseEntry* e) {
   const std::size_t nf = p->count(kFeatureBytes, "features");
-  e->keypoints.resize(nf);
+  e->points.resize(nf);
   e->descriptors.resize(nf);
   e->words.resize(nf);
   for (std::size_t f = 0; f < nf; ++f) {
-    Keypoint& k = e->keypoints[f];
+    // Every field is checked; the database keeps the position only.
+    Keypoint k;
     k.x = p->f32("keypoint");
     k.y = p->f32("keypoint");
     k.size = p->f32("keypoint");
@@ -120,19 +121,20 @@ void readFeatures(Reader* p, const std::string& entry, DatabaseEntry* e) {
       p->fail(entry + " keypoint " + std::to_string(f) +
               " has a non-finite coordinate, angle or response, or an invalid size");
     }
+    e->points[f] = ImagePoint{k.x, k.y};
     for (auto& b : e->descriptors[f].bits) b = p->u64("descriptor");
     e->words[f] = p->u32("word");
   }
 }
 
 DatabaseEntry readEntry(Reader* p, std::size_t i, ScoringType stored_scoring,
-                        const Vocabulary& vocabulary) {
+                        const Vocabulary& vocabulary, GroupVector* raw_groups) {
   DatabaseEntry e;
   const std::string entry = "entry " + std::to_string(i);
   readEntryHeader(p, entry, &e);
   readFeatures(p, entry, &e);
   const BowVector bow = p->pairs("BoW vector");
-  e.raw_groups = p->pairs("word groups");
+  *raw_groups = p->pairs("word groups");
   // Stored weights are > 0 (words of weight 0 are never stored) and, for
   // every scoring type but the dot product, normalised to at most 1.
   const bool normalised = stored_scoring != ScoringType::kDotProduct;
@@ -157,7 +159,7 @@ DatabaseEntry readEntry(Reader* p, std::size_t i, ScoringType stored_scoring,
     }
     if (!same) p->fail(entry + " has a BoW vector that is not the one its words give");
   }
-  for (const auto& g : e.raw_groups) {
+  for (const auto& g : *raw_groups) {
     if (!(g.second > 0.0)) p->fail(entry + " has a word-group weight <= 0");
   }
   return e;
@@ -295,19 +297,21 @@ std::unique_ptr<Database> loadDetectorFile(const std::string& path,
   // Entries join the database once the state after them (their odometers,
   // version 3) has been read.
   std::vector<DatabaseEntry> entries;
+  std::vector<GroupVector> raw_groups(n);
   entries.reserve(n);
   try {
     for (std::size_t i = 0; i < n; ++i) {
-      entries.push_back(readEntry(&p, i, static_cast<ScoringType>(stored_scoring), *vocabulary));
+      entries.push_back(
+          readEntry(&p, i, static_cast<ScoringType>(stored_scoring), *vocabulary, &raw_groups[i]));
     }
     StoredChain chain;
     readPreviousScoresAndChain(&p, n, state, &chain);
     if (version >= 2) readNormalisers(&p, state);
     if (version >= 3) readCountersAndOdometers(&p, &entries, state, &chain);
     if (version >= 4) readHypotheses(&p, n, &chain);
-    for (DatabaseEntry& e : entries) {
-      db->addToGroupTable(e.raw_groups);
-      db->add(std::move(e));
+    for (std::size_t i = 0; i < n; ++i) {
+      db->addToGroupTable(raw_groups[i]);
+      db->add(std::move(entries[i]), raw_groups[i]);
     }
     restoreChain(&p, *db, &chain, state);
   } catch (const std::invalid_argument& e) {

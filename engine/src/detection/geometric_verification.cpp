@@ -79,10 +79,10 @@ void matchGroup(const std::vector<Descriptor>& qd, Run qs, const std::vector<Des
 }
 
 void checkView(const VerificationView& v, const char* name, bool need_direct) {
-  if (!v.keypoints || !v.descriptors || (need_direct && !v.direct)) {
+  if (!v.points || !v.descriptors || (need_direct && !v.direct)) {
     throw std::invalid_argument(std::string("verifyGeometry: ") + name + " view is incomplete");
   }
-  if (v.keypoints->size() != v.descriptors->size()) {
+  if (v.points->size() != v.descriptors->size()) {
     throw std::invalid_argument(std::string("verifyGeometry: ") + name +
                                 " keypoints and descriptors differ in number");
   }
@@ -186,8 +186,8 @@ GeometricVerificationResult verifyCorrespondences(
   pq.reserve(pairs.size());
   pm.reserve(pairs.size());
   for (const auto& p : pairs) {
-    const Keypoint& a = (*query.keypoints)[p.first];
-    const Keypoint& b = (*match.keypoints)[p.second];
+    const ImagePoint& a = (*query.points)[p.first];
+    const ImagePoint& b = (*match.points)[p.second];
     pq.emplace_back(a.x, a.y);
     pm.emplace_back(b.x, b.y);
   }

@@ -147,7 +147,7 @@ LoopResult LoopDetector::process(const KeyframeInput& keyframe) {
 
   DatabaseEntry entry;
   entry.stamp = keyframe.stamp;
-  entry.keypoints = f.keypoints;
+  entry.points = imagePoints(f.keypoints);
   entry.descriptors = f.descriptors;
   entry.intrinsics = keyframe.intrinsics;
   entry.odometer = keyframe.odometer;
@@ -155,7 +155,7 @@ LoopResult LoopDetector::process(const KeyframeInput& keyframe) {
 
   if (f.empty()) {
     // Added anyway so that entry ids stay aligned with keyframe indices.
-    database_->add(std::move(entry));
+    database_->add(std::move(entry), GroupVector());
     query_steps::recordUnscoredQuery(options_, state_.get());
     r.status = LoopStatus::kNoFeatures;
     r.timings.total_ms = msBetween(t0, Clock::now());
@@ -172,12 +172,12 @@ LoopResult LoopDetector::process(const KeyframeInput& keyframe) {
   // off so that switching them on later finds every entry grouped; 3. they
   // join the table BEFORE eq. 1 is applied to the query (finite IDF for the
   // query's own groups); 4. refined weights.
-  entry.raw_groups = buildWordGroups(f.keypoints, entry.words, options_.word_groups);
-  database_->addToGroupTable(entry.raw_groups);
+  const GroupVector raw_groups = buildWordGroups(f.keypoints, entry.words, options_.word_groups);
+  database_->addToGroupTable(raw_groups);
   const bool with_groups = options_.word_groups.enabled;
   const bool with_distribution = options_.distribution.enabled;
   // The entry keeps its words; the database rebuilds its BoW from them.
-  const DatabaseQuery q = database_->makeQuery(std::move(bow), entry.raw_groups, f.keypoints,
+  const DatabaseQuery q = database_->makeQuery(std::move(bow), raw_groups, entry.points,
                                                entry.centre_x, entry.centre_y, with_distribution);
   const auto t2 = Clock::now();
   r.timings.word_groups_ms = msBetween(t1, t2);
@@ -190,10 +190,10 @@ LoopResult LoopDetector::process(const KeyframeInput& keyframe) {
   } catch (...) {
     // The raw groups are already in the table: add the entry anyway so that
     // the table, the indexes and the keyframe ids stay consistent.
-    database_->add(std::move(entry));
+    database_->add(std::move(entry), raw_groups);
     throw;
   }
-  database_->add(std::move(entry));
+  database_->add(std::move(entry), raw_groups);
   r.timings.total_ms = msBetween(t0, Clock::now());
   return r;
 }

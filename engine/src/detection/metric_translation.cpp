@@ -130,7 +130,7 @@ MetricTranslation estimateMetricTranslation(const std::vector<Correspondence>& l
   // RANSAC is the cost: first the correspondences alone say whether enough
   // loop inliers could get a depth.
   std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>> candidate_pairs;
-  std::vector<char> loop_feature(match.keypoints->size(), 0), covered(match.keypoints->size(), 0);
+  std::vector<char> loop_feature(match.points->size(), 0), covered(match.points->size(), 0);
   for (const Correspondence& c : loop_inliers) {
     if (c.match_index < loop_feature.size()) loop_feature[c.match_index] = 1;
   }
@@ -173,7 +173,7 @@ MetricTranslation estimateMetricTranslation(const std::vector<Correspondence>& l
     std::copy(r_fit, r_fit + 9, t.r);
     std::copy(u_fit, u_fit + 3, t.u);
     t.pose = neighbourPose(t.r, t.u, n.baseline_m, K);
-    t.pair_of_feature.assign(match.keypoints->size(), -1);
+    t.pair_of_feature.assign(match.points->size(), -1);
     for (std::size_t i = 0; i < t.pairs.size(); ++i) {
       t.pair_of_feature[t.pairs[i].query_index] = static_cast<int>(i);
     }

@@ -170,7 +170,7 @@ class Verifier {
       direct_ = directIndexFromWords(ctx_.vocabulary, query_.words, ctx_.database.directLevel());
       built_ = true;
     }
-    return VerificationView{&query_.keypoints, &query_.descriptors, &direct_};
+    return VerificationView{&query_.points, &query_.descriptors, &direct_};
   }
 
   /// Valid until the next call.
@@ -180,7 +180,7 @@ class Verifier {
   /// for RANSAC on correspondences already found (verifyCorrespondences).
   VerificationView features(EntryId id) const {
     const DatabaseEntry& m = ctx_.database.entry(id);
-    return VerificationView{&m.keypoints, &m.descriptors, nullptr};
+    return VerificationView{&m.points, &m.descriptors, nullptr};
   }
 
   /// Entry `id`'s view with its direct index in `storage`.
@@ -189,7 +189,7 @@ class Verifier {
     if (!exhaustive_) {
       *storage = directIndexFromWords(ctx_.vocabulary, m.words, ctx_.database.directLevel());
     }
-    return VerificationView{&m.keypoints, &m.descriptors, storage};
+    return VerificationView{&m.points, &m.descriptors, storage};
   }
 
   const CameraIntrinsics& intrinsics() const { return intrinsics_; }

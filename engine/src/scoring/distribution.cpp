@@ -40,11 +40,11 @@ int fanBin(float x, float y, double cx, double cy, int m) {
   return k >= m ? m - 1 : k;
 }
 
-std::vector<double> distributionVector(const std::vector<Keypoint>& keypoints, double cx, double cy,
+std::vector<double> distributionVector(const std::vector<ImagePoint>& points, double cx, double cy,
                                        int m) {
   checkBins("distributionVector", m);
   std::vector<double> v(static_cast<std::size_t>(m), 0.0);
-  for (const Keypoint& k : keypoints) v[fanBin(k.x, k.y, cx, cy, m)] += 1.0;
+  for (const ImagePoint& p : points) v[fanBin(p.x, p.y, cx, cy, m)] += 1.0;
   // L2 normalisation (v-hat in the paper).
   double norm = 0.0;
   for (const double n : v) norm += n * n;

@@ -9,6 +9,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "bowg/core/heap_bytes.h"
+
 namespace bowg {
 namespace {
 
@@ -183,6 +185,9 @@ GroupVector buildWordGroups(const std::vector<Keypoint>& keypoints,
 void WordGroupTable::add(const GroupVector& raw) {
   for (const GroupEntry& e : raw) checkWeight("WordGroupTable::add", e);
   for (const GroupEntry& e : raw) {
+    if (e.first >= cumulative_.size())
+      cumulative_.resize(static_cast<std::size_t>(e.first) + 1, 0.0);
+    if (cumulative_[e.first] == 0.0) ++seen_;
     cumulative_[e.first] += e.second;
     total_ += e.second;
   }
@@ -190,13 +195,15 @@ void WordGroupTable::add(const GroupVector& raw) {
 
 void WordGroupTable::clear() {
   cumulative_.clear();
+  seen_ = 0;
   total_ = 0.0;
 }
 
 double WordGroupTable::cumulative(WordId group) const {
-  const auto it = cumulative_.find(group);
-  return it == cumulative_.end() ? 0.0 : it->second;
+  return group < cumulative_.size() ? cumulative_[group] : 0.0;
 }
+
+std::size_t WordGroupTable::heapBytes() const { return vectorHeapBytes(cumulative_); }
 
 double WordGroupTable::idf(WordId group) const {
   const double c = cumulative(group);

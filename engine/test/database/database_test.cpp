@@ -28,37 +28,50 @@ std::shared_ptr<const Vocabulary> vocabulary() {
   return v;
 }
 
-// An entry built from a keyframe the way LoopDetector builds it (minus the
-// query): words, BoW, raw groups into the table, then add().
-DatabaseEntry entryFromKeyframe(const Vocabulary& voc, const KeyframeInput& kf, BowVector* bow) {
-  DatabaseEntry e;
+// An entry and its raw groups built from a keyframe the way LoopDetector
+// builds them (minus the query): words, BoW, raw groups into the table, then
+// add().
+struct BuiltEntry {
+  DatabaseEntry entry;
+  GroupVector raw_groups;
+};
+
+BuiltEntry entryFromKeyframe(const Vocabulary& voc, const KeyframeInput& kf, BowVector* bow) {
+  BuiltEntry b;
+  DatabaseEntry& e = b.entry;
   e.stamp = kf.stamp;
-  e.keypoints = kf.features.keypoints;
+  e.points = imagePoints(kf.features.keypoints);
   e.descriptors = kf.features.descriptors;
   e.centre_x = 320;
   e.centre_y = 240;
   voc.transform(e.descriptors, bow, nullptr, 0, &e.words);
-  e.raw_groups = buildWordGroups(e.keypoints, e.words, WordGroupOptions());
-  return e;
+  b.raw_groups = buildWordGroups(kf.features.keypoints, e.words, WordGroupOptions());
+  return b;
 }
 
 // Fills `db` with 30 corridor keyframes 0.5 m apart (overlapping views share
-// words) and returns a query keyframe's entry over the first ones.
-DatabaseEntry fill(Database* db, BowVector* query_bow) {
+// words) and returns a query keyframe's entry over the first ones. The raw
+// groups each entry was added with go to `added` when given.
+BuiltEntry fill(Database* db, BowVector* query_bow, std::vector<GroupVector>* added = nullptr) {
   const testing::Corridor c = testing::makeCorridor(30, 50, 21);
   std::mt19937_64 rng(4);
   for (int i = 0; i < 30; ++i) {
     BowVector bow;
-    DatabaseEntry e = entryFromKeyframe(
-        db->vocabulary(), testing::observeCorridor(c, 0.5 * i, 1.0 + i, rng, 2), &bow);
-    db->addToGroupTable(e.raw_groups);
-    db->add(std::move(e));
+    BuiltEntry b = entryFromKeyframe(db->vocabulary(),
+                                     testing::observeCorridor(c, 0.5 * i, 1.0 + i, rng, 2), &bow);
+    db->addToGroupTable(b.raw_groups);
+    if (added) added->push_back(b.raw_groups);
+    db->add(std::move(b.entry), b.raw_groups);
   }
-  DatabaseEntry q = entryFromKeyframe(db->vocabulary(),
-                                      testing::observeCorridor(c, 3.2, 100.0, rng, 2), query_bow);
+  BuiltEntry q = entryFromKeyframe(db->vocabulary(),
+                                   testing::observeCorridor(c, 3.2, 100.0, rng, 2), query_bow);
   db->addToGroupTable(q.raw_groups);
   return q;
 }
+
+// The inverse index keeps BoW weights as floats (24 bits): scores through it
+// agree with the double-precision vectors to ~1e-7 of their weights.
+const double kFloatWeightTolerance = 1e-6;
 
 class DatabaseScoring : public ::testing::TestWithParam<ScoringType> {};
 
@@ -66,8 +79,8 @@ TEST_P(DatabaseScoring, InverseIndexWordScoreEqualsScoreBowVectors) {
   const ScoringType s = GetParam();
   Database db(vocabulary(), s, 2, 8);
   BowVector qbow;
-  const DatabaseEntry qe = fill(&db, &qbow);
-  const DatabaseQuery q = db.makeQuery(qbow, qe.raw_groups, qe.keypoints, 320, 240, false);
+  const BuiltEntry qe = fill(&db, &qbow);
+  const DatabaseQuery q = db.makeQuery(qbow, qe.raw_groups, qe.entry.points, 320, 240, false);
   const EntryId limit = 25;
   const std::vector<EntryScores> scores = db.query(q, limit, /*with_groups=*/false);
   // Exactly the entries < limit that share a word with the query.
@@ -85,9 +98,9 @@ TEST_P(DatabaseScoring, InverseIndexWordScoreEqualsScoreBowVectors) {
   ASSERT_GT(scores.size(), 5u);
   for (const EntryScores& e : scores) {
     EXPECT_TRUE(expected.count(e.entry));
-    EXPECT_NEAR(e.s_w, scoreBowVectors(s, q.bow, db.bow(e.entry)), 1e-12)
+    EXPECT_NEAR(e.s_w, scoreBowVectors(s, q.bow, db.bow(e.entry)), kFloatWeightTolerance)
         << toString(s) << " entry " << e.entry;
-    EXPECT_NEAR(e.s_w, db.score(q, e.entry).s_w, 1e-12);
+    EXPECT_NEAR(e.s_w, db.score(q, e.entry).s_w, kFloatWeightTolerance);
   }
 }
 
@@ -99,16 +112,34 @@ INSTANTIATE_TEST_SUITE_P(AllScoringTypes, DatabaseScoring,
 TEST(Database, InverseIndexGroupScoreEqualsDirectEq3WithCurrentIdf) {
   Database db(vocabulary(), ScoringType::kL1, 2, 8);
   BowVector qbow;
-  const DatabaseEntry qe = fill(&db, &qbow);
-  const DatabaseQuery q = db.makeQuery(qbow, qe.raw_groups, qe.keypoints, 320, 240, false);
+  std::vector<GroupVector> added;
+  const BuiltEntry qe = fill(&db, &qbow, &added);
+  const DatabaseQuery q = db.makeQuery(qbow, qe.raw_groups, qe.entry.points, 320, 240, false);
   const std::vector<EntryScores> scores = db.query(q, 30, true);
   int with_groups = 0;
   for (const EntryScores& e : scores) {
-    const GroupVector refined = refineGroupWeights(db.entry(e.entry).raw_groups, db.groupTable());
+    const GroupVector refined = refineGroupWeights(added[e.entry], db.groupTable());
     EXPECT_NEAR(e.s_g, groupScore(q.refined_groups, refined), 1e-12);
+    EXPECT_NEAR(e.s_g, db.score(q, e.entry).s_g, 1e-12);
     if (e.s_g > 0) ++with_groups;
   }
   EXPECT_GT(with_groups, 3);
+}
+
+// The entries keep no raw groups: the database reads them back from its
+// inverse index, exactly as add() received them.
+TEST(Database, RawGroupsAreReadBackAsAdded) {
+  Database db(vocabulary(), ScoringType::kL1, 2, 8);
+  BowVector qbow;
+  std::vector<GroupVector> added;
+  fill(&db, &qbow, &added);
+  ASSERT_EQ(added.size(), db.size());
+  std::size_t groups = 0;
+  for (EntryId id = 0; id < db.size(); ++id) {
+    EXPECT_EQ(db.rawGroups(id), added[id]) << "entry " << id;
+    groups += added[id].size();
+  }
+  EXPECT_GT(groups, 100u);
 }
 
 // Hand-worked eq. 1 and eq. 3 through the database (groups only, no words).
@@ -123,12 +154,16 @@ TEST(Database, InverseIndexGroupScoreEqualsDirectEq3WithCurrentIdf) {
 // new IDF log(16/5) (= 1.16315): dot(Q, A) = .25 log(3.2)^2 = 0.33823.
 TEST(Database, HandWorkedGroupScores) {
   Database db(vocabulary(), ScoringType::kL1, 2, 8);
+  // An image's groups are among its words: each entry has one feature per
+  // group, with the group's word.
   auto addGroups = [&db](double stamp, const GroupVector& raw) {
     DatabaseEntry e;
     e.stamp = stamp;
-    e.raw_groups = raw;
+    for (const auto& g : raw) e.words.push_back(g.first);
+    e.points.resize(raw.size());
+    e.descriptors.resize(raw.size());
     db.addToGroupTable(raw);
-    return db.add(e);
+    return db.add(e, raw);
   };
   EXPECT_EQ(addGroups(1, {{0, 2}, {1, 2}}), 0u);
   EXPECT_EQ(addGroups(2, {{1, 1}, {2, 3}}), 1u);
@@ -162,14 +197,14 @@ TEST(Database, HandWorkedGroupScores) {
 TEST(Database, FanBinChangeRebuildsDistributionVectors) {
   Database db(vocabulary(), ScoringType::kL1, 2, 8);
   BowVector qbow;
-  const DatabaseEntry qe = fill(&db, &qbow);
+  const BuiltEntry qe = fill(&db, &qbow);
   db.setFanBins(5);
-  const DatabaseQuery q = db.makeQuery(qbow, qe.raw_groups, qe.keypoints, 320, 240, true);
+  const DatabaseQuery q = db.makeQuery(qbow, qe.raw_groups, qe.entry.points, 320, 240, true);
   ASSERT_EQ(q.distribution.size(), 5u);
-  const std::vector<double> fresh_q = distributionVector(qe.keypoints, 320, 240, 5);
+  const std::vector<double> fresh_q = distributionVector(qe.entry.points, 320, 240, 5);
   for (const EntryScores& e : db.query(q, 30, true)) {
     const DatabaseEntry& d = db.entry(e.entry);
-    const std::vector<double> fresh = distributionVector(d.keypoints, 320, 240, 5);
+    const std::vector<double> fresh = distributionVector(d.points, 320, 240, 5);
     EXPECT_EQ(db.distribution(e.entry), fresh);
     EXPECT_NEAR(e.s_d, distributionScore(fresh_q, fresh), 1e-12);
   }
@@ -196,15 +231,18 @@ TEST(Database, DirectIndexMatchesTheVocabularyAtEveryLevel) {
 TEST(Database, ScoringChangeRenormalisesAndReindexes) {
   Database db(vocabulary(), ScoringType::kL1, 2, 8);
   BowVector qbow;
-  const DatabaseEntry qe = fill(&db, &qbow);
+  const BuiltEntry qe = fill(&db, &qbow);
   db.setScoring(ScoringType::kL2);
-  const DatabaseQuery q = db.makeQuery(qbow, qe.raw_groups, qe.keypoints, 320, 240, false);
+  const DatabaseQuery q = db.makeQuery(qbow, qe.raw_groups, qe.entry.points, 320, 240, false);
+  std::size_t scored = 0;
   for (const EntryScores& e : db.query(q, 30, false)) {
     BowVector a = qbow, b = db.bow(e.entry);
     normaliseBowVector(ScoringType::kL2, &a);
     normaliseBowVector(ScoringType::kL2, &b);
-    EXPECT_NEAR(e.s_w, scoreBowVectors(ScoringType::kL2, a, b), 1e-12);
+    EXPECT_NEAR(e.s_w, scoreBowVectors(ScoringType::kL2, a, b), kFloatWeightTolerance);
+    ++scored;
   }
+  EXPECT_GT(scored, 5u);
 }
 
 // The entry keeps its words, not its vector: the vector the database rebuilds
@@ -216,10 +254,10 @@ TEST(Database, BowIsRebuiltFromTheWordsBitForBit) {
     const testing::Corridor c = testing::makeCorridor(5, 50, 3);
     std::mt19937_64 rng(7);
     BowVector bow;
-    DatabaseEntry e =
+    BuiltEntry e =
         entryFromKeyframe(db.vocabulary(), testing::observeCorridor(c, 0.5, 1.0, rng, 2), &bow);
     db.addToGroupTable(e.raw_groups);
-    const EntryId id = db.add(std::move(e));
+    const EntryId id = db.add(std::move(e.entry), e.raw_groups);
     normaliseBowVector(s, &bow);
     ASSERT_FALSE(bow.empty());
     EXPECT_EQ(db.bow(id), bow) << toString(s);
@@ -245,15 +283,24 @@ TEST(Database, AddRejectsInconsistentEntries) {
   Database db(vocabulary(), ScoringType::kL1, 2, 8);
   DatabaseEntry e;
   e.stamp = 1;
-  e.keypoints.resize(2);
+  e.points.resize(2);
   e.descriptors.resize(2);
   e.words = {0};
-  EXPECT_THROW(db.add(e), std::invalid_argument);
+  EXPECT_THROW(db.add(e, {}), std::invalid_argument);
   e.words = {0, static_cast<WordId>(vocabulary()->wordCount())};
-  EXPECT_THROW(db.add(e), std::invalid_argument);
+  EXPECT_THROW(db.add(e, {}), std::invalid_argument);
   e.words = {0, 1};
-  EXPECT_EQ(db.add(e), 0u);
-  EXPECT_THROW(db.add(e), std::invalid_argument);  // same stamp
+  // Raw groups: among the entry's words, sorted without repeats, whole counts.
+  EXPECT_THROW(db.add(e, {{2, 1.0}}), std::invalid_argument);
+  EXPECT_THROW(db.add(e, {{1, 1.0}, {0, 1.0}}), std::invalid_argument);
+  EXPECT_THROW(db.add(e, {{0, 1.0}, {0, 2.0}}), std::invalid_argument);
+  EXPECT_THROW(db.add(e, {{0, 1.5}}), std::invalid_argument);
+  EXPECT_THROW(db.add(e, {{0, 0.0}}), std::invalid_argument);
+  EXPECT_THROW(db.add(e, {{0, 16777216.0}}), std::invalid_argument);
+  EXPECT_EQ(db.size(), 0u);
+  EXPECT_EQ(db.add(e, {{0, 2.0}, {1, 16777215.0}}), 0u);
+  EXPECT_EQ(db.rawGroups(0), (GroupVector{{0, 2.0}, {1, 16777215.0}}));
+  EXPECT_THROW(db.add(e, {}), std::invalid_argument);  // same stamp
   EXPECT_EQ(db.size(), 1u);
   EXPECT_GT(db.memoryBytes(), 0u);
   db.clear();

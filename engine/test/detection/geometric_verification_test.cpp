@@ -44,7 +44,7 @@ Mat3 rotY(double a) {
 }
 
 struct TwoViews {
-  std::vector<Keypoint> qk, mk;
+  std::vector<ImagePoint> qk, mk;
   std::vector<Descriptor> qd, md;
 };
 
@@ -63,7 +63,7 @@ TwoViews makeTwoViews(const Mat3& R, const double t[3], int n, std::uint64_t see
     double d[3] = {X[0] - t[0], X[1] - t[1], X[2] - t[2]}, Y[3];
     for (int r = 0; r < 3; ++r) Y[r] = R.m[r] * d[0] + R.m[3 + r] * d[1] + R.m[6 + r] * d[2];
     if (Y[2] < 1) continue;
-    Keypoint a, b;
+    ImagePoint a, b;
     a.x = static_cast<float>(k.fx * X[0] / X[2] + k.cx + noise(rng));
     a.y = static_cast<float>(k.fy * X[1] / X[2] + k.cy + noise(rng));
     b.x = static_cast<float>(k.fx * Y[0] / Y[2] + k.cx + noise(rng));
@@ -181,7 +181,7 @@ Descriptor bitsSet(int k) {
 }
 
 TEST(GeometricVerification, CorrespondenceRules) {
-  std::vector<Keypoint> qk(3), mk(3);
+  std::vector<ImagePoint> qk(3), mk(3);
   GeometricVerificationOptions o;
   o.max_hamming = 10;
   o.max_neighbour_ratio = 0.8;
@@ -198,7 +198,7 @@ TEST(GeometricVerification, CorrespondenceRules) {
   EXPECT_EQ(pairs[0], std::make_pair(2u, 0u));
   // Without query 2, query 0 matches match 0.
   std::vector<Descriptor> qd2{bitsSet(0), bitsSet(40)};
-  std::vector<Keypoint> qk2(2);
+  std::vector<ImagePoint> qk2(2);
   VerificationView q2{&qk2, &qd2, nullptr};
   pairs = findCorrespondences(q2, m, o);
   ASSERT_EQ(pairs.size(), 1u);

@@ -42,7 +42,7 @@ Pose rotZ(double deg, double tx, double ty, double tz) {
 // with the same descriptor (exhaustive matching pairs them); the loop's
 // inliers pair query and match feature i.
 struct Scene {
-  std::vector<Keypoint> mk, nk, n2k;
+  std::vector<ImagePoint> mk, nk, n2k;
   std::vector<Descriptor> md, nd, n2d;
   std::vector<Correspondence> loop;
 };
@@ -67,7 +67,7 @@ Scene makeScene(const Pose& n_from_m, const Pose& q_from_m, int n, double noise_
     n_from_m.apply(X, Xn);
     q_from_m.apply(X, Xq);
     if (second) second->apply(X, Xn2);
-    Keypoint a, b, b2;
+    ImagePoint a, b, b2;
     Correspondence c;
     if (!pixel(X, &a.x, &a.y) || !pixel(Xn, &b.x, &b.y) || !pixel(Xq, &c.query_x, &c.query_y) ||
         !pixel(Xn2, &b2.x, &b2.y)) {

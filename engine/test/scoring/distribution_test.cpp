@@ -84,7 +84,7 @@ TEST(DistributionVector, CountsAreL2Normalised) {
   std::vector<Keypoint> kps;
   for (int i = 0; i < 3; ++i) kps.push_back(polar(0, 0, 10.0 + 20.0 * i));
   for (int i = 0; i < 4; ++i) kps.push_back(polar(0, 0, 95.0 + 20.0 * i));
-  const std::vector<double> v = distributionVector(kps, 0, 0, 4);
+  const std::vector<double> v = distributionVector(imagePoints(kps), 0, 0, 4);
   ASSERT_EQ(v.size(), 4u);
   EXPECT_DOUBLE_EQ(v[0], 0.6);
   EXPECT_DOUBLE_EQ(v[1], 0.8);
@@ -136,8 +136,8 @@ TEST(DistributionScore, RolledKeypointsScoreOne) {
     kps.push_back(polar(320, 240, deg));
     rolled.push_back(polar(320, 240, deg + 90.0));
   }
-  const std::vector<double> v = distributionVector(kps, 320, 240, 8);
-  const std::vector<double> w = distributionVector(rolled, 320, 240, 8);
+  const std::vector<double> v = distributionVector(imagePoints(kps), 320, 240, 8);
+  const std::vector<double> w = distributionVector(imagePoints(rolled), 320, 240, 8);
   EXPECT_NEAR(distributionScore(v, w), 1.0, 1e-12);
   double unshifted = 0.0;
   for (int j = 0; j < 8; ++j) unshifted += v[j] * w[j];

@@ -45,6 +45,23 @@ struct Keypoint {
   int octave = 0;
 };
 
+/// A keypoint's position alone (pixels, as Keypoint::x, y): what a database
+/// entry keeps of its keypoints, since the later stages (distribution
+/// vectors, RANSAC, metric translation) read nothing else and a full
+/// Keypoint costs three times the bytes.
+struct ImagePoint {
+  float x = 0.f;
+  float y = 0.f;
+};
+
+/// The positions of `keypoints`, index-aligned.
+inline std::vector<ImagePoint> imagePoints(const std::vector<Keypoint>& keypoints) {
+  std::vector<ImagePoint> out(keypoints.size());
+  for (std::size_t i = 0; i < keypoints.size(); ++i)
+    out[i] = ImagePoint{keypoints[i].x, keypoints[i].y};
+  return out;
+}
+
 /// The features of one image: keypoints and their descriptors, index-aligned.
 struct ImageFeatures {
   std::vector<Keypoint> keypoints;

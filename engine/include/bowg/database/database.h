@@ -1,10 +1,12 @@
 // The BoWG database (paper Sec. III-A "BoWG Database"): the keyframes seen so
 // far and every index the queries need:
-//  - the word inverse index (word -> (entry, normalised BoW weight)), as
-//    DBoW2; an entry's BoW vector itself is rebuilt from its words when
-//    needed (bow()), not kept;
-//  - the online word-group table (eq. 1's IDF totals) and the word-group
-//    inverse index (group -> (entry, TF part of eq. 1));
+//  - one inverse index for words and word groups (a group's id is its word's
+//    id, and an image's groups are among its words): word -> (entry,
+//    normalised BoW weight, raw group weight), as DBoW2's word index with the
+//    group's weight beside it. An entry's BoW vector and raw groups are
+//    rebuilt from its words and these postings when needed (bow(),
+//    rawGroups()), not kept;
+//  - the online word-group table (eq. 1's IDF totals);
 //  - the level of the direct index (Sec. III-D's correspondence search): an
 //    entry's direct index is rebuilt from its words when it is verified
 //    (directIndexFromWords, a few microseconds), not kept per entry;
@@ -54,19 +56,31 @@ constexpr double kStampLimit = 4294967296.0;
 struct DatabaseEntry {
   EntryId id = 0;
   double stamp = 0;  ///< in [0, kStampLimit), increasing
-  std::vector<Keypoint> keypoints;
+  /// Keypoint positions: the only part of a keypoint read after insertion.
+  std::vector<ImagePoint> points;
   std::vector<Descriptor> descriptors;
   std::vector<WordId> words;          ///< word of each feature (index-aligned)
-  GroupVector raw_groups;             ///< raw w_{g,t}^(i) (before eq. 1)
   double centre_x = 0, centre_y = 0;  ///< centre of the distribution fan
   CameraIntrinsics intrinsics;
   /// Metres driven since the first keyframe (KeyframeInput::odometer); NaN
   /// when unknown.
   double odometer = std::numeric_limits<double>::quiet_NaN();
   // Derived from `words` when needed, not kept: the BoW vector
-  // (Database::bow()) and the direct index at Database::directLevel()
-  // (directIndexFromWords). The distribution vector for the current m lives in the database's
-  // contiguous distribution table (Database::distribution()).
+  // (Database::bow()), the raw groups (Database::rawGroups()) and the direct
+  // index at Database::directLevel() (directIndexFromWords). The distribution vector for the
+  // current m lives in the database's contiguous distribution table (Database::distribution()).
+};
+
+/// One posting of the inverse index: `entry` holds the word (BoW weight
+/// `word`, 0 when the word weighs nothing in the entry's vector, e.g. IDF 0)
+/// and/or its group (raw weight `group`, 0 when the entry has no such group).
+/// Floats: 12 bytes a posting instead of two 16-byte ones. A raw group weight
+/// is a count of neighbours (< 2^24, exact in a float); a BoW weight keeps
+/// 24 bits, and scores are accumulated in double.
+struct Posting {
+  EntryId entry;
+  float word;
+  float group;
 };
 
 /// Raw scores of one database entry against a query (paper notation).
@@ -112,9 +126,9 @@ class Database {
   int fanBins() const { return fan_bins_; }
 
   /// Option changes. Each rebuilds only what depends on it: the scoring type
-  /// rebuilds every BoW vector and the word inverse index; the
-  /// direct-index level applies to the next verification; m rebuilds
-  /// every cached distribution vector from the stored keypoints.
+  /// rewrites every posting's BoW weight; the direct-index level applies to
+  /// the next verification; m rebuilds every cached distribution vector from
+  /// the stored keypoint positions.
   void setScoring(ScoringType scoring);
   void setDirectLevel(int level);
   void setFanBins(int m);
@@ -123,26 +137,32 @@ class Database {
   void addToGroupTable(const GroupVector& raw) { group_table_.add(raw); }
 
   /// Step 5: appends `entry` (its id is set to size()), computes its derived
-  /// fields and adds it to the inverse indexes (its BoW vector from its
-  /// words, as bow() does). Its raw groups must already be in the table
-  /// (addToGroupTable). Returns the id.
-  /// Throws std::invalid_argument on inconsistent sizes or word ids.
-  EntryId add(DatabaseEntry entry);
+  /// fields and adds it to the inverse index (its BoW vector from its words,
+  /// as bow() does, and `raw_groups`, buildWordGroups() of its keypoints).
+  /// The raw groups must already be in the table (addToGroupTable). Returns
+  /// the id. Throws std::invalid_argument on inconsistent sizes or word ids,
+  /// and on a raw group that is not one of the entry's words or whose weight
+  /// is not a whole count in [1, 2^24).
+  EntryId add(DatabaseEntry entry, const GroupVector& raw_groups);
 
   /// Entry `id`'s BoW vector normalised for scoring(): the vocabulary's
   /// transform of its words (Vocabulary::bowFromWords), normalised; the
-  /// weights the word inverse index holds for it. Rebuilt on each call (a
+  /// weights the inverse index holds for it (as floats). Rebuilt on each call (a
   /// few microseconds): keeping it would cost ~5 kB per keyframe.
   BowVector bow(EntryId id) const;
 
+  /// Entry `id`'s raw groups w_{g,t}^(i) as add() received them, read back
+  /// from the inverse index through its words.
+  GroupVector rawGroups(EntryId id) const;
+
   /// Step 4: the query's normalised BoW and refined groups.
   DatabaseQuery makeQuery(BowVector bow, const GroupVector& raw_groups,
-                          const std::vector<Keypoint>& keypoints, double centre_x, double centre_y,
+                          const std::vector<ImagePoint>& points, double centre_x, double centre_y,
                           bool with_distribution) const;
 
   /// Scores every entry with id < limit that shares at least one word (and,
   /// when `with_groups`, at least one group) with the query, through the
-  /// inverse indexes. s_d is filled when the query has a distribution vector.
+  /// inverse index. s_d is filled when the query has a distribution vector.
   /// Result sorted by entry id.
   std::vector<EntryScores> query(const DatabaseQuery& q, EntryId limit, bool with_groups) const;
 
@@ -157,10 +177,10 @@ class Database {
   void clear();
 
  private:
-  void indexWords(EntryId id, const BowVector& bow);
+  /// Entry `id`'s posting in word `w`'s list, or nullptr.
+  const Posting* posting(WordId w, EntryId id) const;
   /// Entry `id`'s vector copied into a reused scratch buffer (no allocation).
   const std::vector<double>& cachedDistribution(EntryId id) const;
-  void indexGroups(EntryId id, const GroupVector& group_tf);
 
   std::shared_ptr<const Vocabulary> vocabulary_;
   ScoringType scoring_;
@@ -169,10 +189,11 @@ class Database {
   std::vector<DatabaseEntry> entries_;
   std::vector<double> odometers_;  ///< see odometers()
   WordGroupTable group_table_;
-  /// word -> (entry, normalised weight), entries ascending.
-  std::vector<std::vector<std::pair<EntryId, double>>> word_index_;
-  /// group (= word id) -> (entry, TF part of eq. 1), entries ascending.
-  std::vector<std::vector<std::pair<EntryId, double>>> group_index_;
+  /// word (= group id) -> postings, entries ascending.
+  std::vector<std::vector<Posting>> index_;
+  /// Per entry the sum of its raw group weights: eq. 1's TF is raw / sum,
+  /// applied once per scored entry instead of once per posting.
+  std::vector<double> group_sums_;
   /// Distribution table: entry i's vector for the current m at [i*m, i*m+m).
   /// One contiguous array rather than a vector per entry: a query reads it
   /// for thousands of candidates, and separate allocations made that stage

@@ -30,7 +30,7 @@ struct Correspondence {
 
 /// The features of one side of the verification.
 struct VerificationView {
-  const std::vector<Keypoint>* keypoints = nullptr;
+  const std::vector<ImagePoint>* points = nullptr;
   const std::vector<Descriptor>* descriptors = nullptr;
   const DirectIndex* direct = nullptr;  ///< unused when matching exhaustively
 };

@@ -17,8 +17,8 @@ int fanBin(float x, float y, double cx, double cy, int m);
 
 /// v = [n_0 .. n_{m-1}] counts of keypoints per fan bin, L2-normalised
 /// (all zeros when there are no keypoints).
-std::vector<double> distributionVector(const std::vector<Keypoint>& keypoints, double cx,
-                                       double cy, int m);
+std::vector<double> distributionVector(const std::vector<ImagePoint>& points, double cx, double cy,
+                                       int m);
 
 /// s_d = max over i of <M_i^query, v_db>, M_i the query vector cyclically
 /// shifted by i (m_ij = v_((i+j) mod m)). Sizes must match (throws

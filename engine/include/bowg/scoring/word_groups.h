@@ -2,7 +2,6 @@
 // word-group table (Sec. III-A "Word Group Table").
 #pragma once
 
-#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -36,13 +35,19 @@ class WordGroupTable {
   void clear();
   double cumulative(WordId group) const;  ///< 0 when never seen
   double total() const { return total_; }
-  std::size_t size() const { return cumulative_.size(); }
+  std::size_t size() const { return seen_; }  ///< groups seen at least once
+  /// Heap bytes held (Database::memoryBytes()).
+  std::size_t heapBytes() const;
   /// IDF part of eq. 1: log(total / cumulative(group)); 0 when the group
   /// was never seen (it cannot be shared with any database image then).
   double idf(WordId group) const;
 
  private:
-  std::unordered_map<WordId, double> cumulative_;
+  // Dense by group id (grown to the largest id seen): a query reads the IDF
+  // of each of its ~400 groups, and a hash map node per group cost ~40 bytes
+  // per new group, i.e. per keyframe while the vocabulary is far from seen.
+  std::vector<double> cumulative_;
+  std::size_t seen_ = 0;
   double total_ = 0.0;
 };
 
