@@ -3,8 +3,8 @@
 // reuses pages a previous load freed). scripts/run_benchmarks.sh runs it
 // several times and reports the median against the 50 ms target.
 //
-//   bowg_vocabulary_load_once --make-k10l6 PATH   write the synthetic k=10 L=6 tree
-//   bowg_vocabulary_load_once PATH                load it, print the milliseconds
+//   bowg_vocabulary_load_once_bench --make-k10l6 PATH   write the synthetic k=10 L=6 tree
+//   bowg_vocabulary_load_once_bench PATH                load it, print the milliseconds
 #include <chrono>
 #include <cstdio>
 #include <exception>
