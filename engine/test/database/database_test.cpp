@@ -96,6 +96,9 @@ TEST_P(DatabaseScoring, InverseIndexWordScoreEqualsScoreBowVectors) {
   }
   ASSERT_EQ(scores.size(), expected.size());
   ASSERT_GT(scores.size(), 5u);
+  // In ascending entry order (read off the touched flags: a large share of
+  // the 25 entries is touched).
+  for (std::size_t i = 1; i < scores.size(); ++i) EXPECT_LT(scores[i - 1].entry, scores[i].entry);
   for (const EntryScores& e : scores) {
     EXPECT_TRUE(expected.count(e.entry));
     EXPECT_NEAR(e.s_w, scoreBowVectors(s, q.bow, db.bow(e.entry)), kFloatWeightTolerance)
@@ -192,6 +195,33 @@ TEST(Database, HandWorkedGroupScores) {
   ASSERT_EQ(s.size(), 2u);  // C shares no group with the query
   EXPECT_NEAR(s[0].s_g, 1 - std::sqrt(1 - 0.25 * l32 * l32), 1e-12);
   EXPECT_NEAR(s[0].s_g, db.score(q, 0).s_g, 1e-12);
+}
+
+// A query touching few of many entries: the touched ids are sorted. Entry i
+// holds the one word w_i; the query holds the words of entries 30 and 5, the
+// lower word first, so the entries are touched in the order 30, 5.
+TEST(Database, FewTouchedEntriesComeOutInAscendingOrder) {
+  Database db(vocabulary(), ScoringType::kL1, 2, 8);
+  const Vocabulary& voc = *vocabulary();
+  std::vector<WordId> words;
+  for (WordId w = 0; words.size() < 40; ++w) {
+    if (voc.wordWeight(w) > 0) words.push_back(w);
+  }
+  for (std::size_t i = 0; i < 40; ++i) {
+    DatabaseEntry e;
+    e.stamp = 1.0 + static_cast<double>(i);
+    // Entry 30 gets the lowest word, entry 5 a higher one.
+    e.words = {words[i == 30 ? 0 : i == 0 ? 30 : i]};
+    e.points.resize(1);
+    e.descriptors.resize(1);
+    db.add(e, {});
+  }
+  const BowVector qbow = voc.bowFromWords({words[0], words[5]});
+  const DatabaseQuery q = db.makeQuery(qbow, {}, {}, 0, 0, false);
+  const std::vector<EntryScores> s = db.query(q, 40, false);
+  ASSERT_EQ(s.size(), 2u);
+  EXPECT_EQ(s[0].entry, 5u);
+  EXPECT_EQ(s[1].entry, 30u);
 }
 
 TEST(Database, FanBinChangeRebuildsDistributionVectors) {
