@@ -11,6 +11,33 @@
 #include "bowg/vocabulary/vocabulary.h"
 
 namespace bowg {
+namespace {
+
+// The first posting of `list` whose entry is not below `id` (lists are in
+// ascending entry order).
+template <typename It>
+It lowerBoundOfEntry(It first, It last, EntryId id) {
+  return std::lower_bound(first, last, id, [](const Posting& p, EntryId e) { return p.entry < e; });
+}
+
+// Walks the union of the ids of two id-sorted sparse vectors (a BoW vector
+// and a group vector): f(id, a_item, b_item), the item nullptr where that
+// vector lacks the id. The inverse index has one posting per id of the union.
+template <typename A, typename B, typename F>
+void forEachId(const std::vector<A>& a, const std::vector<B>& b, F f) {
+  std::size_t i = 0, j = 0;
+  while (i < a.size() || j < b.size()) {
+    const bool in_a = i < a.size() && (j == b.size() || a[i].first <= b[j].first);
+    const bool in_b = j < b.size() && (i == a.size() || b[j].first <= a[i].first);
+    const WordId id = in_a ? a[i].first : b[j].first;
+    f(id, in_a ? &a[i] : nullptr, in_b ? &b[j] : nullptr);
+    if (in_a) ++i;
+    if (in_b) ++j;
+  }
+}
+
+}  // namespace
+
 DirectIndex directIndexFromWords(const Vocabulary& vocabulary, const std::vector<WordId>& words,
                                  int level) {
   const auto& nodes = vocabulary.nodes();
@@ -65,8 +92,7 @@ void Database::setScoring(ScoringType scoring) {
       // add() made a posting for every word of the entry's vector; one is
       // inserted in order should a scoring weigh another word.
       std::vector<Posting>& l = index_[w.first];
-      auto it = std::lower_bound(l.begin(), l.end(), e.id,
-                                 [](const Posting& p, EntryId id) { return p.entry < id; });
+      auto it = lowerBoundOfEntry(l.begin(), l.end(), e.id);
       if (it == l.end() || it->entry != e.id) it = l.insert(it, Posting{e.id, 0.f, 0.f});
       it->word = static_cast<float>(w.second);
     }
@@ -98,8 +124,7 @@ BowVector Database::bow(EntryId id) const {
 
 const Posting* Database::posting(WordId w, EntryId id) const {
   const std::vector<Posting>& l = index_[w];
-  const auto it = std::lower_bound(l.begin(), l.end(), id,
-                                   [](const Posting& p, EntryId e) { return p.entry < e; });
+  const auto it = lowerBoundOfEntry(l.begin(), l.end(), id);
   return it != l.end() && it->entry == id ? &*it : nullptr;
 }
 
@@ -174,19 +199,10 @@ EntryId Database::add(DatabaseEntry e, const GroupVector& raw_groups) {
   entries_.push_back(std::move(e));
   const EntryId id = entries_.back().id;
   // One posting per word of the BoW vector or group (both sorted by id).
-  const BowVector v = bow(id);
-  std::size_t i = 0, j = 0;
-  while (i < v.size() || j < raw_groups.size()) {
-    const bool take_word =
-        i < v.size() && (j == raw_groups.size() || v[i].first <= raw_groups[j].first);
-    const bool take_group =
-        j < raw_groups.size() && (i == v.size() || raw_groups[j].first <= v[i].first);
-    const WordId w = take_word ? v[i].first : raw_groups[j].first;
-    index_[w].push_back(Posting{id, take_word ? static_cast<float>(v[i].second) : 0.f,
-                                take_group ? static_cast<float>(raw_groups[j].second) : 0.f});
-    if (take_word) ++i;
-    if (take_group) ++j;
-  }
+  forEachId(bow(id), raw_groups, [&](WordId w, const BowEntry* word, const GroupEntry* group) {
+    index_[w].push_back(Posting{id, word ? static_cast<float>(word->second) : 0.f,
+                                group ? static_cast<float>(group->second) : 0.f});
+  });
   return id;
 }
 
@@ -227,30 +243,25 @@ std::vector<EntryScores> Database::query(const DatabaseQuery& q, EntryId limit,
   const double base = bowScoreBase(scoring_, q.bow);
   const GroupVector& groups = q.refined_groups;
   // The metric is chosen once per query, not once per posting.
+  static const GroupVector kNoGroups;
   auto accumulate = [&](auto term) {
-    std::size_t i = 0, j = 0;
-    const std::size_t nw = q.bow.size(), ng = with_groups ? groups.size() : 0;
-    while (i < nw || j < ng) {
-      const bool take_word = i < nw && (j == ng || q.bow[i].first <= groups[j].first);
-      const bool take_group = j < ng && (i == nw || groups[j].first <= q.bow[i].first);
-      const WordId w = take_word ? q.bow[i].first : groups[j].first;
-      const double qw = take_word ? q.bow[i].second : 0.0;
-      const double qg = take_group ? groups[j].second * group_table_.idf(w) : 0.0;
-      if (take_word) ++i;
-      if (take_group) ++j;
-      if (qw == 0.0 && qg == 0.0) continue;
-      for (const Posting& p : index_[w]) {
-        if (p.entry >= n) break;  // lists are in ascending entry order
-        if (qw != 0.0 && p.word != 0.f) {
-          word_acc_[p.entry] += term(qw, static_cast<double>(p.word));
-          touch(p.entry);
-        }
-        if (qg != 0.0 && p.group != 0.f) {
-          group_acc_[p.entry] += qg * static_cast<double>(p.group);
-          touch(p.entry);
-        }
-      }
-    }
+    forEachId(q.bow, with_groups ? groups : kNoGroups,
+              [&](WordId w, const BowEntry* word, const GroupEntry* group) {
+                const double qw = word ? word->second : 0.0;
+                const double qg = group ? group->second * group_table_.idf(w) : 0.0;
+                if (qw == 0.0 && qg == 0.0) return;
+                for (const Posting& p : index_[w]) {
+                  if (p.entry >= n) break;  // lists are in ascending entry order
+                  if (qw != 0.0 && p.word != 0.f) {
+                    word_acc_[p.entry] += term(qw, static_cast<double>(p.word));
+                    touch(p.entry);
+                  }
+                  if (qg != 0.0 && p.group != 0.f) {
+                    group_acc_[p.entry] += qg * static_cast<double>(p.group);
+                    touch(p.entry);
+                  }
+                }
+              });
   };
   switch (scoring_) {
     case ScoringType::kL1:

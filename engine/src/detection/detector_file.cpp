@@ -51,7 +51,7 @@ void saveDetectorFile(const std::string& path, const Database& database,
       const Keypoint k;
       w.f32(e.points[i].x);
       w.f32(e.points[i].y);
-      w.f32(0.f);
+      w.f32(k.size);
       w.f32(k.angle);
       w.f32(k.response);
       w.i32(k.octave);
