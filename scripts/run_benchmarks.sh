@@ -1,7 +1,11 @@
 #!/usr/bin/env bash
 # Builds the engine's Google Benchmark programs (Release, standalone engine
 # build) and runs them; results go to stdout and to OUT_DIR (default
-# output/benchmarks). docs/benchmarks.md records a run of this script.
+# output/benchmarks). Where the peer kit is present (../shared/peer, or
+# BOWG_PEER_KIT), scripts/peer_benchmark.sh runs too (BOWG_BENCH_PEER=0 skips
+# it). Ends with one table of every figure against its target
+# (tools/bench/benchmark_table.py; also OUT_DIR/targets.csv).
+# docs/benchmarks.md records a run of this script.
 set -euo pipefail
 repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${BOWG_BENCH_BUILD:-$repo/.ws/bench}"
@@ -26,3 +30,18 @@ trap 'rm -f "$voc"' EXIT
 "$build/bowg_vocabulary_load_once_bench" --make-k10l6 "$voc"
 for i in $(seq 11); do "$build/bowg_vocabulary_load_once_bench" "$voc"; done | tee "$out/vocabulary_load_once.txt" |
   sort -n | awk '{ms[NR] = $1} END {printf "median %.1f ms, min %.1f, max %.1f (target <= 50 ms)\n", ms[6], ms[1], ms[NR]}'
+
+peer_args=()
+kit="${BOWG_PEER_KIT:-$repo/../shared/peer}"
+if [ "${BOWG_BENCH_PEER:-1}" != 0 ] && [ -x "$kit/peer.sh" ]; then
+  echo "== scripts/peer_benchmark.sh"
+  BOWG_SKIP_DEPS=1 BOWG_PEER_KIT="$kit" BOWG_PEER_DIR="$out/peer" "$repo/scripts/peer_benchmark.sh"
+  peer_args=(--peer "$out/peer/peer_ratios.csv")
+elif [ "${BOWG_BENCH_PEER:-1}" != 0 ]; then
+  echo "== no peer kit at $kit: the table has no DLoopDetector rows"
+fi
+
+echo "== every figure against its target"
+/usr/bin/python3 "$repo/tools/bench/benchmark_table.py" --features "$out/features.json" \
+  --pipeline "$out/pipeline.json" --loads "$out/vocabulary_load_once.txt" "${peer_args[@]}" \
+  --csv "$out/targets.csv"

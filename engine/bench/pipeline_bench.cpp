@@ -45,9 +45,10 @@ struct Pipeline {
   std::mt19937_64 rng{17};
   std::size_t next = 0;
 
-  Pipeline()
+  /// `landmarks_per_metre`: 50 gives keyframes of ~400 features, 63 of ~500.
+  explicit Pipeline(int landmarks_per_metre = 50)
       : vocabulary(std::make_shared<Vocabulary>(testing::makeSyntheticVocabulary(10, 6, 1))),
-        corridor(testing::makeCorridor(kCorridorLength, 50, 5)) {
+        corridor(testing::makeCorridor(kCorridorLength, landmarks_per_metre, 5)) {
     LoopDetectorOptions o;
     o.distribution.enabled = true;  // the full pipe configuration
     o.similarity.lambda_1 = 0.4;
@@ -157,6 +158,35 @@ BENCHMARK(BM_Pipeline)
     ->Arg(20000)
     ->Iterations(500)
     ->Unit(benchmark::kMillisecond);
+
+// Memory at the 500 features per keyframe the memory target is stated for:
+// resident-set and memoryBytes() growth per keyframe from 3,000 to 6,000
+// keyframes (past the fixed tables and the first laps' new lists).
+// Counters: features, rss_growth_per_keyframe, estimate_growth_per_keyframe
+// (bytes), estimate_error (estimate / resident growth - 1).
+void BM_Memory500Features(benchmark::State& state) {
+  static Pipeline p(63);
+  double features = 0;
+  for (auto _ : state) {
+    p.growTo(3000);
+    const double rss_before = trimmedResidentBytes();
+    const double estimate_before = static_cast<double>(p.detector->database().memoryBytes());
+    for (int i = 0; i < 3000; ++i) {
+      const KeyframeInput kf = p.nextKeyframe();
+      features += kf.features.size();
+      p.detector->process(kf);
+    }
+    const double rss_growth = (trimmedResidentBytes() - rss_before) / 3000.0;
+    const double estimate_growth =
+        (static_cast<double>(p.detector->database().memoryBytes()) - estimate_before) / 3000.0;
+    state.counters["features"] = features / 3000.0;
+    state.counters["rss_growth_per_keyframe"] = rss_growth;
+    state.counters["estimate_growth_per_keyframe"] = estimate_growth;
+    state.counters["estimate_error"] = estimate_growth / rss_growth - 1.0;
+  }
+}
+
+BENCHMARK(BM_Memory500Features)->Iterations(1)->Unit(benchmark::kSecond);
 
 }  // namespace
 }  // namespace bowg

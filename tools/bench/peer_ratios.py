@@ -14,12 +14,13 @@ pair slow down together.
 usage: peer_ratios.py [--csv FILE] NAME:PEER_RUN:OURS_OUTPUT [...]
 """
 import argparse
-import csv
 import json
 import os
 import re
 import statistics
 import sys
+
+from csv_rows import write_rows_atomically
 
 # Measure -> (target ratio ours / peer, what the target says).
 TARGETS = {
@@ -128,12 +129,7 @@ def main(argv):
                 r["sequence"], r["measure"], r["peer"], r["ours"], r["ratio"], r["ratio_min"],
                 r["ratio_max"], r["rounds"], r["target"], r["met"]))
     if args.csv:
-        tmp = args.csv + ".tmp"
-        with open(tmp, "w", newline="") as f:
-            w = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
-            w.writeheader()
-            w.writerows(rows)
-        os.replace(tmp, args.csv)
+        write_rows_atomically(args.csv, rows)
     return 0
 
 

@@ -17,7 +17,8 @@ namespace {
 // ascending entry order).
 template <typename It>
 It lowerBoundOfEntry(It first, It last, EntryId id) {
-  return std::lower_bound(first, last, id, [](const Posting& p, EntryId e) { return p.entry < e; });
+  return std::lower_bound(first, last, id,
+                          [](const Posting& p, EntryId e) { return p.entry() < e; });
 }
 
 // Walks the union of the ids of two id-sorted sparse vectors (a BoW vector
@@ -34,6 +35,18 @@ void forEachId(const std::vector<A>& a, const std::vector<B>& b, F f) {
     if (in_a) ++i;
     if (in_b) ++j;
   }
+}
+
+// The capacity a full posting list of `size` postings grows to: by an
+// eighth, not the doubling push_back does. Lists only grow, by one posting
+// per keyframe at most, and a doubled list is a quarter empty on average
+// (docs/benchmarks.md, "8-byte postings"). The capacity is odd, so that with
+// malloc's 8-byte header a list fills its 16-byte chunk. Copies stay
+// amortised O(1): ~9 per posting over its life, 8 bytes each.
+std::size_t nextPostingCapacity(std::size_t size) {
+  static_assert(sizeof(Posting) == 8, "the odd capacities assume 8-byte postings");
+  const std::size_t grown = std::max<std::size_t>(3, size + size / 8 + 1);
+  return grown | 1u;
 }
 
 }  // namespace
@@ -72,6 +85,7 @@ void Database::clear() {
   group_sums_.clear();
   group_table_.clear();
   for (auto& l : index_) l.clear();
+  group_overflow_.clear();
   word_acc_.clear();
   group_acc_.clear();
   touched_flag_.clear();
@@ -93,7 +107,7 @@ void Database::setScoring(ScoringType scoring) {
       // inserted in order should a scoring weigh another word.
       std::vector<Posting>& l = index_[w.first];
       auto it = lowerBoundOfEntry(l.begin(), l.end(), e.id);
-      if (it == l.end() || it->entry != e.id) it = l.insert(it, Posting{e.id, 0.f, 0.f});
+      if (it == l.end() || it->entry() != e.id) it = l.insert(it, Posting{e.id, 0.f});
       it->word = static_cast<float>(w.second);
     }
   }
@@ -125,7 +139,20 @@ BowVector Database::bow(EntryId id) const {
 const Posting* Database::posting(WordId w, EntryId id) const {
   const std::vector<Posting>& l = index_[w];
   const auto it = lowerBoundOfEntry(l.begin(), l.end(), id);
-  return it != l.end() && it->entry == id ? &*it : nullptr;
+  return it != l.end() && it->entry() == id ? &*it : nullptr;
+}
+
+double Database::groupCount(WordId w, const Posting& p) const {
+  const std::uint32_t code = p.groupCode();
+  if (code < Posting::kGroupOverflow) return static_cast<double>(code);
+  const EntryId id = p.entry();
+  const auto it =
+      std::lower_bound(group_overflow_.begin(), group_overflow_.end(), std::make_pair(id, w),
+                       [](const GroupOverflow& o, const std::pair<EntryId, WordId>& k) {
+                         return o.entry < k.first || (o.entry == k.first && o.word < k.second);
+                       });
+  // add() wrote one record for every posting it marked as overflowing.
+  return static_cast<double>(it->count);
 }
 
 GroupVector Database::rawGroups(EntryId id) const {
@@ -135,7 +162,7 @@ GroupVector Database::rawGroups(EntryId id) const {
   GroupVector out;
   for (WordId w : words) {
     const Posting* p = posting(w, id);
-    if (p && p->group > 0.f) out.emplace_back(w, static_cast<double>(p->group));
+    if (p && p->groupCode() != 0) out.emplace_back(w, groupCount(w, *p));
   }
   return out;
 }
@@ -178,6 +205,10 @@ EntryId Database::add(DatabaseEntry e, const GroupVector& raw_groups) {
     throw std::invalid_argument("Database::add: stamp " + std::to_string(e.stamp) +
                                 " s outside [0, 2^32) s");
   }
+  if (entries_.size() >= kMaxEntries) {
+    throw std::length_error("Database::add: the database holds its maximum of " +
+                            std::to_string(kMaxEntries) + " entries");
+  }
   if (!entries_.empty() && !(e.stamp > entries_.back().stamp)) {
     throw std::invalid_argument("Database::add: stamp does not increase");
   }
@@ -196,12 +227,26 @@ EntryId Database::add(DatabaseEntry e, const GroupVector& raw_groups) {
                        : odometers_.empty()     ? -std::numeric_limits<double>::infinity()
                                                 : odometers_.back());
   group_sums_.push_back(group_sum);
+  // The entry array grows by an eighth, not by doubling: an entry is 152
+  // bytes, and a doubled array is a quarter empty on average (~50 bytes per
+  // keyframe). Moving entries moves their vectors' pointers only.
+  if (entries_.size() == entries_.capacity()) {
+    entries_.reserve(entries_.size() + entries_.size() / 8 + 16);
+  }
   entries_.push_back(std::move(e));
   const EntryId id = entries_.back().id;
   // One posting per word of the BoW vector or group (both sorted by id).
   forEachId(bow(id), raw_groups, [&](WordId w, const BowEntry* word, const GroupEntry* group) {
-    index_[w].push_back(Posting{id, word ? static_cast<float>(word->second) : 0.f,
-                                group ? static_cast<float>(group->second) : 0.f});
+    std::uint32_t code = 0;
+    if (group) {
+      const auto count = static_cast<std::uint32_t>(group->second);
+      code = std::min(count, Posting::kGroupOverflow);
+      if (code == Posting::kGroupOverflow) group_overflow_.push_back(GroupOverflow{id, w, count});
+    }
+    std::vector<Posting>& list = index_[w];
+    if (list.size() == list.capacity()) list.reserve(nextPostingCapacity(list.size()));
+    list.push_back(
+        Posting{id | code << Posting::kEntryBits, word ? static_cast<float>(word->second) : 0.f});
   });
   return id;
 }
@@ -251,14 +296,18 @@ std::vector<EntryScores> Database::query(const DatabaseQuery& q, EntryId limit,
                 const double qg = group ? group->second * group_table_.idf(w) : 0.0;
                 if (qw == 0.0 && qg == 0.0) return;
                 for (const Posting& p : index_[w]) {
-                  if (p.entry >= n) break;  // lists are in ascending entry order
+                  const EntryId e = p.entry();
+                  if (e >= n) break;  // lists are in ascending entry order
                   if (qw != 0.0 && p.word != 0.f) {
-                    word_acc_[p.entry] += term(qw, static_cast<double>(p.word));
-                    touch(p.entry);
+                    word_acc_[e] += term(qw, static_cast<double>(p.word));
+                    touch(e);
                   }
-                  if (qg != 0.0 && p.group != 0.f) {
-                    group_acc_[p.entry] += qg * static_cast<double>(p.group);
-                    touch(p.entry);
+                  const std::uint32_t code = p.groupCode();
+                  if (qg != 0.0 && code != 0) {
+                    group_acc_[e] +=
+                        qg * (code < Posting::kGroupOverflow ? static_cast<double>(code)
+                                                             : groupCount(w, p));
+                    touch(e);
                   }
                 }
               });
@@ -339,6 +388,7 @@ std::size_t Database::memoryBytes() const {
   bytes +=
       vectorHeapBytes(distributions_) + vectorHeapBytes(odometers_) + vectorHeapBytes(group_sums_);
   for (const auto& l : index_) bytes += vectorHeapBytes(l);
+  bytes += vectorHeapBytes(group_overflow_);
   bytes += vectorHeapBytes(index_) + group_table_.heapBytes();
   return bytes;
 }

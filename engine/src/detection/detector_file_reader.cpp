@@ -294,6 +294,10 @@ std::unique_ptr<Database> loadDetectorFile(const std::string& path,
     p.fail("unknown scoring type " + std::to_string(stored_scoring));
   }
   const std::size_t n = p.count(kEntryFixedBytes, "entries");
+  if (n > kMaxEntries) {
+    p.fail(std::to_string(n) + " entries, more than a database holds (" +
+           std::to_string(kMaxEntries) + ")");
+  }
   // Entries join the database once the state after them (their odometers,
   // version 3) has been read.
   std::vector<DatabaseEntry> entries;

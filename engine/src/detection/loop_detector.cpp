@@ -54,13 +54,18 @@ void fanCentre(const KeyframeInput& kf, double* cx, double* cy) {
 
 // What process() requires of a keyframe: as many descriptors as keypoints, a
 // stamp in [0, 2^32) s after the last one, an odometer that is NaN or finite, >= 0
-// and never decreasing. Throws std::invalid_argument naming the field.
+// and never decreasing, room in the database. Throws std::invalid_argument
+// naming the field (std::length_error for a full database).
 void checkKeyframe(const KeyframeInput& keyframe, const Database& database) {
   const ImageFeatures& f = keyframe.features;
   if (f.keypoints.size() != f.descriptors.size()) {
     throw std::invalid_argument("LoopDetector::process: keyframe.features has " +
                                 std::to_string(f.keypoints.size()) + " keypoints but " +
                                 std::to_string(f.descriptors.size()) + " descriptors");
+  }
+  if (database.size() >= kMaxEntries) {
+    throw std::length_error("LoopDetector::process: the database holds its maximum of " +
+                            std::to_string(kMaxEntries) + " keyframes");
   }
   if (!(keyframe.stamp >= 0.0 && keyframe.stamp < kStampLimit)) {
     throw std::invalid_argument("LoopDetector::process: keyframe.stamp " +

@@ -145,6 +145,19 @@ TEST(Database, RawGroupsAreReadBackAsAdded) {
   EXPECT_GT(groups, 100u);
 }
 
+// An entry of groups only: one feature per group, with the group's word (an
+// image's groups are among its words), added to the table and then the
+// database. Returns its id.
+EntryId addGroups(Database* db, double stamp, const GroupVector& raw) {
+  DatabaseEntry e;
+  e.stamp = stamp;
+  for (const auto& g : raw) e.words.push_back(g.first);
+  e.points.resize(raw.size());
+  e.descriptors.resize(raw.size());
+  db->addToGroupTable(raw);
+  return db->add(e, raw);
+}
+
 // Hand-worked eq. 1 and eq. 3 through the database (groups only, no words).
 //   A raw {0:2, 1:2}, B raw {1:1, 2:3}, query raw {1:2, 2:2}, all in the table:
 //   cumulative: g0 = 2, g1 = 2+1+2 = 5, g2 = 3+2 = 5; total = 4+4+4 = 12.
@@ -157,19 +170,8 @@ TEST(Database, RawGroupsAreReadBackAsAdded) {
 // new IDF log(16/5) (= 1.16315): dot(Q, A) = .25 log(3.2)^2 = 0.33823.
 TEST(Database, HandWorkedGroupScores) {
   Database db(vocabulary(), ScoringType::kL1, 2, 8);
-  // An image's groups are among its words: each entry has one feature per
-  // group, with the group's word.
-  auto addGroups = [&db](double stamp, const GroupVector& raw) {
-    DatabaseEntry e;
-    e.stamp = stamp;
-    for (const auto& g : raw) e.words.push_back(g.first);
-    e.points.resize(raw.size());
-    e.descriptors.resize(raw.size());
-    db.addToGroupTable(raw);
-    return db.add(e, raw);
-  };
-  EXPECT_EQ(addGroups(1, {{0, 2}, {1, 2}}), 0u);
-  EXPECT_EQ(addGroups(2, {{1, 1}, {2, 3}}), 1u);
+  EXPECT_EQ(addGroups(&db, 1, {{0, 2}, {1, 2}}), 0u);
+  EXPECT_EQ(addGroups(&db, 2, {{1, 1}, {2, 3}}), 1u);
   const GroupVector q_raw{{1, 2}, {2, 2}};
   db.addToGroupTable(q_raw);
   DatabaseQuery q = db.makeQuery({}, q_raw, {}, 0, 0, false);
@@ -188,13 +190,49 @@ TEST(Database, HandWorkedGroupScores) {
   // Without groups nothing is shared.
   EXPECT_TRUE(db.query(q, 2, false).empty());
 
-  addGroups(3, {{0, 4}});
+  addGroups(&db, 3, {{0, 4}});
   q = db.makeQuery({}, q_raw, {}, 0, 0, false);
   const double l32 = std::log(3.2);
   s = db.query(q, 3, true);
   ASSERT_EQ(s.size(), 2u);  // C shares no group with the query
   EXPECT_NEAR(s[0].s_g, 1 - std::sqrt(1 - 0.25 * l32 * l32), 1e-12);
   EXPECT_NEAR(s[0].s_g, db.score(q, 0).s_g, 1e-12);
+}
+
+// A posting keeps a group count in 8 bits and counts from 255 up in the
+// database's overflow table. The hand-worked case above with every count
+// times 300 (A {0:600, 1:600}, B {1:300, 2:900}, query {1:600, 2:600}): TF
+// and the IDF ratios are unchanged, so are the scores; counts read back
+// exactly on both sides of the byte's limit.
+TEST(Database, GroupCountsBeyondAPostingsByteScoreAsSmallOnes) {
+  Database db(vocabulary(), ScoringType::kL1, 2, 8);
+  const GroupVector a{{0, 600}, {1, 600}}, b{{1, 300}, {2, 900}};
+  addGroups(&db, 1, a);
+  addGroups(&db, 2, b);
+  const GroupVector q_raw{{1, 600}, {2, 600}};
+  db.addToGroupTable(q_raw);
+  const DatabaseQuery q = db.makeQuery({}, q_raw, {}, 0, 0, false);
+  const double l24 = std::log(2.4);
+  const std::vector<EntryScores> s = db.query(q, 2, true);
+  ASSERT_EQ(s.size(), 2u);
+  EXPECT_NEAR(s[0].s_g, 1 - std::sqrt(1 - 0.25 * l24 * l24), 1e-12);
+  EXPECT_NEAR(s[1].s_g, 1 - std::sqrt(1 - 0.5 * l24 * l24), 1e-12);
+  EXPECT_EQ(db.rawGroups(0), a);
+  EXPECT_EQ(db.rawGroups(1), b);
+  // 254 fits the byte; 255 and 256 go to the table; 16,777,215 = 2^24 - 1
+  // is the largest count add() takes.
+  const GroupVector c{{3, 254}, {4, 255}, {5, 256}, {6, 16777215}};
+  addGroups(&db, 3, c);
+  EXPECT_EQ(db.rawGroups(2), c);
+  EXPECT_EQ(db.rawGroups(1), b);
+}
+
+TEST(Database, PostingsPackTheEntryAndTheGroupCodeInOneWord) {
+  EXPECT_EQ(sizeof(Posting), 8u);
+  EXPECT_EQ(kMaxEntries, 16777216u);
+  const Posting p{0xABCDEFu | 17u << Posting::kEntryBits, 0.5f};
+  EXPECT_EQ(p.entry(), 0xABCDEFu);
+  EXPECT_EQ(p.groupCode(), 17u);
 }
 
 // A query touching few of many entries: the touched ids are sorted. Entry i

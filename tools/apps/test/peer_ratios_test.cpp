@@ -4,7 +4,6 @@
 // script itself refusing to run without the peer kit.
 #include <gtest/gtest.h>
 
-#include <fstream>
 #include <string>
 
 #include "shell_command.h"
@@ -16,23 +15,18 @@ const std::string kDir = std::string(BOWG_TEST_OUTPUT_DIR) + "/peer_ratios_test"
 const std::string kScript =
     "/usr/bin/python3 " + std::string(BOWG_REPO_DIR) + "/tools/bench/peer_ratios.py";
 
-void write(const std::string& path, const std::string& text) {
-  std::ofstream out(path);
-  out << text;
-}
-
 // A peer run folder: summary.json as peer.sh writes it (the fields read).
 std::string peerRun(const std::string& name, double mean, double max, double features) {
   const std::string dir = kDir + "/" + name;
   tool_test::run("mkdir -p " + dir);
-  write(dir + "/summary.json",
-        "{\"timing_alpha\": 0.3, \"runs\": [{\"alpha\": 0.3, \"tp\": 38, \"fp\": 5}],"
-        " \"detect\": {\"mean\": " +
-            std::to_string(mean) +
-            ", \"median\": 1, \"p95\": 2,"
-            " \"max\": " +
-            std::to_string(max) + "}, \"features\": {\"mean\": " + std::to_string(features) +
-            ", \"max\": 9}}\n");
+  tool_test::writeAll(dir + "/summary.json",
+                      "{\"timing_alpha\": 0.3, \"runs\": [{\"alpha\": 0.3, \"tp\": 38, \"fp\": 5}],"
+                      " \"detect\": {\"mean\": " +
+                          std::to_string(mean) +
+                          ", \"median\": 1, \"p95\": 2,"
+                          " \"max\": " +
+                          std::to_string(max) + "}, \"features\": {\"mean\": " +
+                          std::to_string(features) + ", \"max\": 9}}\n");
   return dir;
 }
 
@@ -40,18 +34,19 @@ std::string peerRun(const std::string& name, double mean, double max, double fea
 std::string oursRun(const std::string& name, double mean, double max, double features) {
   const std::string dir = kDir + "/" + name;
   tool_test::run("mkdir -p " + dir);
-  write(dir + "/summary.txt",
-        "input: /x (939 frames)\n"
-        "row            precision  recall      F1   TP   FP  R@100%P (threshold)  loops\n"
-        "bowg               0.995   0.822   0.900  402    2    0.000 (     none)    404\n\n"
-        "per-keyframe timing (ms): mean / median / p95 / max\n"
-        "bowg (1.4 s for the run):\n"
-        "  features           " +
-            std::to_string(features) +
-            "    3.16    3.80   14.84\n"
-            "  transform          0.14    0.14    0.21    0.36\n"
-            "  detector_total     " +
-            std::to_string(mean) + "    1.09    3.09   " + std::to_string(max) + "\n");
+  tool_test::writeAll(
+      dir + "/summary.txt",
+      "input: /x (939 frames)\n"
+      "row            precision  recall      F1   TP   FP  R@100%P (threshold)  loops\n"
+      "bowg               0.995   0.822   0.900  402    2    0.000 (     none)    404\n\n"
+      "per-keyframe timing (ms): mean / median / p95 / max\n"
+      "bowg (1.4 s for the run):\n"
+      "  features           " +
+          std::to_string(features) +
+          "    3.16    3.80   14.84\n"
+          "  transform          0.14    0.14    0.21    0.36\n"
+          "  detector_total     " +
+          std::to_string(mean) + "    1.09    3.09   " + std::to_string(max) + "\n");
   return dir;
 }
 

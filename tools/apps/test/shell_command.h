@@ -1,5 +1,5 @@
 // Helpers of the tests that drive the command-line tools: run a shell
-// command with its output in a log file, read a whole file.
+// command with its output in a log file, read and write a whole file.
 #pragma once
 
 #include <sys/wait.h>
@@ -23,6 +23,12 @@ inline int run(const std::string& command, const std::string& log = "/dev/null")
 inline std::string readAll(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+/// Writes `text` as the whole of `path`.
+inline void writeAll(const std::string& path, const std::string& text) {
+  std::ofstream out(path, std::ios::binary);
+  out << text;
 }
 
 }  // namespace tool_test

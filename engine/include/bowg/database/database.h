@@ -2,8 +2,8 @@
 // far and every index the queries need:
 //  - one inverse index for words and word groups (a group's id is its word's
 //    id, and an image's groups are among its words): word -> (entry,
-//    normalised BoW weight, raw group weight), as DBoW2's word index with the
-//    group's weight beside it. An entry's BoW vector and raw groups are
+//    normalised BoW weight, raw group weight) in 8 bytes (Posting), as
+//    DBoW2's word index with the group's weight beside it. An entry's BoW vector and raw groups are
 //    rebuilt from its words and these postings when needed (bow(),
 //    rawGroups()), not kept;
 //  - the online word-group table (eq. 1's IDF totals);
@@ -71,17 +71,30 @@ struct DatabaseEntry {
   // current m lives in the database's contiguous distribution table (Database::distribution()).
 };
 
-/// One posting of the inverse index: `entry` holds the word (BoW weight
-/// `word`, 0 when the word weighs nothing in the entry's vector, e.g. IDF 0)
-/// and/or its group (raw weight `group`, 0 when the entry has no such group).
-/// Floats: 12 bytes a posting instead of two 16-byte ones. A raw group weight
-/// is a count of neighbours (< 2^24, exact in a float); a BoW weight keeps
-/// 24 bits, and scores are accumulated in double.
+/// One posting of the inverse index, 8 bytes: entry() holds the word (BoW
+/// weight `word`, 0 when the word weighs nothing in the entry's vector, e.g.
+/// IDF 0) and/or its group (raw weight: a whole count of neighbours, 0 when
+/// the entry has no such group). The entry id takes the low 24 bits of `key`
+/// and the group count the high 8; a count of kGroupOverflow or more is kept
+/// in the database's overflow table (rare: a group counts the features within
+/// a keypoint's radius). A BoW weight keeps 24 bits (a float); scores are
+/// accumulated in double.
 struct Posting {
-  EntryId entry;
+  static constexpr std::uint32_t kEntryBits = 24;
+  static constexpr std::uint32_t kEntryMask = (1u << kEntryBits) - 1;
+  /// Group code meaning "look the count up in the overflow table".
+  static constexpr std::uint32_t kGroupOverflow = 255;
+
+  std::uint32_t key;
   float word;
-  float group;
+
+  EntryId entry() const { return key & kEntryMask; }
+  std::uint32_t groupCode() const { return key >> kEntryBits; }
 };
+
+/// Largest number of entries a database holds: ids fit a posting's 24 bits
+/// (16,777,216 keyframes, 670 km of pipe at one keyframe per 4 cm).
+constexpr std::size_t kMaxEntries = std::size_t{1} << Posting::kEntryBits;
 
 /// Raw scores of one database entry against a query (paper notation).
 struct EntryScores {
@@ -142,7 +155,8 @@ class Database {
   /// The raw groups must already be in the table (addToGroupTable). Returns
   /// the id. Throws std::invalid_argument on inconsistent sizes or word ids,
   /// and on a raw group that is not one of the entry's words or whose weight
-  /// is not a whole count in [1, 2^24).
+  /// is not a whole count in [1, 2^24); std::length_error when the database
+  /// already holds kMaxEntries.
   EntryId add(DatabaseEntry entry, const GroupVector& raw_groups);
 
   /// Entry `id`'s BoW vector normalised for scoring(): the vocabulary's
@@ -179,6 +193,8 @@ class Database {
  private:
   /// Entry `id`'s posting in word `w`'s list, or nullptr.
   const Posting* posting(WordId w, EntryId id) const;
+  /// The raw group weight posting `p` of word `w`'s list holds (0: none).
+  double groupCount(WordId w, const Posting& p) const;
   /// Entry `id`'s vector copied into a reused scratch buffer (no allocation).
   const std::vector<double>& cachedDistribution(EntryId id) const;
 
@@ -191,6 +207,14 @@ class Database {
   WordGroupTable group_table_;
   /// word (= group id) -> postings, entries ascending.
   std::vector<std::vector<Posting>> index_;
+  /// Group counts too large for a posting's 8 bits, in (entry, word) order:
+  /// add() appends them, since ids and words only grow.
+  struct GroupOverflow {
+    EntryId entry;
+    WordId word;
+    std::uint32_t count;
+  };
+  std::vector<GroupOverflow> group_overflow_;
   /// Per entry the sum of its raw group weights: eq. 1's TF is raw / sum,
   /// applied once per scored entry instead of once per posting.
   std::vector<double> group_sums_;
