@@ -17,7 +17,8 @@ import json
 import statistics
 import sys
 
-from csv_rows import write_rows_atomically
+sys.dont_write_bytecode = True  # no __pycache__ beside the sources
+from csv_rows import write_rows_atomically  # noqa: E402 (after the line above)
 
 
 def fail(message):
