@@ -3,9 +3,9 @@
 //  - one inverse index for words and word groups (a group's id is its word's
 //    id, and an image's groups are among its words): word -> (entry,
 //    normalised BoW weight, raw group weight) in 8 bytes (Posting), as
-//    DBoW2's word index with the group's weight beside it. An entry's BoW vector and raw groups are
-//    rebuilt from its words and these postings when needed (bow(),
-//    rawGroups()), not kept;
+//    DBoW2's word index with the group's weight beside it. An entry's BoW
+//    vector and raw groups are rebuilt from its words and these postings
+//    when needed (bow(), rawGroups()), not kept;
 //  - the online word-group table (eq. 1's IDF totals);
 //  - the level of the direct index (Sec. III-D's correspondence search): an
 //    entry's direct index is rebuilt from its words when it is verified
