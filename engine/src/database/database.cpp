@@ -11,6 +11,15 @@
 #include "bowg/vocabulary/vocabulary.h"
 
 namespace bowg {
+
+#if __cplusplus < 201703L
+// Before C++17 a static constexpr member a reference binds to (std::min,
+// gtest's EXPECT_EQ) needs one definition outside the class.
+constexpr std::uint32_t Posting::kEntryBits;
+constexpr std::uint32_t Posting::kEntryMask;
+constexpr std::uint32_t Posting::kGroupOverflow;
+#endif
+
 namespace {
 
 // The first posting of `list` whose entry is not below `id` (lists are in
@@ -240,7 +249,7 @@ EntryId Database::add(DatabaseEntry e, const GroupVector& raw_groups) {
     std::uint32_t code = 0;
     if (group) {
       const auto count = static_cast<std::uint32_t>(group->second);
-      code = std::min(count, Posting::kGroupOverflow);
+      code = count < Posting::kGroupOverflow ? count : Posting::kGroupOverflow;
       if (code == Posting::kGroupOverflow) group_overflow_.push_back(GroupOverflow{id, w, count});
     }
     std::vector<Posting>& list = index_[w];
