@@ -69,8 +69,15 @@ struct Pipeline {
     return kf;
   }
 
-  void growTo(std::size_t n) {
-    while (detector->database().size() < n) detector->process(nextKeyframe());
+  /// Processes keyframes until the database holds n; returns their features.
+  double growTo(std::size_t n) {
+    double features = 0;
+    while (detector->database().size() < n) {
+      const KeyframeInput kf = nextKeyframe();
+      features += kf.features.size();
+      detector->process(kf);
+    }
+    return features;
   }
 };
 
@@ -90,20 +97,34 @@ Pipeline& pipeline() {
   return p;
 }
 
+// Per keyframe added: the growth of the resident set and of
+// Database::memoryBytes(), and the features.
+struct Growth {
+  double rss = 0, estimate = 0, features = 0;
+};
+
+// Grows `p` to n keyframes, measuring what each added keyframe cost.
+Growth growMeasured(Pipeline& p, std::size_t n) {
+  const std::size_t size_before = p.detector->database().size();
+  const double rss_before = trimmedResidentBytes();
+  const double estimate_before = static_cast<double>(p.detector->database().memoryBytes());
+  const double features = p.growTo(n);
+  const double added =
+      static_cast<double>(std::max<std::size_t>(1, p.detector->database().size() - size_before));
+  Growth g;
+  g.rss = (trimmedResidentBytes() - rss_before) / added;
+  g.estimate =
+      (static_cast<double>(p.detector->database().memoryBytes()) - estimate_before) / added;
+  g.features = features / added;
+  return g;
+}
+
 void BM_Pipeline(benchmark::State& state) {
   Pipeline& p = pipeline();
   // Memory: the growth of the resident set while the database grows to this
   // size (from the previous size, or from empty), against the growth of
   // Database::memoryBytes() over the same keyframes.
-  const std::size_t size_before = p.detector->database().size();
-  const double rss_before = trimmedResidentBytes();
-  const double estimate_before = static_cast<double>(p.detector->database().memoryBytes());
-  p.growTo(static_cast<std::size_t>(state.range(0)));
-  const double added =
-      static_cast<double>(std::max<std::size_t>(1, p.detector->database().size() - size_before));
-  const double rss_growth = (trimmedResidentBytes() - rss_before) / added;
-  const double estimate_growth =
-      (static_cast<double>(p.detector->database().memoryBytes()) - estimate_before) / added;
+  const Growth growth = growMeasured(p, static_cast<std::size_t>(state.range(0)));
   // Keyframes are generated before timing; each iteration processes one.
   const int kBatch = 256;
   std::vector<KeyframeInput> batch;
@@ -148,8 +169,8 @@ void BM_Pipeline(benchmark::State& state) {
   state.counters["db_size"] = static_cast<double>(db.size());
   state.counters["bytes_per_keyframe"] =
       static_cast<double>(db.memoryBytes()) / std::max<std::size_t>(1, db.size());
-  state.counters["rss_growth_per_keyframe"] = rss_growth;
-  state.counters["estimate_growth_per_keyframe"] = estimate_growth;
+  state.counters["rss_growth_per_keyframe"] = growth.rss;
+  state.counters["estimate_growth_per_keyframe"] = growth.estimate;
 }
 
 BENCHMARK(BM_Pipeline)
@@ -166,23 +187,13 @@ BENCHMARK(BM_Pipeline)
 // (bytes), estimate_error (estimate / resident growth - 1).
 void BM_Memory500Features(benchmark::State& state) {
   static Pipeline p(63);
-  double features = 0;
   for (auto _ : state) {
     p.growTo(3000);
-    const double rss_before = trimmedResidentBytes();
-    const double estimate_before = static_cast<double>(p.detector->database().memoryBytes());
-    for (int i = 0; i < 3000; ++i) {
-      const KeyframeInput kf = p.nextKeyframe();
-      features += kf.features.size();
-      p.detector->process(kf);
-    }
-    const double rss_growth = (trimmedResidentBytes() - rss_before) / 3000.0;
-    const double estimate_growth =
-        (static_cast<double>(p.detector->database().memoryBytes()) - estimate_before) / 3000.0;
-    state.counters["features"] = features / 3000.0;
-    state.counters["rss_growth_per_keyframe"] = rss_growth;
-    state.counters["estimate_growth_per_keyframe"] = estimate_growth;
-    state.counters["estimate_error"] = estimate_growth / rss_growth - 1.0;
+    const Growth g = growMeasured(p, 6000);
+    state.counters["features"] = g.features;
+    state.counters["rss_growth_per_keyframe"] = g.rss;
+    state.counters["estimate_growth_per_keyframe"] = g.estimate;
+    state.counters["estimate_error"] = g.estimate / g.rss - 1.0;
   }
 }
 

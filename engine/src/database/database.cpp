@@ -151,10 +151,7 @@ const Posting* Database::posting(WordId w, EntryId id) const {
   return it != l.end() && it->entry() == id ? &*it : nullptr;
 }
 
-double Database::groupCount(WordId w, const Posting& p) const {
-  const std::uint32_t code = p.groupCode();
-  if (code < Posting::kGroupOverflow) return static_cast<double>(code);
-  const EntryId id = p.entry();
+double Database::overflowCount(WordId w, EntryId id) const {
   const auto it =
       std::lower_bound(group_overflow_.begin(), group_overflow_.end(), std::make_pair(id, w),
                        [](const GroupOverflow& o, const std::pair<EntryId, WordId>& k) {
@@ -313,9 +310,7 @@ std::vector<EntryScores> Database::query(const DatabaseQuery& q, EntryId limit,
                   }
                   const std::uint32_t code = p.groupCode();
                   if (qg != 0.0 && code != 0) {
-                    group_acc_[e] +=
-                        qg * (code < Posting::kGroupOverflow ? static_cast<double>(code)
-                                                             : groupCount(w, p));
+                    group_acc_[e] += qg * groupCount(w, p);
                     touch(e);
                   }
                 }

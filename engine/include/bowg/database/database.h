@@ -193,8 +193,15 @@ class Database {
  private:
   /// Entry `id`'s posting in word `w`'s list, or nullptr.
   const Posting* posting(WordId w, EntryId id) const;
-  /// The raw group weight posting `p` of word `w`'s list holds (0: none).
-  double groupCount(WordId w, const Posting& p) const;
+  /// The raw group weight posting `p` of word `w`'s list holds (0: none):
+  /// its code, or the overflow table's count. Inline: the query reads it for
+  /// every group posting it walks.
+  double groupCount(WordId w, const Posting& p) const {
+    const std::uint32_t code = p.groupCode();
+    return code < Posting::kGroupOverflow ? static_cast<double>(code) : overflowCount(w, p.entry());
+  }
+  /// The count add() put in the overflow table for entry `id`'s group `w`.
+  double overflowCount(WordId w, EntryId id) const;
   /// Entry `id`'s vector copied into a reused scratch buffer (no allocation).
   const std::vector<double>& cachedDistribution(EntryId id) const;
 
