@@ -65,6 +65,8 @@ struct Pipeline {
     // that every view is full.
     const double x = std::fmod(next * kStep, kCorridorLength - 10.0) + 5.0;
     KeyframeInput kf = testing::observeCorridor(corridor, x, 1.0 + next * 0.1, rng, 2, 0.5);
+    // Positions as ORB reports them (what the database packs).
+    testing::placeOnOrbPyramid(&kf);
     ++next;
     return kf;
   }

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "bowg/core/types.h"
+#include "bowg/database/packed_points.h"
 #include "bowg/detection/loop_detector.h"
 
 namespace bowg {
@@ -95,6 +96,30 @@ inline KeyframeInput observeCorridor(const Corridor& c, double cam_x, double sta
     kf.features.descriptors.push_back(d);
   }
   return kf;
+}
+
+/// Moves every keypoint of `kf` onto the integer grid of a pyramid level, as
+/// OpenCV's ORB places them (x = integer * scale_factor^octave), with the
+/// octaves shared as ORB shares its features between `levels` levels (level
+/// l gets a share proportional to scale_factor^-l), so that the database
+/// packs the positions as it packs real ORB keypoints (PackedPoints).
+inline void placeOnOrbPyramid(KeyframeInput* kf, float scale_factor = 1.2f, int levels = 8) {
+  const double f = 1.0 / scale_factor;
+  std::vector<double> cumulative(static_cast<std::size_t>(levels));
+  double sum = 0;
+  for (int l = 0; l < levels; ++l) cumulative[static_cast<std::size_t>(l)] = sum += std::pow(f, l);
+  kf->features.pyramid_scale_factor = scale_factor;
+  for (std::size_t i = 0; i < kf->features.keypoints.size(); ++i) {
+    // A low-discrepancy sequence spreads the octaves over the keypoints.
+    const double u = std::fmod(0.6180339887498949 * static_cast<double>(i + 1), 1.0) * sum;
+    int octave = 0;
+    while (octave + 1 < levels && u >= cumulative[static_cast<std::size_t>(octave)]) ++octave;
+    Keypoint& k = kf->features.keypoints[i];
+    const float s = pyramidLevelScale(scale_factor, octave);
+    k.octave = octave;
+    k.x = static_cast<float>(std::max(0.f, std::round(k.x / s))) * s;
+    k.y = static_cast<float>(std::max(0.f, std::round(k.y / s))) * s;
+  }
 }
 
 }  // namespace testing

@@ -134,13 +134,15 @@ void Database::setFanBins(int m) {
   distributions_.clear();
   distributions_.reserve(entries_.size() * static_cast<std::size_t>(m));
   for (const auto& e : entries_) {
-    const std::vector<double> v = distributionVector(e.points, e.centre_x, e.centre_y, m);
+    const std::vector<double> v = distributionVector(e.points.unpack(), e.centre_x, e.centre_y, m);
     distributions_.insert(distributions_.end(), v.begin(), v.end());
   }
 }
 
-BowVector Database::bow(EntryId id) const {
-  BowVector v = vocabulary_->bowFromWords(entries_.at(id).words);
+BowVector Database::bow(EntryId id) const { return bowOfWords(entries_.at(id).words.unpack()); }
+
+BowVector Database::bowOfWords(const std::vector<WordId>& words) const {
+  BowVector v = vocabulary_->bowFromWords(words);
   normaliseBowVector(scoring_, &v);
   return v;
 }
@@ -162,7 +164,7 @@ double Database::overflowCount(WordId w, EntryId id) const {
 }
 
 GroupVector Database::rawGroups(EntryId id) const {
-  std::vector<WordId> words = entries_.at(id).words;
+  std::vector<WordId> words = entries_.at(id).words.unpack();
   std::sort(words.begin(), words.end());
   words.erase(std::unique(words.begin(), words.end()), words.end());
   GroupVector out;
@@ -182,12 +184,13 @@ EntryId Database::add(DatabaseEntry e, const GroupVector& raw_groups) {
                                 ") differ in number");
   }
   const std::size_t W = vocabulary_->wordCount();
-  for (WordId w : e.words) {
+  const std::vector<WordId> words = e.words.unpack();
+  for (WordId w : words) {
     if (w >= W) throw std::invalid_argument("Database::add: word id out of range");
   }
   {
-    std::vector<WordId> words = e.words;
-    std::sort(words.begin(), words.end());
+    std::vector<WordId> sorted = words;
+    std::sort(sorted.begin(), sorted.end());
     WordId previous = 0;
     for (std::size_t i = 0; i < raw_groups.size(); ++i) {
       const GroupEntry& g = raw_groups[i];
@@ -195,7 +198,7 @@ EntryId Database::add(DatabaseEntry e, const GroupVector& raw_groups) {
         throw std::invalid_argument("Database::add: raw groups not sorted by id without repeats");
       }
       previous = g.first;
-      if (!std::binary_search(words.begin(), words.end(), g.first)) {
+      if (!std::binary_search(sorted.begin(), sorted.end(), g.first)) {
         throw std::invalid_argument("Database::add: word group " + std::to_string(g.first) +
                                     " is not one of the entry's words");
       }
@@ -227,13 +230,14 @@ EntryId Database::add(DatabaseEntry e, const GroupVector& raw_groups) {
   // so both are applied at query time.
   double group_sum = 0.0;
   for (const auto& g : raw_groups) group_sum += g.second;
-  const std::vector<double> dist = distributionVector(e.points, e.centre_x, e.centre_y, fan_bins_);
+  const std::vector<double> dist =
+      distributionVector(e.points.unpack(), e.centre_x, e.centre_y, fan_bins_);
   distributions_.insert(distributions_.end(), dist.begin(), dist.end());
   odometers_.push_back(!std::isnan(e.odometer) ? e.odometer
                        : odometers_.empty()     ? -std::numeric_limits<double>::infinity()
                                                 : odometers_.back());
   group_sums_.push_back(group_sum);
-  // The entry array grows by an eighth, not by doubling: an entry is 152
+  // The entry array grows by an eighth, not by doubling: an entry is 168
   // bytes, and a doubled array is a quarter empty on average (~50 bytes per
   // keyframe). Moving entries moves their vectors' pointers only.
   if (entries_.size() == entries_.capacity()) {
@@ -242,18 +246,20 @@ EntryId Database::add(DatabaseEntry e, const GroupVector& raw_groups) {
   entries_.push_back(std::move(e));
   const EntryId id = entries_.back().id;
   // One posting per word of the BoW vector or group (both sorted by id).
-  forEachId(bow(id), raw_groups, [&](WordId w, const BowEntry* word, const GroupEntry* group) {
-    std::uint32_t code = 0;
-    if (group) {
-      const auto count = static_cast<std::uint32_t>(group->second);
-      code = count < Posting::kGroupOverflow ? count : Posting::kGroupOverflow;
-      if (code == Posting::kGroupOverflow) group_overflow_.push_back(GroupOverflow{id, w, count});
-    }
-    std::vector<Posting>& list = index_[w];
-    if (list.size() == list.capacity()) list.reserve(nextPostingCapacity(list.size()));
-    list.push_back(
-        Posting{id | code << Posting::kEntryBits, word ? static_cast<float>(word->second) : 0.f});
-  });
+  forEachId(bowOfWords(words), raw_groups,
+            [&](WordId w, const BowEntry* word, const GroupEntry* group) {
+              std::uint32_t code = 0;
+              if (group) {
+                const auto count = static_cast<std::uint32_t>(group->second);
+                code = count < Posting::kGroupOverflow ? count : Posting::kGroupOverflow;
+                if (code == Posting::kGroupOverflow)
+                  group_overflow_.push_back(GroupOverflow{id, w, count});
+              }
+              std::vector<Posting>& list = index_[w];
+              if (list.size() == list.capacity()) list.reserve(nextPostingCapacity(list.size()));
+              list.push_back(Posting{id | code << Posting::kEntryBits,
+                                     word ? static_cast<float>(word->second) : 0.f});
+            });
   return id;
 }
 
@@ -387,7 +393,7 @@ std::vector<double> Database::distribution(EntryId id) const {
 std::size_t Database::memoryBytes() const {
   std::size_t bytes = vectorHeapBytes(entries_);
   for (const auto& e : entries_) {
-    bytes += vectorHeapBytes(e.points) + vectorHeapBytes(e.descriptors) + vectorHeapBytes(e.words);
+    bytes += e.points.heapBytes() + vectorHeapBytes(e.descriptors) + e.words.heapBytes();
   }
   bytes +=
       vectorHeapBytes(distributions_) + vectorHeapBytes(odometers_) + vectorHeapBytes(group_sums_);

@@ -45,12 +45,13 @@ void saveDetectorFile(const std::string& path, const Database& database,
     w.f64(e.intrinsics.cx);
     w.f64(e.intrinsics.cy);
     w.u32(static_cast<std::uint32_t>(e.points.size()));
-    for (std::size_t i = 0; i < e.points.size(); ++i) {
+    const std::vector<ImagePoint> points = e.points.unpack();
+    for (std::size_t i = 0; i < points.size(); ++i) {
       // The database keeps keypoint positions only: size, angle, response and
       // octave are written as a keypoint without them (0, -1, 0, 0).
       const Keypoint k;
-      w.f32(e.points[i].x);
-      w.f32(e.points[i].y);
+      w.f32(points[i].x);
+      w.f32(points[i].y);
       w.f32(k.size);
       w.f32(k.angle);
       w.f32(k.response);
@@ -83,6 +84,8 @@ void saveDetectorFile(const std::string& path, const Database& database,
     writeIsland(&w, h.island);
     w.i32(h.chain_length);
   }
+  w.u32(static_cast<std::uint32_t>(database.size()));
+  for (const DatabaseEntry& e : database.entries()) w.f32(e.points.scaleFactor());
 
   std::string& bytes = w.str();
   const std::uint64_t payload = bytes.size() - payload_start;

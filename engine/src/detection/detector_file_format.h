@@ -23,10 +23,14 @@ constexpr char kMagic[8] = {'B', 'O', 'W', 'G', 'D', 'B', 0, 0};
 // odometers (u32 count = entries, f64 each, NaN = unknown). Older files still
 // load, with an empty history, zero counters and unknown odometers. Version 4
 // appends the temporal verification's other hypotheses (u32 count, then an
-// island and an i32 chain length each); older files load with none. A
-// keypoint's size, angle, response and octave are read and checked but not
-// kept (the database keeps positions only); they are written as 0, -1, 0, 0.
-constexpr std::uint32_t kVersion = 4;
+// island and an i32 chain length each); older files load with none. Version
+// 5 appends each entry's pyramid scale factor (u32 count = entries, f32 each,
+// 0 = none: PackedPoints), with which the positions are packed again as they
+// were; older files load with every position kept as read (same values, more
+// memory for multi-scale keypoints). A keypoint's size, angle, response and
+// octave are read and checked but not kept (the database keeps positions
+// only); they are written as 0, -1, 0, 0.
+constexpr std::uint32_t kVersion = 5;
 constexpr std::uint32_t kOldestVersion = 1;
 // magic + version + fingerprint + payload size | ... | checksum
 constexpr std::size_t kHeaderBytes = 8 + 4 + 8 + 8;

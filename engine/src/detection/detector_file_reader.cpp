@@ -101,12 +101,14 @@ void readEntryHeader(Reader* p, const std::string& entry, DatabaseEntry* e) {
   }
 }
 
-// Keypoints, descriptors and words of one entry.
-void readFeatures(Reader* p, const std::string& entry, DatabaseEntry* e) {
+// Keypoints, descriptors and words of one entry (the words also unpacked in
+// `words`, for the checks).
+void readFeatures(Reader* p, const std::string& entry, DatabaseEntry* e,
+                  std::vector<WordId>* words) {
   const std::size_t nf = p->count(kFeatureBytes, "features");
-  e->points.resize(nf);
+  std::vector<ImagePoint> points(nf);
   e->descriptors.resize(nf);
-  e->words.resize(nf);
+  words->resize(nf);
   for (std::size_t f = 0; f < nf; ++f) {
     // Every field is checked; the database keeps the position only.
     Keypoint k;
@@ -121,10 +123,13 @@ void readFeatures(Reader* p, const std::string& entry, DatabaseEntry* e) {
       p->fail(entry + " keypoint " + std::to_string(f) +
               " has a non-finite coordinate, angle or response, or an invalid size");
     }
-    e->points[f] = ImagePoint{k.x, k.y};
+    points[f] = ImagePoint{k.x, k.y};
     for (auto& b : e->descriptors[f].bits) b = p->u64("descriptor");
-    e->words[f] = p->u32("word");
+    (*words)[f] = p->u32("word");
   }
+  // Packed again with the entry's scale factor once it is read (version 5).
+  e->points = PackedPoints(points, 0.f);
+  e->words = PackedWords(*words);
 }
 
 DatabaseEntry readEntry(Reader* p, std::size_t i, ScoringType stored_scoring,
@@ -132,7 +137,8 @@ DatabaseEntry readEntry(Reader* p, std::size_t i, ScoringType stored_scoring,
   DatabaseEntry e;
   const std::string entry = "entry " + std::to_string(i);
   readEntryHeader(p, entry, &e);
-  readFeatures(p, entry, &e);
+  std::vector<WordId> words;
+  readFeatures(p, entry, &e, &words);
   const BowVector bow = p->pairs("BoW vector");
   *raw_groups = p->pairs("word groups");
   // Stored weights are > 0 (words of weight 0 are never stored) and, for
@@ -147,10 +153,10 @@ DatabaseEntry readEntry(Reader* p, std::size_t i, ScoringType stored_scoring,
   // The database rebuilds the vector from the words (Database::bow): the
   // stored one must be that vector, or the file contradicts itself. (Word
   // ids out of range are the database's to reject, with its message.)
-  const bool words_in_range = std::all_of(e.words.begin(), e.words.end(),
-                                          [&](WordId w) { return w < vocabulary.wordCount(); });
+  const bool words_in_range =
+      std::all_of(words.begin(), words.end(), [&](WordId w) { return w < vocabulary.wordCount(); });
   if (words_in_range) {
-    BowVector expected = vocabulary.bowFromWords(e.words);
+    BowVector expected = vocabulary.bowFromWords(words);
     normaliseBowVector(stored_scoring, &expected);
     bool same = expected.size() == bow.size();
     for (std::size_t k = 0; same && k < bow.size(); ++k) {
@@ -261,6 +267,21 @@ void readHypotheses(Reader* p, std::size_t n, StoredChain* chain) {
   }
 }
 
+// Each entry's pyramid scale factor: its positions are packed with it.
+void readScaleFactors(Reader* p, std::vector<DatabaseEntry>* entries) {
+  if (p->count(4, "scale factors") != entries->size()) {
+    p->fail("scale factor count differs from the entry count");
+  }
+  for (std::size_t i = 0; i < entries->size(); ++i) {
+    const float f = p->f32("scale factor");
+    if (!(std::isfinite(f) && f >= 0.f)) {
+      p->fail("entry " + std::to_string(i) + " has a negative or non-finite pyramid scale factor");
+    }
+    DatabaseEntry& e = (*entries)[i];
+    if (f > 0.f) e.points = PackedPoints(e.points.unpack(), f);
+  }
+}
+
 // The chain's islands must lie inside the database; their odometers come
 // from the entries.
 void restoreChain(Reader* p, const Database& db, StoredChain* chain, DetectorState* state) {
@@ -313,6 +334,7 @@ std::unique_ptr<Database> loadDetectorFile(const std::string& path,
     if (version >= 2) readNormalisers(&p, state);
     if (version >= 3) readCountersAndOdometers(&p, &entries, state, &chain);
     if (version >= 4) readHypotheses(&p, n, &chain);
+    if (version >= 5) readScaleFactors(&p, &entries);
     for (std::size_t i = 0; i < n; ++i) {
       db->addToGroupTable(raw_groups[i]);
       db->add(std::move(entries[i]), raw_groups[i]);

@@ -152,7 +152,7 @@ LoopResult LoopDetector::process(const KeyframeInput& keyframe) {
 
   DatabaseEntry entry;
   entry.stamp = keyframe.stamp;
-  entry.points = imagePoints(f.keypoints);
+  entry.points = PackedPoints::fromKeypoints(f.keypoints, f.pyramid_scale_factor);
   entry.descriptors = f.descriptors;
   entry.intrinsics = keyframe.intrinsics;
   entry.odometer = keyframe.odometer;
@@ -169,7 +169,9 @@ LoopResult LoopDetector::process(const KeyframeInput& keyframe) {
 
   // 1. Words (Sec. III-A "Word Vocabulary Tree").
   BowVector bow;
-  vocabulary_->transform(f.descriptors, &bow, nullptr, 0, &entry.words);
+  std::vector<WordId> words;
+  vocabulary_->transform(f.descriptors, &bow, nullptr, 0, &words);
+  entry.words = PackedWords(words);
   const auto t1 = Clock::now();
   r.timings.transform_ms = msBetween(t0, t1);
 
@@ -177,12 +179,12 @@ LoopResult LoopDetector::process(const KeyframeInput& keyframe) {
   // off so that switching them on later finds every entry grouped; 3. they
   // join the table BEFORE eq. 1 is applied to the query (finite IDF for the
   // query's own groups); 4. refined weights.
-  const GroupVector raw_groups = buildWordGroups(f.keypoints, entry.words, options_.word_groups);
+  const GroupVector raw_groups = buildWordGroups(f.keypoints, words, options_.word_groups);
   database_->addToGroupTable(raw_groups);
   const bool with_groups = options_.word_groups.enabled;
   const bool with_distribution = options_.distribution.enabled;
   // The entry keeps its words; the database rebuilds its BoW from them.
-  const DatabaseQuery q = database_->makeQuery(std::move(bow), raw_groups, entry.points,
+  const DatabaseQuery q = database_->makeQuery(std::move(bow), raw_groups, imagePoints(f.keypoints),
                                                entry.centre_x, entry.centre_y, with_distribution);
   const auto t2 = Clock::now();
   r.timings.word_groups_ms = msBetween(t1, t2);

@@ -151,6 +151,15 @@ bool scoreCandidates(const QueryContext& ctx, const DatabaseQuery& q,
   return true;
 }
 
+// What a verification view of a database entry points into: its positions
+// unpacked (the database packs them, PackedPoints) and its direct index,
+// made from its words.
+struct EntryViewStorage {
+  std::vector<ImagePoint> points;
+  std::vector<WordId> words;
+  DirectIndex direct;
+};
+
 // The two sides of a geometric verification. The query's direct index is
 // built on the first verification only (with one verified candidate most
 // queries stop at the temporal check before it), a database entry's for each
@@ -163,42 +172,52 @@ class Verifier {
         query_(query),
         intrinsics_(k),
         exhaustive_(ctx.options.geometric.exhaustive),
-        built_(exhaustive_) {}
+        built_(false) {}
 
   VerificationView query() {
     if (!built_) {
-      direct_ = directIndexFromWords(ctx_.vocabulary, query_.words, ctx_.database.directLevel());
+      unpack(query_, &query_storage_);
       built_ = true;
     }
-    return VerificationView{&query_.points, &query_.descriptors, &direct_};
+    return VerificationView{&query_storage_.points, &query_.descriptors, &query_storage_.direct};
   }
 
   /// Valid until the next call.
-  VerificationView match(EntryId id) { return entry(id, &match_direct_); }
+  VerificationView match(EntryId id) { return entry(id, &match_storage_); }
 
   /// Entry `id`'s keypoints and descriptors without a direct index: enough
   /// for RANSAC on correspondences already found (verifyCorrespondences).
-  VerificationView features(EntryId id) const {
+  /// Valid until the next call.
+  VerificationView features(EntryId id) {
     const DatabaseEntry& m = ctx_.database.entry(id);
-    return VerificationView{&m.points, &m.descriptors, nullptr};
+    m.points.unpack(&features_points_);
+    return VerificationView{&features_points_, &m.descriptors, nullptr};
   }
 
-  /// Entry `id`'s view with its direct index in `storage`.
-  VerificationView entry(EntryId id, DirectIndex* storage) const {
+  /// Entry `id`'s view, its positions and direct index in `storage`.
+  VerificationView entry(EntryId id, EntryViewStorage* storage) const {
     const DatabaseEntry& m = ctx_.database.entry(id);
-    if (!exhaustive_) {
-      *storage = directIndexFromWords(ctx_.vocabulary, m.words, ctx_.database.directLevel());
-    }
-    return VerificationView{&m.points, &m.descriptors, storage};
+    unpack(m, storage);
+    return VerificationView{&storage->points, &m.descriptors, &storage->direct};
   }
 
   const CameraIntrinsics& intrinsics() const { return intrinsics_; }
 
  private:
+  void unpack(const DatabaseEntry& e, EntryViewStorage* storage) const {
+    e.points.unpack(&storage->points);
+    if (!exhaustive_) {
+      e.words.unpack(&storage->words);
+      storage->direct =
+          directIndexFromWords(ctx_.vocabulary, storage->words, ctx_.database.directLevel());
+    }
+  }
+
   const QueryContext& ctx_;
   const DatabaseEntry& query_;
   const CameraIntrinsics& intrinsics_;
-  DirectIndex direct_, match_direct_;
+  EntryViewStorage query_storage_, match_storage_;
+  std::vector<ImagePoint> features_points_;
   bool exhaustive_;
   bool built_;
 };
@@ -282,15 +301,15 @@ void estimateScale(const QueryContext& ctx, const Verifier& verifier, LoopResult
     return;
   }
   const DatabaseEntry& m = entries[r->match_id];
-  DirectIndex match_direct;
-  std::vector<DirectIndex> direct(ids.size());
+  EntryViewStorage match_storage;
+  std::vector<EntryViewStorage> storage(ids.size());
   std::vector<ScaleNeighbour> neighbours(ids.size());
   for (std::size_t i = 0; i < ids.size(); ++i) {
-    neighbours[i].view = verifier.entry(ids[i], &direct[i]);
+    neighbours[i].view = verifier.entry(ids[i], &storage[i]);
     neighbours[i].baseline_m = std::fabs(entries[ids[i]].odometer - m.odometer);
   }
   const MetricTranslation t = estimateMetricTranslation(
-      r->inlier_correspondences, verifier.intrinsics(), verifier.entry(r->match_id, &match_direct),
+      r->inlier_correspondences, verifier.intrinsics(), verifier.entry(r->match_id, &match_storage),
       neighbours, m.intrinsics, ctx.options.geometric, mo);
   r->metric_status = t.status;
   if (t.status != MetricTranslationStatus::kEstimated) return;

@@ -137,6 +137,8 @@ ImageFeatures FeatureExtractor::extract(const cv::Mat& image) const {
   const bool oriented = options_.compute_orientation;
   const bool brief = options_.descriptor == FeatureOptions::DescriptorType::kBrief;
   const bool gftt = options_.detector == FeatureOptions::Detector::kGftt;
+  // ORB's keypoints are integer level coordinates times the level's scale.
+  if (!gftt) features.pyramid_scale_factor = static_cast<float>(options_.orb_scale_factor);
   // The pyramid the keypoints' octaves refer to (a single level for GFTT).
   OrbPyramid pyramid;
   pyramid.scale_factor = options_.orb_scale_factor;

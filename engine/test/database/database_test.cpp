@@ -40,12 +40,14 @@ BuiltEntry entryFromKeyframe(const Vocabulary& voc, const KeyframeInput& kf, Bow
   BuiltEntry b;
   DatabaseEntry& e = b.entry;
   e.stamp = kf.stamp;
-  e.points = imagePoints(kf.features.keypoints);
+  e.points = PackedPoints::fromKeypoints(kf.features.keypoints, kf.features.pyramid_scale_factor);
   e.descriptors = kf.features.descriptors;
   e.centre_x = 320;
   e.centre_y = 240;
-  voc.transform(e.descriptors, bow, nullptr, 0, &e.words);
-  b.raw_groups = buildWordGroups(kf.features.keypoints, e.words, WordGroupOptions());
+  std::vector<WordId> words;
+  voc.transform(e.descriptors, bow, nullptr, 0, &words);
+  e.words = PackedWords(words);
+  b.raw_groups = buildWordGroups(kf.features.keypoints, words, WordGroupOptions());
   return b;
 }
 
@@ -80,7 +82,8 @@ TEST_P(DatabaseScoring, InverseIndexWordScoreEqualsScoreBowVectors) {
   Database db(vocabulary(), s, 2, 8);
   BowVector qbow;
   const BuiltEntry qe = fill(&db, &qbow);
-  const DatabaseQuery q = db.makeQuery(qbow, qe.raw_groups, qe.entry.points, 320, 240, false);
+  const DatabaseQuery q =
+      db.makeQuery(qbow, qe.raw_groups, qe.entry.points.unpack(), 320, 240, false);
   const EntryId limit = 25;
   const std::vector<EntryScores> scores = db.query(q, limit, /*with_groups=*/false);
   // Exactly the entries < limit that share a word with the query.
@@ -117,7 +120,8 @@ TEST(Database, InverseIndexGroupScoreEqualsDirectEq3WithCurrentIdf) {
   BowVector qbow;
   std::vector<GroupVector> added;
   const BuiltEntry qe = fill(&db, &qbow, &added);
-  const DatabaseQuery q = db.makeQuery(qbow, qe.raw_groups, qe.entry.points, 320, 240, false);
+  const DatabaseQuery q =
+      db.makeQuery(qbow, qe.raw_groups, qe.entry.points.unpack(), 320, 240, false);
   const std::vector<EntryScores> scores = db.query(q, 30, true);
   int with_groups = 0;
   for (const EntryScores& e : scores) {
@@ -151,8 +155,10 @@ TEST(Database, RawGroupsAreReadBackAsAdded) {
 EntryId addGroups(Database* db, double stamp, const GroupVector& raw) {
   DatabaseEntry e;
   e.stamp = stamp;
-  for (const auto& g : raw) e.words.push_back(g.first);
-  e.points.resize(raw.size());
+  std::vector<WordId> words;
+  for (const auto& g : raw) words.push_back(g.first);
+  e.words = PackedWords(words);
+  e.points = PackedPoints(std::vector<ImagePoint>(raw.size()), 0.f);
   e.descriptors.resize(raw.size());
   db->addToGroupTable(raw);
   return db->add(e, raw);
@@ -249,8 +255,8 @@ TEST(Database, FewTouchedEntriesComeOutInAscendingOrder) {
     DatabaseEntry e;
     e.stamp = 1.0 + static_cast<double>(i);
     // Entry 30 gets the lowest word, entry 5 a higher one.
-    e.words = {words[i == 30 ? 0 : i == 0 ? 30 : i]};
-    e.points.resize(1);
+    e.words = PackedWords({words[i == 30 ? 0 : i == 0 ? 30 : i]});
+    e.points = PackedPoints(std::vector<ImagePoint>(1), 0.f);
     e.descriptors.resize(1);
     db.add(e, {});
   }
@@ -267,12 +273,13 @@ TEST(Database, FanBinChangeRebuildsDistributionVectors) {
   BowVector qbow;
   const BuiltEntry qe = fill(&db, &qbow);
   db.setFanBins(5);
-  const DatabaseQuery q = db.makeQuery(qbow, qe.raw_groups, qe.entry.points, 320, 240, true);
+  const DatabaseQuery q =
+      db.makeQuery(qbow, qe.raw_groups, qe.entry.points.unpack(), 320, 240, true);
   ASSERT_EQ(q.distribution.size(), 5u);
-  const std::vector<double> fresh_q = distributionVector(qe.entry.points, 320, 240, 5);
+  const std::vector<double> fresh_q = distributionVector(qe.entry.points.unpack(), 320, 240, 5);
   for (const EntryScores& e : db.query(q, 30, true)) {
     const DatabaseEntry& d = db.entry(e.entry);
-    const std::vector<double> fresh = distributionVector(d.points, 320, 240, 5);
+    const std::vector<double> fresh = distributionVector(d.points.unpack(), 320, 240, 5);
     EXPECT_EQ(db.distribution(e.entry), fresh);
     EXPECT_NEAR(e.s_d, distributionScore(fresh_q, fresh), 1e-12);
   }
@@ -290,7 +297,7 @@ TEST(Database, DirectIndexMatchesTheVocabularyAtEveryLevel) {
       BowVector bow;
       DirectIndex direct;
       vocabulary()->transform(e.descriptors, &bow, &direct, level);
-      EXPECT_EQ(directIndexFromWords(*vocabulary(), e.words, db.directLevel()), direct)
+      EXPECT_EQ(directIndexFromWords(*vocabulary(), e.words.unpack(), db.directLevel()), direct)
           << "level " << level;
     }
   }
@@ -301,7 +308,8 @@ TEST(Database, ScoringChangeRenormalisesAndReindexes) {
   BowVector qbow;
   const BuiltEntry qe = fill(&db, &qbow);
   db.setScoring(ScoringType::kL2);
-  const DatabaseQuery q = db.makeQuery(qbow, qe.raw_groups, qe.entry.points, 320, 240, false);
+  const DatabaseQuery q =
+      db.makeQuery(qbow, qe.raw_groups, qe.entry.points.unpack(), 320, 240, false);
   std::size_t scored = 0;
   for (const EntryScores& e : db.query(q, 30, false)) {
     BowVector a = qbow, b = db.bow(e.entry);
@@ -351,13 +359,13 @@ TEST(Database, AddRejectsInconsistentEntries) {
   Database db(vocabulary(), ScoringType::kL1, 2, 8);
   DatabaseEntry e;
   e.stamp = 1;
-  e.points.resize(2);
+  e.points = PackedPoints(std::vector<ImagePoint>(2), 0.f);
   e.descriptors.resize(2);
-  e.words = {0};
+  e.words = PackedWords({0});
   EXPECT_THROW(db.add(e, {}), std::invalid_argument);
-  e.words = {0, static_cast<WordId>(vocabulary()->wordCount())};
+  e.words = PackedWords({0, static_cast<WordId>(vocabulary()->wordCount())});
   EXPECT_THROW(db.add(e, {}), std::invalid_argument);
-  e.words = {0, 1};
+  e.words = PackedWords({0, 1});
   // Raw groups: among the entry's words, sorted without repeats, whole counts.
   EXPECT_THROW(db.add(e, {{2, 1.0}}), std::invalid_argument);
   EXPECT_THROW(db.add(e, {{1, 1.0}, {0, 1.0}}), std::invalid_argument);

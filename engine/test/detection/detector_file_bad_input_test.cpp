@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <string>
 #include <utility>
 #include <vector>
@@ -177,8 +178,11 @@ TEST(DatabaseIo, ForgedContentIsRefusedByName) {
         "entry 0 has a BoW vector that is not the one its words give");
   // The chain length: before the normaliser history (u32 + 50 x 24), the
   // two missed-query counters (8), the odometers (u32 + 52 x 8), the two
-  // query odometers (16), the hypothesis count (4) and the checksum (8).
-  const std::size_t chain = good.size() - (8 + 4 + 16 + 4 + 52 * 8 + 8 + 4 + 50 * 24 + 4);
+  // query odometers (16), the hypothesis count (4), the scale factors (u32 +
+  // 52 x 4) and the checksum (8).
+  const std::size_t scale_factors = 4 + 52 * 4;
+  const std::size_t chain =
+      good.size() - (8 + scale_factors + 4 + 16 + 4 + 52 * 8 + 8 + 4 + 50 * 24 + 4);
   const std::int32_t forever = 0x7fffffff;
   forge("chain.bowgdb", chain, &forever, 4, "chain length 2147483647 outside 0..52");
   // Entry 0's word groups follow its BoW vector: u32 count, (u32, f64) pairs.
@@ -187,10 +191,18 @@ TEST(DatabaseIo, ForgedContentIsRefusedByName) {
   std::memcpy(&group_count, &good[groups], 4);
   ASSERT_GT(group_count, 0u);
   forge("group.bowgdb", groups + 4 + 4, &negative, 8, "entry 0 has a word-group weight <= 0");
-  // From the end: checksum 8, hypothesis count 4 (none stored), the two
-  // query odometers 16, the odometers (u32 + 52 x 8), the missed-query
-  // counters 8, the normalisers (u32 + 50 x 24).
-  const std::size_t query_odometers = good.size() - (8 + 4 + 16);
+  // From the end: checksum 8, the scale factors, hypothesis count 4 (none
+  // stored), the two query odometers 16, the odometers (u32 + 52 x 8), the
+  // missed-query counters 8, the normalisers (u32 + 50 x 24).
+  const std::size_t scales = good.size() - 8 - scale_factors;
+  const float negative_factor = -1.2f, infinite_factor = std::numeric_limits<float>::infinity();
+  const std::uint32_t fewer = 51;
+  forge("scale_count.bowgdb", scales, &fewer, 4, "scale factor count differs from the entry count");
+  forge("scale_negative.bowgdb", scales + 4 + 4, &negative_factor, 4,
+        "entry 1 has a negative or non-finite pyramid scale factor");
+  forge("scale_infinite.bowgdb", scales + 4, &infinite_factor, 4,
+        "entry 0 has a negative or non-finite pyramid scale factor");
+  const std::size_t query_odometers = scales - (4 + 16);
   const std::size_t odometers = query_odometers - 52 * 8;
   const std::size_t missed = odometers - 4 - 8;
   const std::size_t normalisers = missed - 50 * 24;

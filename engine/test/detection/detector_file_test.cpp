@@ -7,8 +7,9 @@
 #include <cstring>
 #include <string>
 
-#include "bowg/core/checksum.h"
 #include "bowg/core/errors.h"
+#include "bowg/database/packed_points.h"
+#include "core/resealed_checksum.h"
 #include "detection/detector_file_runs.h"
 
 namespace bowg {
@@ -175,6 +176,89 @@ TEST(DatabaseIo, TemporalHypothesesRoundTrip) {
   std::remove(path_one.c_str());
 }
 
+// Writes `v` little-endian in `n` bytes at `at`.
+void putLe(std::string* bytes, std::size_t at, std::uint64_t v, int n) {
+  for (int i = 0; i < n; ++i) (*bytes)[at + i] = static_cast<char>((v >> (8 * i)) & 0xff);
+}
+
+// A saved detector file as version `version` wrote it: without the last
+// `dropped` payload bytes (the sections later versions append), its
+// version, payload size (the header is 28 bytes) and checksum rewritten.
+std::string asVersion(std::string bytes, std::size_t dropped, std::uint32_t version) {
+  EXPECT_GT(bytes.size(), dropped + 8 + 28);
+  bytes.resize(bytes.size() - 8 - dropped);
+  putLe(&bytes, 8, version, 4);
+  putLe(&bytes, 20, bytes.size() - 28, 8);
+  bytes.resize(bytes.size() + 8);
+  testing::resealChecksum(&bytes);
+  return bytes;
+}
+
+// The corridor's keyframes with every keypoint moved onto a pyramid level's
+// grid, as OpenCV's ORB places them: the database packs those positions.
+std::vector<KeyframeInput> pyramidKeyframes() {
+  std::vector<KeyframeInput> kfs = keyframes();
+  for (KeyframeInput& kf : kfs) testing::placeOnOrbPyramid(&kf);
+  return kfs;
+}
+
+void expectSamePositions(const Database& a, const Database& b) {
+  ASSERT_EQ(a.size(), b.size());
+  for (EntryId id = 0; id < a.size(); ++id) {
+    const PackedPoints& pa = a.entry(id).points;
+    const PackedPoints& pb = b.entry(id).points;
+    ASSERT_EQ(pa.size(), pb.size());
+    for (std::size_t i = 0; i < pa.size(); ++i) {
+      EXPECT_EQ(pa[i].x, pb[i].x);
+      EXPECT_EQ(pa[i].y, pb[i].y);
+    }
+  }
+}
+
+// Packed positions come back packed as they were (version 5), and a
+// version-4 file, which has no scale factors, loads with the same positions
+// kept as floats.
+TEST(DatabaseIo, PackedPositionsRoundTrip) {
+  const auto voc = vocabulary();
+  const auto kfs = pyramidKeyframes();
+  LoopDetector a(voc, options());
+  for (int i = 0; i < 45; ++i) a.process(kfs[i]);
+  std::size_t upper = 0;
+  for (const DatabaseEntry& e : a.database().entries()) {
+    EXPECT_EQ(e.points.exactCount(), 0u);
+    EXPECT_EQ(e.points.scaleFactor(), 1.2f);
+    upper += e.points.size();
+  }
+  ASSERT_GT(upper, 1000u);
+  const std::string v5 = outPath("packed.bowgdb");
+  a.save(v5);
+  LoopDetector b(voc, options());
+  b.load(v5);
+  expectSamePositions(a.database(), b.database());
+  for (const DatabaseEntry& e : b.database().entries()) {
+    EXPECT_EQ(e.points.exactCount(), 0u);
+    EXPECT_EQ(e.points.scaleFactor(), 1.2f);
+  }
+
+  // Version 4: the same bytes without the scale factors (u32 count + 45
+  // f32 before the checksum).
+  const std::string v4 = outPath("packed_v4.bowgdb");
+  writeBytes(v4, asVersion(readBytes(v5), 4 + 45 * 4, 4));
+  LoopDetector c(voc, options());
+  c.load(v4);
+  expectSamePositions(a.database(), c.database());
+  std::size_t exact = 0;
+  for (const DatabaseEntry& e : c.database().entries()) exact += e.points.exactCount();
+  EXPECT_GT(exact, 0u);  // levels above 0 are not integers
+  for (std::size_t i = 45; i < kfs.size(); ++i) {
+    const LoopResult r = a.process(kfs[i]);
+    expectSameResult(r, b.process(kfs[i]));
+    expectSameResult(r, c.process(kfs[i]));
+  }
+  std::remove(v5.c_str());
+  std::remove(v4.c_str());
+}
+
 TEST(DatabaseIo, VersionOneFilesLoadWithAnEmptyHistory) {
   const auto voc = vocabulary();
   const auto kfs = keyframes();
@@ -182,25 +266,16 @@ TEST(DatabaseIo, VersionOneFilesLoadWithAnEmptyHistory) {
   for (int i = 0; i < 45; ++i) a.process(kfs[i]);
   const std::string v2 = outPath("v2.bowgdb");
   a.save(v2);
-  std::string bytes = readBytes(v2);
+  const std::string bytes = readBytes(v2);
   // The history closes the version-2 payload: u32 count + count x 3 f64;
   // version 3 adds two i32 missed-query counters, the odometers (u32
   // count + 45 f64) and two query odometers (f64), version 4 the other
-  // temporal hypotheses (u32 count, 0 with one hypothesis), then the u64
-  // checksum. 44 keyframes had a previous one; the window is 50.
-  const std::size_t history = 4 + 44 * 24 + 2 * 4 + 4 + 45 * 8 + 2 * 8 + 4;
-  ASSERT_GT(bytes.size(), history + 8 + 28);
-  bytes.resize(bytes.size() - 8 - history);
-  auto putLe = [&bytes](std::size_t at, std::uint64_t v, int n) {
-    for (int i = 0; i < n; ++i) bytes[at + i] = static_cast<char>((v >> (8 * i)) & 0xff);
-  };
-  putLe(8, 1, 4);                   // version
-  putLe(20, bytes.size() - 28, 8);  // payload size (header is 28 bytes)
-  const std::uint64_t sum = checksum64(bytes.data(), bytes.size());
-  bytes.resize(bytes.size() + 8);
-  putLe(bytes.size() - 8, sum, 8);
+  // temporal hypotheses (u32 count, 0 with one hypothesis), version 5 the
+  // entries' scale factors (u32 count + 45 f32), then the u64 checksum. 44
+  // keyframes had a previous one; the window is 50.
+  const std::size_t history = 4 + 44 * 24 + 2 * 4 + 4 + 45 * 8 + 2 * 8 + 4 + 4 + 45 * 4;
   const std::string v1 = outPath("v1.bowgdb");
-  writeBytes(v1, bytes);
+  writeBytes(v1, asVersion(bytes, history, 1));
   LoopDetector b(voc, options());
   b.load(v1);
   EXPECT_EQ(b.database().size(), 45u);
@@ -209,13 +284,12 @@ TEST(DatabaseIo, VersionOneFilesLoadWithAnEmptyHistory) {
     expectSameCandidates(a, b);
   }
   // Versions beyond the current one are refused by number.
-  putLe(8, 5, 4);
-  writeBytes(v1, bytes);
+  writeBytes(v1, asVersion(bytes, history, 6));
   try {
     b.load(v1);
-    ADD_FAILURE() << "version 5 accepted";
+    ADD_FAILURE() << "version 6 accepted";
   } catch (const FormatError& e) {
-    EXPECT_NE(std::string(e.what()).find("unsupported version 5"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("unsupported version 6"), std::string::npos) << e.what();
   }
   std::remove(v1.c_str());
   std::remove(v2.c_str());

@@ -387,7 +387,7 @@ TEST(LoopDetector, OptionsChangeBetweenKeyframesRebuildsWhatDependsOnThem) {
   EXPECT_EQ(det.database().directLevel(), 2);
   for (const auto& e : det.database().entries()) {
     EXPECT_EQ(det.database().distribution(e.id),
-              distributionVector(e.points, e.centre_x, e.centre_y, 5));
+              distributionVector(e.points.unpack(), e.centre_x, e.centre_y, 5));
     double n2 = 0;
     for (const auto& w : det.database().bow(e.id)) n2 += w.second * w.second;
     EXPECT_NEAR(n2, 1.0, 1e-9);  // L2-normalised now

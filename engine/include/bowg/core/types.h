@@ -68,6 +68,11 @@ struct ImageFeatures {
   std::vector<Descriptor> descriptors;
   int image_width = 0;
   int image_height = 0;
+  /// The detector's pyramid scale factor when every keypoint lies at integer
+  /// coordinates of its octave's level times that level's scale (OpenCV's
+  /// ORB); 0 when unknown. Lets the database keep positions in 4 bytes
+  /// (PackedPoints), losslessly either way.
+  float pyramid_scale_factor = 0.f;
 
   std::size_t size() const { return keypoints.size(); }
   bool empty() const { return keypoints.empty(); }

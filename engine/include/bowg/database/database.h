@@ -4,13 +4,15 @@
 //    id, and an image's groups are among its words): word -> (entry,
 //    normalised BoW weight, raw group weight) in 8 bytes (Posting), as
 //    DBoW2's word index with the group's weight beside it. An entry's BoW
-//    vector and raw groups are rebuilt from its words and these postings
-//    when needed (bow(), rawGroups()), not kept;
+//    vector and raw groups are rebuilt from its words (2-3 bytes each,
+//    PackedWords) and these postings when needed (bow(), rawGroups()), not
+//    kept;
 //  - the online word-group table (eq. 1's IDF totals);
 //  - the level of the direct index (Sec. III-D's correspondence search): an
 //    entry's direct index is rebuilt from its words when it is verified
 //    (directIndexFromWords, a few microseconds), not kept per entry;
-//  - the distribution table: per entry the keypoint positions and the fan
+//  - the distribution table: per entry the keypoint positions (4 bytes each
+//    where that is lossless, PackedPoints) and the fan
 //    centre (enough to rebuild the vector for ANY m) plus the cached vectors
 //    for the current m (Sec. III-C).
 //
@@ -35,6 +37,8 @@
 #include <vector>
 
 #include "bowg/core/types.h"
+#include "bowg/database/packed_points.h"
+#include "bowg/database/packed_words.h"
 #include "bowg/scoring/word_groups.h"
 #include "bowg/vocabulary/bow_vector.h"
 
@@ -56,10 +60,11 @@ constexpr double kStampLimit = 4294967296.0;
 struct DatabaseEntry {
   EntryId id = 0;
   double stamp = 0;  ///< in [0, kStampLimit), increasing
-  /// Keypoint positions: the only part of a keypoint read after insertion.
-  std::vector<ImagePoint> points;
+  /// Keypoint positions: the only part of a keypoint read after insertion,
+  /// packed in 4 bytes each where that is lossless.
+  PackedPoints points;
   std::vector<Descriptor> descriptors;
-  std::vector<WordId> words;          ///< word of each feature (index-aligned)
+  PackedWords words;                  ///< word of each feature (index-aligned)
   double centre_x = 0, centre_y = 0;  ///< centre of the distribution fan
   CameraIntrinsics intrinsics;
   /// Metres driven since the first keyframe (KeyframeInput::odometer); NaN
@@ -191,6 +196,8 @@ class Database {
   void clear();
 
  private:
+  /// The normalised BoW vector of an entry's words (bow()).
+  BowVector bowOfWords(const std::vector<WordId>& words) const;
   /// Entry `id`'s posting in word `w`'s list, or nullptr.
   const Posting* posting(WordId w, EntryId id) const;
   /// The raw group weight posting `p` of word `w`'s list holds (0: none):
