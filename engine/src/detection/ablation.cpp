@@ -38,6 +38,7 @@ LoopDetectorOptions LoopDetectorOptions::ablation(const std::string& row,
     o.temporal_verification.max_island_distance_m = 0.0;
     o.temporal_verification.hypotheses = 1;
     o.temporal_verification.min_step_m = 0.0;
+    o.temporal_verification.linked_places = false;
     o.geometric.candidates = 1;
     return o;
   }
@@ -69,6 +70,10 @@ LoopDetectorOptions LoopDetectorOptions::ablation(const std::string& row,
     o.temporal_verification.min_step_m = 0.0;
     return o;
   }
+  if (row == "without_linked_places") {
+    o.temporal_verification.linked_places = false;
+    return o;
+  }
   if (row == "without_reranking") {
     o.geometric.candidates = 1;
     return o;
@@ -95,7 +100,7 @@ LoopDetectorOptions LoopDetectorOptions::ablation(const std::string& row,
                            "paper_bow, paper, configured, without_floor, "
                            "without_normaliser_distance, without_alignment, "
                            "without_missed_queries, without_hypotheses, without_min_step, "
-                           "without_reranking");
+                           "without_linked_places, without_reranking");
   }
   return o;
 }

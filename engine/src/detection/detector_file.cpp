@@ -86,6 +86,9 @@ void saveDetectorFile(const std::string& path, const Database& database,
   }
   w.u32(static_cast<std::uint32_t>(database.size()));
   for (const DatabaseEntry& e : database.entries()) w.f32(e.points.scaleFactor());
+  const std::vector<EntryId> parents = state.place_links.parents(database.size());
+  w.u32(static_cast<std::uint32_t>(parents.size()));
+  for (EntryId p : parents) w.u32(p);
 
   std::string& bytes = w.str();
   const std::uint64_t payload = bytes.size() - payload_start;

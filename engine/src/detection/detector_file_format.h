@@ -27,10 +27,12 @@ constexpr char kMagic[8] = {'B', 'O', 'W', 'G', 'D', 'B', 0, 0};
 // 5 appends each entry's pyramid scale factor (u32 count = entries, f32 each,
 // 0 = none: PackedPoints), with which the positions are packed again as they
 // were; older files load with every position kept as read (same values, more
-// memory for multi-scale keypoints). A keypoint's size, angle, response and
+// memory for multi-scale keypoints). Version 6 appends the place links
+// (u32 count = entries, then each entry's u32 parent in PlaceLinks, never a
+// larger id); older files load with none. A keypoint's size, angle, response and
 // octave are read and checked but not kept (the database keeps positions
 // only); they are written as 0, -1, 0, 0.
-constexpr std::uint32_t kVersion = 5;
+constexpr std::uint32_t kVersion = 6;
 constexpr std::uint32_t kOldestVersion = 1;
 // magic + version + fingerprint + payload size | ... | checksum
 constexpr std::size_t kHeaderBytes = 8 + 4 + 8 + 8;

@@ -282,6 +282,14 @@ void readScaleFactors(Reader* p, std::vector<DatabaseEntry>* entries) {
   }
 }
 
+// Version 6: the entries joined by accepted loops.
+void readPlaceLinks(Reader* p, std::size_t n, DetectorState* state) {
+  if (p->count(4, "place links") != n) p->fail("place link count differs from the entry count");
+  std::vector<EntryId> parents(n);
+  for (EntryId& e : parents) e = p->u32("place link");
+  state->place_links.restore(std::move(parents));
+}
+
 // The chain's islands must lie inside the database; their odometers come
 // from the entries.
 void restoreChain(Reader* p, const Database& db, StoredChain* chain, DetectorState* state) {
@@ -335,6 +343,7 @@ std::unique_ptr<Database> loadDetectorFile(const std::string& path,
     if (version >= 3) readCountersAndOdometers(&p, &entries, state, &chain);
     if (version >= 4) readHypotheses(&p, n, &chain);
     if (version >= 5) readScaleFactors(&p, &entries);
+    if (version >= 6) readPlaceLinks(&p, n, state);
     for (std::size_t i = 0; i < n; ++i) {
       db->addToGroupTable(raw_groups[i]);
       db->add(std::move(entries[i]), raw_groups[i]);

@@ -222,6 +222,22 @@ class Verifier {
   bool built_;
 };
 
+// TemporalVerificationOptions::linked_places: whether the chosen island
+// (followed[0]) is one place, by accepted loops, with another followed
+// island whose chain passes (the chains as they stand before this query's
+// update). Then the robot is where that chain says, seen on another lap.
+bool continuesLinkedChain(const QueryContext& ctx, const std::vector<Island>& followed,
+                          double query_m) {
+  const TemporalVerificationOptions& tv = ctx.options.temporal_verification;
+  for (std::size_t i = 1; i < followed.size(); ++i) {
+    if (ctx.state.consistency.chainTo(followed[i], tv, query_m) > tv.k &&
+        ctx.state.place_links.linked(followed[0], followed[i])) {
+      return true;
+    }
+  }
+  return false;
+}
+
 struct IslandChoice {
   std::size_t chosen = 0;         ///< index into the islands
   GeometricVerificationResult g;  ///< of its best entry, when verified
@@ -428,8 +444,10 @@ void runQuery(const QueryContext& ctx, const DatabaseQuery& q, const DatabaseEnt
   for (std::size_t i = 0; i < islands.size() && followed.size() < wanted; ++i) {
     if (i != choice.chosen) followed.push_back(islands[i]);
   }
-  const bool consistent = ctx.state.consistency.update(followed, 0, options.temporal_verification,
-                                                       query_entry.odometer);
+  const TemporalVerificationOptions& tv = options.temporal_verification;
+  const bool linked = tv.linked_places && continuesLinkedChain(ctx, followed, query_entry.odometer);
+  const bool consistent =
+      ctx.state.consistency.update(followed, 0, tv, query_entry.odometer) || linked;
   const auto t_verify = Clock::now();
   r->timings.islands_ms = msBetween(t_islands, t_verify) - choice.rerank_ms;
   r->timings.verification_ms = choice.rerank_ms;
@@ -438,6 +456,7 @@ void runQuery(const QueryContext& ctx, const DatabaseQuery& q, const DatabaseEnt
     return;
   }
   verifyMatch(ctx, island, &choice, &verifier, t_verify, r);
+  if (r->status == LoopStatus::kLoopDetected) ctx.state.place_links.link(r->query_id, r->match_id);
 }
 
 }  // namespace query_steps

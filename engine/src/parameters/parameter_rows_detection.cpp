@@ -57,6 +57,10 @@ void addDetectionRows(std::vector<Row>* rows) {
                 BOWG_FIELD(double, detector.temporal_verification.min_step_m),
                 "With odometry: a query counts towards the temporal chain only after "
                 "this many metres driven since the last one that did (0 = every query)"));
+  rows->push_back(boolRow("temporal_linked_places", det, "temporal_verification.linked_places",
+                          false, BOWG_FIELD(bool, detector.temporal_verification.linked_places),
+                          "An island at a place joined by accepted loops to a chain's island "
+                          "continues that chain (false = DLoopDetector)"));
   // --- Geometric verification.
   rows->push_back(boolRow("geometric_verification", det, "geometric.enabled", true,
                           BOWG_FIELD(bool, detector.geometric.enabled),

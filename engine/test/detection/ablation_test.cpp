@@ -115,6 +115,7 @@ TEST(Ablation, WithoutRowsSwitchOffOneExtensionEach) {
   base.temporal_verification.max_missed_queries = 1;
   base.temporal_verification.hypotheses = 3;
   base.temporal_verification.min_step_m = 0.02;
+  base.temporal_verification.linked_places = true;
   base.geometric.candidates = 10;
   // Which extensions are on, in the order of the rows below.
   auto on = [](const LoopDetectorOptions& o) {
@@ -126,22 +127,23 @@ TEST(Ablation, WithoutRowsSwitchOffOneExtensionEach) {
         o.temporal_score.max_missed_queries > 0 || o.temporal_verification.max_missed_queries > 0,
         o.temporal_verification.hypotheses > 1,
         o.temporal_verification.min_step_m > 0,
+        o.temporal_verification.linked_places,
         o.geometric.candidates > 1};
   };
-  const char* rows[] = {"without_floor",      "without_normaliser_distance",
-                        "without_alignment",  "without_missed_queries",
-                        "without_hypotheses", "without_min_step",
-                        "without_reranking"};
-  ASSERT_EQ(on(base), std::vector<bool>(7, true));
-  for (int r = 0; r < 7; ++r) {
-    std::vector<bool> expected(7, true);
+  const char* rows[] = {"without_floor",         "without_normaliser_distance",
+                        "without_alignment",     "without_missed_queries",
+                        "without_hypotheses",    "without_min_step",
+                        "without_linked_places", "without_reranking"};
+  ASSERT_EQ(on(base), std::vector<bool>(8, true));
+  for (int r = 0; r < 8; ++r) {
+    std::vector<bool> expected(8, true);
     expected[r] = false;
     const LoopDetectorOptions o = LoopDetectorOptions::ablation(rows[r], base);
     EXPECT_EQ(on(o), expected) << rows[r];
     EXPECT_NO_THROW(o.validate()) << rows[r];
   }
   // Every "without" row switches off something the paper row also switches off.
-  EXPECT_EQ(on(LoopDetectorOptions::ablation("paper", base)), std::vector<bool>(7, false));
+  EXPECT_EQ(on(LoopDetectorOptions::ablation("paper", base)), std::vector<bool>(8, false));
 }
 
 TEST(Ablation, KeepsTheOtherFields) {

@@ -180,9 +180,9 @@ TEST(DatabaseIo, ForgedContentIsRefusedByName) {
   // two missed-query counters (8), the odometers (u32 + 52 x 8), the two
   // query odometers (16), the hypothesis count (4), the scale factors (u32 +
   // 52 x 4) and the checksum (8).
-  const std::size_t scale_factors = 4 + 52 * 4;
+  const std::size_t scale_factors = 4 + 52 * 4, place_links = 4 + 52 * 4;
   const std::size_t chain =
-      good.size() - (8 + scale_factors + 4 + 16 + 4 + 52 * 8 + 8 + 4 + 50 * 24 + 4);
+      good.size() - (8 + place_links + scale_factors + 4 + 16 + 4 + 52 * 8 + 8 + 4 + 50 * 24 + 4);
   const std::int32_t forever = 0x7fffffff;
   forge("chain.bowgdb", chain, &forever, 4, "chain length 2147483647 outside 0..52");
   // Entry 0's word groups follow its BoW vector: u32 count, (u32, f64) pairs.
@@ -191,10 +191,18 @@ TEST(DatabaseIo, ForgedContentIsRefusedByName) {
   std::memcpy(&group_count, &good[groups], 4);
   ASSERT_GT(group_count, 0u);
   forge("group.bowgdb", groups + 4 + 4, &negative, 8, "entry 0 has a word-group weight <= 0");
-  // From the end: checksum 8, the scale factors, hypothesis count 4 (none
-  // stored), the two query odometers 16, the odometers (u32 + 52 x 8), the
-  // missed-query counters 8, the normalisers (u32 + 50 x 24).
-  const std::size_t scales = good.size() - 8 - scale_factors;
+  // From the end: checksum 8, the place links, the scale factors,
+  // hypothesis count 4 (none stored), the two query odometers 16, the
+  // odometers (u32 + 52 x 8), the missed-query counters 8, the normalisers
+  // (u32 + 50 x 24).
+  const std::size_t links = good.size() - 8 - place_links;
+  const std::uint32_t later = 7;
+  const std::uint32_t fewer_links = 51;
+  forge("link_count.bowgdb", links, &fewer_links, 4,
+        "place link count differs from the entry count");
+  forge("link_later.bowgdb", links + 4 + 4 * 3, &later, 4,
+        "place link of entry 3 points to a later entry (7)");
+  const std::size_t scales = links - scale_factors;
   const float negative_factor = -1.2f, infinite_factor = std::numeric_limits<float>::infinity();
   const std::uint32_t fewer = 51;
   forge("scale_count.bowgdb", scales, &fewer, 4, "scale factor count differs from the entry count");

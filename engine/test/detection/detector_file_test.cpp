@@ -24,6 +24,24 @@ using testing::readBytes;
 using testing::vocabulary;
 using testing::writeBytes;
 
+// Writes `v` little-endian in `n` bytes at `at`.
+void putLe(std::string* bytes, std::size_t at, std::uint64_t v, int n) {
+  for (int i = 0; i < n; ++i) (*bytes)[at + i] = static_cast<char>((v >> (8 * i)) & 0xff);
+}
+
+// A saved detector file as version `version` wrote it: without the last
+// `dropped` payload bytes (the sections later versions append), its
+// version, payload size (the header is 28 bytes) and checksum rewritten.
+std::string asVersion(std::string bytes, std::size_t dropped, std::uint32_t version) {
+  EXPECT_GT(bytes.size(), dropped + 8 + 28);
+  bytes.resize(bytes.size() - 8 - dropped);
+  putLe(&bytes, 8, version, 4);
+  putLe(&bytes, 20, bytes.size() - 28, 8);
+  bytes.resize(bytes.size() + 8);
+  testing::resealChecksum(&bytes);
+  return bytes;
+}
+
 TEST(DatabaseIo, RoundTripGivesIdenticalQueryResults) {
   const auto voc = vocabulary();
   const auto kfs = keyframes();
@@ -45,6 +63,52 @@ TEST(DatabaseIo, RoundTripGivesIdenticalQueryResults) {
   }
   EXPECT_GT(loops, 0) << "the scenario should exercise loops after the reload";
   std::remove(path.c_str());
+}
+
+// The places joined by accepted loops come back (version 6): a detector
+// saved again after loading writes the same bytes, links included, and a
+// version-5 file (without them) loads with none.
+TEST(DatabaseIo, PlaceLinksRoundTrip) {
+  const auto voc = vocabulary();
+  const auto kfs = keyframes();
+  LoopDetectorOptions o = options();
+  o.temporal_verification.linked_places = true;
+  LoopDetector a(voc, o);
+  int loops = 0;
+  for (const KeyframeInput& kf : kfs) loops += a.process(kf).status == LoopStatus::kLoopDetected;
+  ASSERT_GT(loops, 0);
+  const std::string path = outPath("links.bowgdb"), again = outPath("links_again.bowgdb");
+  a.save(path);
+  const std::string bytes = readBytes(path);
+  // The links close the payload: u32 count, then each entry's parent.
+  const std::size_t n = kfs.size();
+  const std::size_t links = bytes.size() - 8 - 4 * n;
+  std::size_t joined = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    std::uint32_t parent = 0;
+    std::memcpy(&parent, &bytes[links + 4 * i], 4);
+    EXPECT_LE(parent, i);
+    joined += parent != i;
+  }
+  EXPECT_GT(joined, 0u) << "accepted loops join places";
+  LoopDetector b(voc, o);
+  b.load(path);
+  b.save(again);
+  EXPECT_EQ(readBytes(again), bytes);
+  // Version 5: no links; saved again, every entry is its own place.
+  writeBytes(path, asVersion(bytes, 4 + 4 * n, 5));
+  LoopDetector c(voc, o);
+  c.load(path);
+  c.save(again);
+  const std::string unlinked = readBytes(again);
+  ASSERT_EQ(unlinked.size(), bytes.size());
+  for (std::size_t i = 0; i < n; ++i) {
+    std::uint32_t parent = 0;
+    std::memcpy(&parent, &unlinked[links + 4 * i], 4);
+    EXPECT_EQ(parent, i);
+  }
+  std::remove(path.c_str());
+  std::remove(again.c_str());
 }
 
 TEST(DatabaseIo, EmptyDatabaseRoundTrips) {
@@ -176,24 +240,6 @@ TEST(DatabaseIo, TemporalHypothesesRoundTrip) {
   std::remove(path_one.c_str());
 }
 
-// Writes `v` little-endian in `n` bytes at `at`.
-void putLe(std::string* bytes, std::size_t at, std::uint64_t v, int n) {
-  for (int i = 0; i < n; ++i) (*bytes)[at + i] = static_cast<char>((v >> (8 * i)) & 0xff);
-}
-
-// A saved detector file as version `version` wrote it: without the last
-// `dropped` payload bytes (the sections later versions append), its
-// version, payload size (the header is 28 bytes) and checksum rewritten.
-std::string asVersion(std::string bytes, std::size_t dropped, std::uint32_t version) {
-  EXPECT_GT(bytes.size(), dropped + 8 + 28);
-  bytes.resize(bytes.size() - 8 - dropped);
-  putLe(&bytes, 8, version, 4);
-  putLe(&bytes, 20, bytes.size() - 28, 8);
-  bytes.resize(bytes.size() + 8);
-  testing::resealChecksum(&bytes);
-  return bytes;
-}
-
 // The corridor's keyframes with every keypoint moved onto a pyramid level's
 // grid, as OpenCV's ORB places them: the database packs those positions.
 std::vector<KeyframeInput> pyramidKeyframes() {
@@ -240,10 +286,10 @@ TEST(DatabaseIo, PackedPositionsRoundTrip) {
     EXPECT_EQ(e.points.scaleFactor(), 1.2f);
   }
 
-  // Version 4: the same bytes without the scale factors (u32 count + 45
-  // f32 before the checksum).
+  // Version 4: the same bytes without the scale factors and the place links
+  // (u32 count + 45 f32, u32 count + 45 u32 before the checksum).
   const std::string v4 = outPath("packed_v4.bowgdb");
-  writeBytes(v4, asVersion(readBytes(v5), 4 + 45 * 4, 4));
+  writeBytes(v4, asVersion(readBytes(v5), 2 * (4 + 45 * 4), 4));
   LoopDetector c(voc, options());
   c.load(v4);
   expectSamePositions(a.database(), c.database());
@@ -271,9 +317,11 @@ TEST(DatabaseIo, VersionOneFilesLoadWithAnEmptyHistory) {
   // version 3 adds two i32 missed-query counters, the odometers (u32
   // count + 45 f64) and two query odometers (f64), version 4 the other
   // temporal hypotheses (u32 count, 0 with one hypothesis), version 5 the
-  // entries' scale factors (u32 count + 45 f32), then the u64 checksum. 44
-  // keyframes had a previous one; the window is 50.
-  const std::size_t history = 4 + 44 * 24 + 2 * 4 + 4 + 45 * 8 + 2 * 8 + 4 + 4 + 45 * 4;
+  // entries' scale factors (u32 count + 45 f32), version 6 the place links
+  // (u32 count + 45 u32), then the u64 checksum. 44 keyframes had a
+  // previous one; the window is 50.
+  const std::size_t history =
+      4 + 44 * 24 + 2 * 4 + 4 + 45 * 8 + 2 * 8 + 4 + 4 + 45 * 4 + 4 + 45 * 4;
   const std::string v1 = outPath("v1.bowgdb");
   writeBytes(v1, asVersion(bytes, history, 1));
   LoopDetector b(voc, options());
@@ -284,12 +332,12 @@ TEST(DatabaseIo, VersionOneFilesLoadWithAnEmptyHistory) {
     expectSameCandidates(a, b);
   }
   // Versions beyond the current one are refused by number.
-  writeBytes(v1, asVersion(bytes, history, 6));
+  writeBytes(v1, asVersion(bytes, history, 7));
   try {
     b.load(v1);
-    ADD_FAILURE() << "version 6 accepted";
+    ADD_FAILURE() << "version 7 accepted";
   } catch (const FormatError& e) {
-    EXPECT_NE(std::string(e.what()).find("unsupported version 6"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("unsupported version 7"), std::string::npos) << e.what();
   }
   std::remove(v1.c_str());
   std::remove(v2.c_str());

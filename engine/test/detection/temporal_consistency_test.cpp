@@ -1,30 +1,23 @@
 // The temporal verification over k previous queries (paper Sec. III-D,
 // DLoopDetector's k) and this implementation's tolerances (missed queries,
 // metres, several hypotheses), on hand-made islands.
-#include "bowg/detection/islands.h"
-
 #include <gtest/gtest.h>
 
-#include <cmath>
-
 #include <algorithm>
+#include <cmath>
 #include <random>
 #include <stdexcept>
 #include <utility>
 #include <vector>
 
 #include "bowg/core/errors.h"
+#include "bowg/detection/islands.h"
+#include "detection/island_fixture.h"
 
 namespace bowg {
 namespace {
 
-Island island(EntryId first, EntryId last) {
-  Island i;
-  i.first = first;
-  i.last = last;
-  i.size = static_cast<int>(last - first + 1);
-  return i;
-}
+using testing::island;
 
 TEST(IslandsConsistent, GapBetweenIntervals) {
   // [10, 15] and [17, 20]: gap 17 - 15 = 2.
@@ -60,6 +53,25 @@ TEST(TemporalConsistency, ChainOfKPreviousConsistentIslands) {
   EXPECT_TRUE(tc.update(island(17, 17), o));  // the chain goes on
   EXPECT_EQ(tc.chainLength(), 4);
   EXPECT_EQ(tc.lastIsland().first, 17u);
+}
+
+// chainTo: what update() would give an island, without changing anything.
+TEST(TemporalConsistency, ChainToPredictsUpdate) {
+  TemporalConsistency tc;
+  TemporalVerificationOptions o = verification(2);
+  o.hypotheses = 2;
+  EXPECT_EQ(tc.chainTo(island(10, 12), o), 1);  // nothing followed yet
+  // Two hypotheses per query; the chosen island jumps from lap 1 (near 10)
+  // to lap 3 (near 210), lap 1 is followed as the second hypothesis.
+  tc.update({island(10, 12), island(110, 112)}, 0, o);
+  tc.update({island(211, 213), island(11, 13)}, 0, o);
+  EXPECT_EQ(tc.chainLength(), 1);               // lap 3's chain starts
+  EXPECT_EQ(tc.chainTo(island(12, 14), o), 3);  // lap 1's: 10 -> 11 -> 12
+  EXPECT_EQ(tc.chainTo(island(212, 214), o), 2);
+  EXPECT_EQ(tc.chainTo(island(112, 114), o), 1);  // lap 2 was not followed last query
+  EXPECT_EQ(tc.chainLength(), 1);                 // unchanged
+  EXPECT_TRUE(tc.update({island(12, 14)}, 0, o));
+  EXPECT_EQ(tc.chainLength(), 3);
 }
 
 TEST(TemporalConsistency, InconsistentIslandRestartsTheChain) {

@@ -70,6 +70,12 @@ struct TemporalVerificationOptions {
   /// continues already passed, and changes nothing. 0 = every query counts
   /// (DLoopDetector). >= 0.
   double min_step_m = 0.0;
+  /// An island whose place is linked by accepted loops (PlaceLinks) to a
+  /// followed island of the previous query that passes the chain continues
+  /// that chain: on a circuit's later laps the chosen island jumps between
+  /// equally true earlier laps of the same place. false = DLoopDetector (a
+  /// chain follows one pass of the place).
+  bool linked_places = false;
   void validate() const;
 };
 

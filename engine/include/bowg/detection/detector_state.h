@@ -10,6 +10,7 @@
 
 #include "bowg/core/types.h"
 #include "bowg/detection/islands.h"
+#include "bowg/detection/place_links.h"
 #include "bowg/scoring/normaliser_history.h"
 
 namespace bowg {
@@ -28,6 +29,9 @@ struct DetectorState {
   TemporalConsistency consistency;
   /// Recent s(I_t, I_t-1), for the normaliser floor (normaliser_history.h).
   NormaliserHistory normalisers;
+  /// Entries joined by accepted loops (TemporalVerificationOptions::
+  /// linked_places); recorded whether or not the option is on.
+  PlaceLinks place_links;
 };
 
 }  // namespace bowg

@@ -77,6 +77,14 @@ class TemporalConsistency {
   void breakChain();
   void reset() { breakChain(); }
   int chainLength() const { return chain_length_; }
+  /// The chain `island` would get from update() now (before it is called):
+  /// one more than the longest consistent chain among the previous query's
+  /// followed islands (1 when none).
+  int chainTo(const Island& island, const TemporalVerificationOptions& options,
+              double query_m = std::numeric_limits<double>::quiet_NaN()) const {
+    const int longest = longestChainTo(island, options, query_m);
+    return longest < std::numeric_limits<int>::max() ? longest + 1 : longest;
+  }
   /// Consecutive queries without an island since last_ (0 after update()).
   int missedQueries() const { return missed_; }
   /// For persistence.
