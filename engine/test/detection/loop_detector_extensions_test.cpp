@@ -1,5 +1,6 @@
 // LoopDetector::process with this implementation's extensions (geometric
-// re-ranking, windows in metres, the normaliser floor, temporal hypotheses)
+// re-ranking, windows in metres, the normaliser floor, temporal hypotheses,
+// linked places)
 // and its scores against eqs. 2, 4, 6-7 computed independently, on
 // synthetic corridors (synthetic_corridor.h).
 #include <gtest/gtest.h>
@@ -123,6 +124,54 @@ std::vector<KeyframeInput> halfMetreRun(bool with_odometer) {
     if (with_odometer) out.back().odometer = driven;
   }
   return out;
+}
+
+// Laps of one corridor: lap 0 always 0.45 m off the later query positions,
+// laps 1, 2 and 3 each at the exact position on every third keyframe (0.45
+// m off on the others), then lap 4 as the queries. The re-ranking's island
+// jumps between laps 1, 2 and 3 from query to query, and two hypotheses per
+// query cannot follow three laps: without links many queries of lap 4
+// restart their chain; with the places joined by the earlier laps' loops
+// they continue it. Returns lap 4's loops; `false_loops` counts those whose
+// match is more than 1 m from the query.
+int lastLapLoops(bool linked_places, int* false_loops) {
+  const int n = 30;
+  const testing::Corridor c = testing::makeCorridor(n + 12, 50, 21);
+  std::mt19937_64 rng(22);
+  LoopDetectorOptions o = defaultOptions();
+  o.islands.recent_exclusion = 10;
+  o.islands.min_score = 0.05;
+  o.temporal_verification.k = 2;
+  o.temporal_verification.hypotheses = 2;
+  o.temporal_verification.linked_places = linked_places;
+  o.geometric.candidates = 5;
+  o.geometric.min_inliers = 40;
+  LoopDetector det(vocabulary(), o);
+  std::vector<double> x;  // every entry's position
+  double stamp = 1.0;
+  int loops = 0;
+  *false_loops = 0;
+  for (int lap = 0; lap < 5; ++lap) {
+    for (int j = 0; j < n; ++j) {
+      const bool exact = lap == 4 || (lap > 0 && j % 3 == lap - 1);
+      x.push_back(j + (exact ? 0.0 : 0.45));
+      const LoopResult r = det.process(testing::observeCorridor(c, x.back(), stamp++, rng, 2, 0.5));
+      if (lap < 4 || r.status != LoopStatus::kLoopDetected) continue;
+      ++loops;
+      if (std::fabs(x[r.match_id] - x.back()) > 1.0) ++*false_loops;
+    }
+  }
+  return loops;
+}
+
+TEST(LoopDetector, LinkedPlacesCarryTheChainAcrossLaps) {
+  int false_without = 0, false_with = 0;
+  const int without = lastLapLoops(false, &false_without);
+  const int with = lastLapLoops(true, &false_with);
+  EXPECT_EQ(false_without, 0);
+  EXPECT_EQ(false_with, 0);
+  // 9 of lap 4's 30 queries are loops without the links, 24 with them.
+  EXPECT_GE(with, without + 10) << "without links " << without << ", with " << with;
 }
 
 TEST(LoopDetector, RecentExclusionInMetresFollowsTheOdometer) {
