@@ -175,8 +175,14 @@ GroupVector Database::rawGroups(EntryId id) const {
   return out;
 }
 
-EntryId Database::add(DatabaseEntry e, const GroupVector& raw_groups) {
+EntryId Database::add(DatabaseEntry e, const GroupVector& raw_groups,
+                      const std::vector<double>& distribution) {
   const std::size_t n = e.points.size();
+  if (!distribution.empty() && distribution.size() != static_cast<std::size_t>(fan_bins_)) {
+    throw std::invalid_argument("Database::add: distribution vector of " +
+                                std::to_string(distribution.size()) + " bins, the database has " +
+                                std::to_string(fan_bins_));
+  }
   if (e.descriptors.size() != n || e.words.size() != n) {
     throw std::invalid_argument("Database::add: keypoints (" + std::to_string(n) +
                                 "), descriptors (" + std::to_string(e.descriptors.size()) +
@@ -230,9 +236,13 @@ EntryId Database::add(DatabaseEntry e, const GroupVector& raw_groups) {
   // so both are applied at query time.
   double group_sum = 0.0;
   for (const auto& g : raw_groups) group_sum += g.second;
-  const std::vector<double> dist =
-      distributionVector(e.points.unpack(), e.centre_x, e.centre_y, fan_bins_);
-  distributions_.insert(distributions_.end(), dist.begin(), dist.end());
+  if (!distribution.empty()) {
+    distributions_.insert(distributions_.end(), distribution.begin(), distribution.end());
+  } else {
+    const std::vector<double> dist =
+        distributionVector(e.points.unpack(), e.centre_x, e.centre_y, fan_bins_);
+    distributions_.insert(distributions_.end(), dist.begin(), dist.end());
+  }
   odometers_.push_back(!std::isnan(e.odometer) ? e.odometer
                        : odometers_.empty()     ? -std::numeric_limits<double>::infinity()
                                                 : odometers_.back());

@@ -197,10 +197,11 @@ LoopResult LoopDetector::process(const KeyframeInput& keyframe) {
   } catch (...) {
     // The raw groups are already in the table: add the entry anyway so that
     // the table, the indexes and the keyframe ids stay consistent.
-    database_->add(std::move(entry), raw_groups);
+    database_->add(std::move(entry), raw_groups, q.distribution);
     throw;
   }
-  database_->add(std::move(entry), raw_groups);
+  // The query's distribution vector is the entry's: not computed twice.
+  database_->add(std::move(entry), raw_groups, q.distribution);
   r.timings.total_ms = msBetween(t0, Clock::now());
   return r;
 }

@@ -286,6 +286,34 @@ TEST(Database, FanBinChangeRebuildsDistributionVectors) {
   EXPECT_THROW(db.setFanBins(0), std::invalid_argument);
 }
 
+// add() takes the query's distribution vector instead of computing it from
+// the positions again; a vector of another size than the fan is refused.
+TEST(Database, AddKeepsAGivenDistributionVector) {
+  Database db(vocabulary(), ScoringType::kL1, 2, 4);
+  DatabaseEntry e;
+  e.stamp = 1;
+  // Hand-worked with the fan centre (0, 0) and m = 4: angles 45, 135 and 225
+  // degrees fall into bins 0, 1 and 2: counts (1, 1, 1, 0), L2-normalised
+  // to 1/sqrt(3) each.
+  e.points = PackedPoints({{1, 1}, {-1, 1}, {-1, -1}}, 0.f);
+  e.descriptors.resize(3);
+  e.words = PackedWords({0, 1, 2});
+  e.centre_x = 0;
+  e.centre_y = 0;
+  db.add(e, {});
+  const std::vector<double> computed = db.distribution(0);
+  ASSERT_EQ(computed.size(), 4u);
+  for (int k = 0; k < 3; ++k) EXPECT_NEAR(computed[k], 1.0 / std::sqrt(3.0), 1e-15);
+  EXPECT_EQ(computed[3], 0.0);
+  const std::vector<double> given{0.5, 0.25, 0.25, 0.0};
+  e.stamp = 2;
+  db.add(e, {}, given);
+  EXPECT_EQ(db.distribution(1), given);
+  e.stamp = 3;
+  EXPECT_THROW(db.add(e, {}, std::vector<double>(5, 0.2)), std::invalid_argument);
+  EXPECT_EQ(db.size(), 2u);
+}
+
 TEST(Database, DirectIndexMatchesTheVocabularyAtEveryLevel) {
   Database db(vocabulary(), ScoringType::kL1, 2, 8);
   BowVector qbow;

@@ -162,7 +162,13 @@ class Database {
   /// and on a raw group that is not one of the entry's words or whose weight
   /// is not a whole count in [1, 2^24); std::length_error when the database
   /// already holds kMaxEntries.
-  EntryId add(DatabaseEntry entry, const GroupVector& raw_groups);
+  /// `distribution`: the entry's distribution vector for the current
+  /// fanBins() when the caller has it already (makeQuery's, for the keyframe
+  /// just queried: the same positions give the same vector); empty: it is
+  /// computed here from the entry's positions. A non-empty vector of another
+  /// size is refused (std::invalid_argument).
+  EntryId add(DatabaseEntry entry, const GroupVector& raw_groups,
+              const std::vector<double>& distribution = std::vector<double>());
 
   /// Entry `id`'s BoW vector normalised for scoring(): the vocabulary's
   /// transform of its words (Vocabulary::bowFromWords), normalised; the
