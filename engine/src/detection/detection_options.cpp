@@ -41,6 +41,7 @@ void GeometricVerificationOptions::validate() const {
   // The 8-point algorithm needs 8 correspondences; fewer inliers prove nothing.
   requireIntAtLeast("geometric.min_inliers", min_inliers, 8);
   requireIntAtLeast("geometric.candidates", candidates, 1);
+  requireIntAtLeast("geometric.rerank_ransacs", rerank_ransacs, 0);
 }
 
 void MetricTranslationOptions::validate() const {

@@ -242,6 +242,10 @@ struct IslandChoice {
   std::size_t chosen = 0;         ///< index into the islands
   GeometricVerificationResult g;  ///< of its best entry, when verified
   bool verified = false;
+  /// Its best entry's correspondences when the re-ranking chose it by them
+  /// without RANSAC (GeometricVerificationOptions::rerank_ransacs 0).
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
+  bool have_pairs = false;
   double rerank_ms = 0;
 };
 
@@ -252,7 +256,9 @@ struct IslandChoice {
 // many, or with 1 candidate, it is the best-scored island, verified after the
 // temporal verification (the paper). The correspondences are cheap; RANSAC
 // is the cost, and in an aliased pipe most queries have no candidate that
-// could pass (up to 10 RANSACs of ~9 ms each for nothing).
+// could pass: RANSAC runs on at most `rerank_ransacs` candidates, those with
+// the most correspondences (0: the one with the most correspondences is
+// chosen, and verified only if it passes the temporal verification).
 IslandChoice chooseIsland(const std::vector<Island>& islands,
                           const GeometricVerificationOptions& go, Verifier* verifier) {
   IslandChoice c;
@@ -276,11 +282,23 @@ IslandChoice chooseIsland(const std::vector<Island>& islands,
   std::stable_sort(order.begin(), order.end(), [&pairs](std::size_t a, std::size_t b) {
     return pairs[a].size() > pairs[b].size();
   });
+  if (go.rerank_ransacs == 0) {
+    if (static_cast<int>(pairs[order[0]].size()) >= go.min_inliers) {
+      c.chosen = order[0];
+      c.pairs = std::move(pairs[order[0]]);
+      c.have_pairs = true;
+    }
+    c.rerank_ms = msBetween(t_rerank, Clock::now());
+    return c;
+  }
   bool have = false;
+  int ransacs = 0;
   for (const std::size_t i : order) {
     const int n = static_cast<int>(pairs[i].size());
     if (n < go.min_inliers || (have && n < c.g.inliers)) break;
     if (have && n == c.g.inliers && i > c.chosen) continue;
+    if (ransacs == go.rerank_ransacs) break;
+    ++ransacs;
     // No intrinsics: the relative pose (an essential matrix) is only worth
     // its cost for the loop, once it is accepted (verifyMatch).
     GeometricVerificationResult gi = verifyCorrespondences(
@@ -354,7 +372,10 @@ void verifyMatch(const QueryContext& ctx, const Island& island, IslandChoice* ch
     return;
   }
   GeometricVerificationResult& g = choice->g;
-  if (!choice->verified) {
+  if (choice->have_pairs) {
+    g = verifyCorrespondences(choice->pairs, verifier->query(),
+                              verifier->features(island.best_entry), verifier->intrinsics(), go);
+  } else if (!choice->verified) {
     g = verifyGeometry(verifier->query(), verifier->match(island.best_entry),
                        verifier->intrinsics(), go);
   }

@@ -93,6 +93,11 @@ void addDetectionRows(std::vector<Row>* rows) {
                          "Geometric re-ranking: verify the best entries of this many top islands "
                          "and keep the one with the most inliers among those with at least "
                          "min_inliers correspondences (1 = the paper)"));
+  rows->push_back(intRow("rerank_ransacs", det, "geometric.rerank_ransacs", 0, 100, false,
+                         BOWG_FIELD(int, detector.geometric.rerank_ransacs),
+                         "Geometric re-ranking: at most this many RANSACs, on the candidates "
+                         "with the most correspondences (0 = rank by correspondences, RANSAC "
+                         "only the island that passes the temporal verification)"));
   // --- Metric translation of a loop (odometry between the match and a neighbour).
   rows->push_back(boolRow("metric_translation", det, "metric.enabled", false,
                           BOWG_FIELD(bool, detector.metric.enabled),

@@ -39,7 +39,7 @@ using testing::vocabulary;
 // word score beats the true place while no epipolar geometry explains it.
 // Only the best-scored island verified (the paper), the query yields no loop;
 // with geometric re-ranking the true place wins.
-LoopResult queryBehindALookAlike(int candidates, int min_inliers = 40) {
+LoopResult queryBehindALookAlike(int candidates, int min_inliers = 40, int rerank_ransacs = 100) {
   const testing::Corridor c = testing::makeCorridor(70, 50, 5);
   std::mt19937_64 rng(11);
   LoopDetectorOptions o = defaultOptions();
@@ -50,6 +50,7 @@ LoopResult queryBehindALookAlike(int candidates, int min_inliers = 40) {
   o.islands.recent_exclusion = 5;
   o.islands.min_score = 0.0;
   o.geometric.candidates = candidates;
+  o.geometric.rerank_ransacs = rerank_ransacs;
   // ~400 random correspondences give RANSAC ~15 chance inliers (one line
   // constraint per point); the true place gives hundreds.
   o.geometric.min_inliers = min_inliers;
@@ -107,6 +108,32 @@ TEST(LoopDetector, ReRankingOnlyWeighsCandidatesThatCouldBeLoops) {
   EXPECT_EQ(r.island_first, 40u);
   EXPECT_EQ(r.status, LoopStatus::kTooFewInliers) << toString(r.status);
   EXPECT_LT(r.correspondences, 2000);
+}
+
+// The look-alike shares every descriptor of the query, so it has the most
+// correspondences of all candidates, but only chance inliers: ranked by
+// correspondences alone (rerank_ransacs 0) or with one RANSAC (spent on the
+// look-alike) the re-ranking keeps it and the query has no loop; the
+// second RANSAC finds the true place.
+TEST(LoopDetector, ReRankingRansacsGoToTheMostCorrespondencesFirst) {
+  const LoopResult by_correspondences = queryBehindALookAlike(5, 40, 0);
+  EXPECT_EQ(by_correspondences.island_first, 40u);
+  // Verified once it passed the temporal check (k = 0 here): chance inliers.
+  EXPECT_EQ(by_correspondences.status, LoopStatus::kTooFewInliers)
+      << toString(by_correspondences.status);
+  EXPECT_GT(by_correspondences.correspondences, 300);
+  EXPECT_LT(by_correspondences.inliers, 40);
+
+  const LoopResult one = queryBehindALookAlike(5, 40, 1);
+  EXPECT_EQ(one.island_first, 40u);
+  EXPECT_EQ(one.status, LoopStatus::kTooFewInliers) << toString(one.status);
+  EXPECT_EQ(one.correspondences, by_correspondences.correspondences);
+
+  const LoopResult two = queryBehindALookAlike(5, 40, 2);
+  ASSERT_EQ(two.status, LoopStatus::kLoopDetected) << toString(two.status);
+  EXPECT_GE(two.match_id, 9u);
+  EXPECT_LE(two.match_id, 11u);
+  EXPECT_GE(two.inliers, 40);
 }
 
 // Keyframes every 0.5 m forward (x = 0.5 i), then back over the same wall:

@@ -204,6 +204,8 @@ TEST(Options, Geometric) {
                  "geometric.min_inliers");
   expectRejected([](LoopDetectorOptions& o) { o.geometric.candidates = 0; },
                  "geometric.candidates");
+  expectRejected([](LoopDetectorOptions& o) { o.geometric.rerank_ransacs = -1; },
+                 "geometric.rerank_ransacs");
   expectRejected([](LoopDetectorOptions& o) { o.temporal_verification.hypotheses = 0; },
                  "temporal_verification.hypotheses");
   expectRejected([](LoopDetectorOptions& o) { o.similarity.normaliser_distance_m = -0.1; },
@@ -212,6 +214,7 @@ TEST(Options, Geometric) {
                  "temporal_verification.min_step_m");
   expectAccepted([](LoopDetectorOptions& o) {
     o.geometric.candidates = 5;
+    o.geometric.rerank_ransacs = 0;
     o.geometric.min_inliers = 8;
     o.geometric.max_neighbour_ratio = 1.0;
     o.geometric.direct_index_level = 1;
