@@ -66,7 +66,8 @@ for name in "${names[@]}"; do
       --build "$ws/peer" --out "$out/runs/$name/peer_$i" >"$out/runs_$name.peer_$i.log" 2>&1 ||
       { tail -n 20 "$out/runs_$name.peer_$i.log" >&2; exit 1; }
     "$tools/bowg_evaluate" --images "$seq_dir" --rate "$rate" --gt "$seq_dir/ground_truth.txt" \
-      --odometry "$seq_dir/poses.csv" --vocabulary "$vocabulary" --config "$config" \
+      --odometry "$seq_dir/poses.csv" --odometry-poses "$seq_dir/odometry.csv" \
+      --vocabulary "$vocabulary" --config "$config" \
       --thresholds 1.2 --jobs 1 --quiet --output "$out/runs/$name/ours_$i" >/dev/null
     pairs+=("$name:$out/runs/$name/peer_$i:$out/runs/$name/ours_$i")
   done

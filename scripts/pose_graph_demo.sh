@@ -44,7 +44,8 @@ for i in "${!argv[@]}"; do [ "${argv[$i]}" != --rate ] || rate="${argv[$((i + 1)
 # get a metric translation.
 echo "== detect (bowg_evaluate, config/pipe.yaml)"
 "$tools/bowg_evaluate" --images "$out/sequence" --rate "$rate" --gt "$out/ground_truth.txt" \
-  --odometry "$out/sequence/odometry.csv" --intrinsics "$out/sequence/intrinsics.csv" \
+  --odometry "$out/sequence/odometry.csv" --odometry-poses "$out/sequence/odometry.csv" \
+  --intrinsics "$out/sequence/intrinsics.csv" \
   --vocabulary "$repo/data/default_vocabulary.bowgvoc" --config "$repo/config/pipe.yaml" \
   --rows configured --quiet --output "$out/detection" \
   >"$out/detection.log" 2>&1 || { tail -n 20 "$out/detection.log" >&2; exit 1; }

@@ -79,8 +79,11 @@ while IFS= read -r line; do
     fi
     # The generator's odometer: the recent-exclusion window in metres where
     # the configuration sets recent_exclusion_m (a pipe robot's tether or
-    # wheel odometry).
-    images="$seq_dir"; gt=(--gt "$seq_dir/ground_truth.txt" --odometry "$seq_dir/poses.csv")
+    # wheel odometry); its drifting dead-reckoned positions for the odometry
+    # gate (odometry_gate_m).
+    images="$seq_dir"
+    gt=(--gt "$seq_dir/ground_truth.txt" --odometry "$seq_dir/poses.csv"
+      --odometry-poses "$seq_dir/odometry.csv")
   else
     read -r folder gt_spec <<<"$args"
     if [ ! -d "$shared/$folder" ]; then echo "-- $name: skipped, $shared/$folder is absent"; continue; fi

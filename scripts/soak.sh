@@ -34,7 +34,7 @@ if [ ! -s "$seq/ground_truth.txt" ] || [ "$(cat "$seq/generator.stamp" 2>/dev/nu
 fi
 echo "== bowg_evaluate (config/pipe.yaml, one run)"
 "$tools/bowg_evaluate" --images "$seq" --rate 5 --gt "$seq/ground_truth.txt" \
-  --odometry "$seq/poses.csv" --vocabulary "$repo/data/default_vocabulary.bowgvoc" \
+  --odometry "$seq/poses.csv" --odometry-poses "$seq/odometry.csv" --vocabulary "$repo/data/default_vocabulary.bowgvoc" \
   --config "$repo/config/pipe.yaml" --rows configured --quiet --output "$out/evaluation" \
   >"$out/evaluation.log" 2>&1 || { tail -n 20 "$out/evaluation.log" >&2; exit 1; }
 sed -n '/^row /,/^$/p; /^detector time vs/,/^$/p; /^memory growth/,/^$/p' \

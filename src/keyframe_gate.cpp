@@ -105,6 +105,16 @@ double KeyframeGate::odometer() const {
   return has_position_ ? odometer_ : std::numeric_limits<double>::quiet_NaN();
 }
 
+bowg::OdometryPosition KeyframeGate::position() const {
+  bowg::OdometryPosition p;
+  if (has_position_) {
+    p.x = last_x_;
+    p.y = last_y_;
+    p.z = last_z_;
+  }
+  return p;
+}
+
 void KeyframeGate::setOdometer(double base) {
   if (!std::isfinite(base) || base < 0.0) {
     throw std::invalid_argument("KeyframeGate::setOdometer: base must be finite and >= 0");

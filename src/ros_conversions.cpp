@@ -180,6 +180,7 @@ KeyframeStatus toKeyframeStatus(const bowg::LoopResult& r, const std_msgs::Heade
   s.num_features = static_cast<std::uint32_t>(num_features);
   s.database_size = static_cast<std::uint32_t>(database_size);
   s.candidates_scored = static_cast<std::uint32_t>(r.candidates_scored);
+  s.candidates_gated = static_cast<std::uint32_t>(r.candidates_gated);
   s.has_candidate = r.has_candidate;
   if (r.has_candidate) {
     s.best_id = r.best.entry;

@@ -82,12 +82,24 @@ TEST(KeyframeGate, TimeAndDistanceMustBothPass) {
   EXPECT_EQ(gate.check(2.5), GateDecision::kTooClose);  // late enough, not far enough
 }
 
+TEST(KeyframeGate, PositionIsTheLastFiniteOdometryPosition) {
+  KeyframeGate gate;
+  EXPECT_TRUE(gate.position().unknown());  // no odometry yet
+  gate.addPosition(1.5, -2, 0.25);
+  gate.addPosition(NAN, 7, 7);  // ignored
+  const bowg::OdometryPosition p = gate.position();
+  EXPECT_EQ(p.x, 1.5);
+  EXPECT_EQ(p.y, -2.0);
+  EXPECT_EQ(p.z, 0.25);
+}
+
 TEST(KeyframeGate, ResetForgetsFramesAndPositions) {
   KeyframeGate gate;
   gate.addPosition(0, 0, 0);
   EXPECT_EQ(gate.check(10.0), GateDecision::kAccept);
   gate.reset();
   EXPECT_FALSE(gate.hasOdometry());
+  EXPECT_TRUE(gate.position().unknown());
   EXPECT_EQ(gate.check(1.0), GateDecision::kAccept);  // older stamp accepted after a reset
 }
 

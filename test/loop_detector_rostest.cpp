@@ -16,6 +16,43 @@
 namespace bowg_ros {
 namespace {
 
+// The odometry gate end to end: the same revisit with odometry (~odom) that
+// puts the robot back at the first pass's places gives loops; with
+// odometry that puts it 50 m away (where no earlier keyframe is) it gives
+// none, and the keyframe statuses count the candidates the gate removed.
+std::vector<cv::Point3d> revisitPositions(double y_of_revisit) {
+  std::vector<cv::Point3d> p;
+  for (int i = 0; i < kForward; ++i) p.emplace_back(0.1 * i, 0.0, 0.0);
+  for (int j = 0; j < kRevisit; ++j) p.emplace_back(0.1 * j, y_of_revisit, 0.0);
+  return p;
+}
+
+TEST(LoopDetectorNodelet, OdometryGateKeepsLoopsWhereTheOdometryAgrees) {
+  const std::map<std::string, XmlRpc::XmlRpcValue> params{{"odometry_gate_m", 0.5},
+                                                          {"odometry_gate_drift", 0.0}};
+  const cv::Mat world = test::makeWorld(kForward * kStep + kViewWidth + kOffset, kViewHeight, 1);
+  std::size_t agreeing_loops = 0;
+  {
+    Detector d("/gate_agrees", params);
+    ASSERT_TRUE(d.loaded());
+    ASSERT_TRUE(d.run(world, test::trajectory(kForward, kRevisit, kStep, kOffset), 1000.0,
+                      revisitBrightness(), 25.0, revisitPositions(0.0)));
+    ros::WallDuration(0.3).sleep();
+    agreeing_loops = d.loops().size();
+    EXPECT_GE(agreeing_loops, 5u) << "too few loops where the odometry agrees";
+    expectRightIds(d.loops());
+  }
+  Detector d("/gate_disagrees", params);
+  ASSERT_TRUE(d.loaded());
+  ASSERT_TRUE(d.run(world, test::trajectory(kForward, kRevisit, kStep, kOffset), 1000.0,
+                    revisitBrightness(), 25.0, revisitPositions(50.0)));
+  ros::WallDuration(0.3).sleep();
+  EXPECT_TRUE(d.loops().empty()) << d.loops().size() << " loops 50 m from the odometry";
+  std::uint64_t gated = 0;
+  for (const KeyframeStatus& s : d.statuses()) gated += s.candidates_gated;
+  EXPECT_GT(gated, 0u);
+}
+
 TEST(LoopDetectorNodelet, RevisitGivesLoopClosuresWithTheRightIds) {
   Detector d("/revisit", {});
   ASSERT_TRUE(d.loaded());

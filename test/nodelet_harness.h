@@ -8,6 +8,7 @@
 #include <diagnostic_msgs/DiagnosticArray.h>
 #include <dynamic_reconfigure/client.h>
 #include <gtest/gtest.h>
+#include <nav_msgs/Odometry.h>
 #include <nodelet/NodeletLoad.h>
 #include <nodelet/NodeletUnload.h>
 #include <ros/ros.h>
@@ -72,6 +73,7 @@ class Detector {
     for (auto& p : params) ros::param::set(name_ + "/" + p.first, p.second);
     image_pub_ = nh_.advertise<sensor_msgs::Image>(ns + "/image", 200);
     info_pub_ = nh_.advertise<sensor_msgs::CameraInfo>(ns + "/camera_info", 200);
+    odom_pub_ = nh_.advertise<nav_msgs::Odometry>(ns + "/odom", 200);
     loop_sub_ = nh_.subscribe(ns + "/loop_closure", 200, &Detector::onLoop, this);
     status_sub_ = nh_.subscribe(name_ + "/keyframe_status", 1000, &Detector::onStatus, this);
 
@@ -84,7 +86,8 @@ class Detector {
     const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(20);
     while (loaded_ && ros::WallTime::now() < end &&
            (image_pub_.getNumSubscribers() == 0 || info_pub_.getNumSubscribers() == 0 ||
-            status_sub_.getNumPublishers() == 0 || loop_sub_.getNumPublishers() == 0)) {
+            odom_pub_.getNumSubscribers() == 0 || status_sub_.getNumPublishers() == 0 ||
+            loop_sub_.getNumPublishers() == 0)) {
       ros::WallDuration(0.05).sleep();
     }
   }
@@ -116,13 +119,30 @@ class Detector {
     ros::WallDuration(0.03).sleep();
   }
 
+  /// The robot's odometry position (nav_msgs/Odometry on ns/odom), given
+  /// time to arrive before the next image.
+  void publishOdometry(const cv::Point3d& p, double stamp) {
+    nav_msgs::Odometry o;
+    o.header.stamp = ros::Time(stamp);
+    o.header.frame_id = "odom";
+    o.pose.pose.position.x = p.x;
+    o.pose.pose.position.y = p.y;
+    o.pose.pose.position.z = p.z;
+    o.pose.pose.orientation.w = 1.0;
+    odom_pub_.publish(o);
+    ros::WallDuration(0.03).sleep();
+  }
+
   /// Publishes the views of `xs` over `world` at ~rate_hz, stamps
-  /// first_stamp + 0.1 s per frame, then waits for their keyframe statuses.
+  /// first_stamp + 0.1 s per frame (each after its odometry position when
+  /// `positions` are given), then waits for their keyframe statuses.
   bool run(const cv::Mat& world, const std::vector<int>& xs, double first_stamp,
-           const std::vector<int>& brightness = {}, double rate_hz = 25.0) {
+           const std::vector<int>& brightness = {}, double rate_hz = 25.0,
+           const std::vector<cv::Point3d>& positions = {}) {
     const std::size_t before = statusCount();
     ros::WallRate rate(rate_hz);
     for (std::size_t i = 0; i < xs.size(); ++i) {
+      if (!positions.empty()) publishOdometry(positions[i], first_stamp + 0.1 * i);
       publish(test::viewAt(world, xs[i], kViewWidth, brightness.empty() ? 0 : brightness[i]),
               first_stamp + 0.1 * i);
       rate.sleep();
@@ -167,7 +187,7 @@ class Detector {
   ros::NodeHandle nh_;
   std::string ns_, name_;
   bool loaded_ = false;
-  ros::Publisher image_pub_, info_pub_;
+  ros::Publisher image_pub_, info_pub_, odom_pub_;
   ros::Subscriber loop_sub_, status_sub_;
   std::mutex mutex_;
   std::vector<KeyframeStatus> statuses_;

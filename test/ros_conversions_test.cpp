@@ -238,6 +238,7 @@ TEST(RosConversions, KeyframeStatusEchoesResultAndOptions) {
   bowg::LoopResult r = aLoop();
   r.timings.total_ms = 4.0;
   r.timings.query_ms = 1.5;
+  r.candidates_gated = 6;
   r.word_normaliser = 0.05;
   r.word_divisor = 0.08;  // floored
   r.group_divisor = 0.011;
@@ -252,6 +253,7 @@ TEST(RosConversions, KeyframeStatusEchoesResultAndOptions) {
   EXPECT_EQ(s.status_text, bowg::toString(bowg::LoopStatus::kLoopDetected));
   EXPECT_EQ(s.num_features, 321u);
   EXPECT_EQ(s.database_size, 43u);
+  EXPECT_EQ(s.candidates_gated, 6u);
   EXPECT_EQ(s.best_id, 7u);
   EXPECT_EQ(s.best_score_sim, 0.85);
   EXPECT_EQ(s.match_id, 7u);

@@ -16,6 +16,8 @@
 
 #include <string>
 
+#include "bowg/core/types.h"
+
 namespace bowg_ros {
 
 struct KeyframeGateOptions {
@@ -76,6 +78,9 @@ class KeyframeGate {
   /// whose keyframes were driven up to `base`). Finite and >= 0.
   void setOdometer(double base);
   bool hasOdometry() const { return has_position_; }
+  /// The last odometry position (the keyframes' position for the odometry
+  /// gate, bowg::KeyframeInput::position); unknown before the first one.
+  bowg::OdometryPosition position() const;
   const KeyframeGateOptions& options() const { return options_; }
   void setOptions(const KeyframeGateOptions& options);
 

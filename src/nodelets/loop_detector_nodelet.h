@@ -94,6 +94,8 @@ struct Frame {
   KeyframeFeatures::ConstPtr features;              // upstream features
   /// Metres driven when the frame passed the gate (NaN without odometry).
   double odometer = std::numeric_limits<double>::quiet_NaN();
+  /// The odometry position then (the odometry gate; unknown without odometry).
+  bowg::OdometryPosition position;
   /// The gate's run (KeyframeGate::epoch()): a frame of a newer run than the
   /// worker's starts a new database (time jumped back, ~reset_on_time_jump).
   unsigned epoch = 0;

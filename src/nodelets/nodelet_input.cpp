@@ -13,6 +13,7 @@ bool LoopDetectorNodelet::offer(Frame frame) {
     std::lock_guard<std::mutex> lock(gate_mutex_);
     d = gate_.check(stamp);
     frame.odometer = gate_.odometer();
+    frame.position = gate_.position();
     frame.epoch = gate_.epoch();
   }
   {

@@ -38,6 +38,7 @@ void LoopDetectorNodelet::processFrame(const Frame& frame) {
   bowg::KeyframeInput input;
   input.stamp = frame.header.stamp.toSec();
   input.odometer = frame.odometer;
+  input.position = frame.position;
   {
     std::lock_guard<std::mutex> lock(intrinsics_mutex_);
     input.intrinsics = intrinsics_;

@@ -14,6 +14,8 @@ void IslandOptions::validate() const {
   requireFiniteAtLeast("islands.recent_exclusion_m", recent_exclusion_m, 0.0);
   requireIntAtLeast("islands.max_intra_island_gap", max_intra_island_gap, 0);
   requireIntAtLeast("islands.min_island_size", min_island_size, 1);
+  requireFiniteAtLeast("islands.odometry_gate_m", odometry_gate_m, 0.0);
+  requireFiniteAtLeast("islands.odometry_gate_drift", odometry_gate_drift, 0.0);
 }
 
 void TemporalVerificationOptions::validate() const {

@@ -89,6 +89,14 @@ void saveDetectorFile(const std::string& path, const Database& database,
   const std::vector<EntryId> parents = state.place_links.parents(database.size());
   w.u32(static_cast<std::uint32_t>(parents.size()));
   for (EntryId p : parents) w.u32(p);
+  w.u32(state.odometry_run);
+  w.u32(static_cast<std::uint32_t>(database.size()));
+  for (const DatabaseEntry& e : database.entries()) {
+    w.u32(e.odometry_run);
+    w.f64(e.position.x);
+    w.f64(e.position.y);
+    w.f64(e.position.z);
+  }
 
   std::string& bytes = w.str();
   const std::uint64_t payload = bytes.size() - payload_start;

@@ -29,10 +29,13 @@ constexpr char kMagic[8] = {'B', 'O', 'W', 'G', 'D', 'B', 0, 0};
 // were; older files load with every position kept as read (same values, more
 // memory for multi-scale keypoints). Version 6 appends the place links
 // (u32 count = entries, then each entry's u32 parent in PlaceLinks, never a
-// larger id); older files load with none. A keypoint's size, angle, response and
+// larger id); older files load with none. Version 7 appends the odometry
+// run new entries belong to (u32), then each entry's run and odometry
+// position (u32 count = entries, then u32 run and f64 x, y, z each, NaN =
+// unknown); older files load with unknown positions. A keypoint's size, angle, response and
 // octave are read and checked but not kept (the database keeps positions
 // only); they are written as 0, -1, 0, 0.
-constexpr std::uint32_t kVersion = 6;
+constexpr std::uint32_t kVersion = 7;
 constexpr std::uint32_t kOldestVersion = 1;
 // magic + version + fingerprint + payload size | ... | checksum
 constexpr std::size_t kHeaderBytes = 8 + 4 + 8 + 8;

@@ -290,6 +290,33 @@ void readPlaceLinks(Reader* p, std::size_t n, DetectorState* state) {
   state->place_links.restore(std::move(parents));
 }
 
+// Version 7: the odometry run new entries belong to, then each entry's run
+// and odometry position (all finite or all NaN; runs never after the
+// current one).
+void readOdometryPositions(Reader* p, std::vector<DatabaseEntry>* entries, DetectorState* state) {
+  state->odometry_run = p->u32("odometry run");
+  if (p->count(4 + 3 * 8, "odometry positions") != entries->size()) {
+    p->fail("odometry position count differs from the entry count");
+  }
+  for (std::size_t i = 0; i < entries->size(); ++i) {
+    DatabaseEntry& e = (*entries)[i];
+    e.odometry_run = p->u32("odometry run");
+    e.position.x = p->f64("odometry position");
+    e.position.y = p->f64("odometry position");
+    e.position.z = p->f64("odometry position");
+    if (e.odometry_run > state->odometry_run) {
+      p->fail("entry " + std::to_string(i) + " belongs to odometry run " +
+              std::to_string(e.odometry_run) + ", after the current run " +
+              std::to_string(state->odometry_run));
+    }
+    if (!e.position.known() && !e.position.unknown()) {
+      p->fail("entry " + std::to_string(i) +
+              " has an odometry position that is neither all "
+              "finite nor all NaN");
+    }
+  }
+}
+
 // The chain's islands must lie inside the database; their odometers come
 // from the entries.
 void restoreChain(Reader* p, const Database& db, StoredChain* chain, DetectorState* state) {
@@ -344,6 +371,7 @@ std::unique_ptr<Database> loadDetectorFile(const std::string& path,
     if (version >= 4) readHypotheses(&p, n, &chain);
     if (version >= 5) readScaleFactors(&p, &entries);
     if (version >= 6) readPlaceLinks(&p, n, state);
+    if (version >= 7) readOdometryPositions(&p, &entries, state);
     for (std::size_t i = 0; i < n; ++i) {
       db->addToGroupTable(raw_groups[i]);
       db->add(std::move(entries[i]), raw_groups[i]);

@@ -84,6 +84,12 @@ void checkKeyframe(const KeyframeInput& keyframe, const Database& database) {
                                   std::to_string(last) + ")");
     }
   }
+  const OdometryPosition& p = keyframe.position;
+  if (!p.known() && !p.unknown()) {
+    throw std::invalid_argument("LoopDetector::process: keyframe.position (" + std::to_string(p.x) +
+                                ", " + std::to_string(p.y) + ", " + std::to_string(p.z) +
+                                ") must be all finite or all NaN (unknown)");
+  }
   if (!database.empty() && !(keyframe.stamp > database.entries().back().stamp)) {
     throw std::invalid_argument("LoopDetector::process: keyframe.stamp " +
                                 std::to_string(keyframe.stamp) + " does not increase (last stamp " +
@@ -129,6 +135,9 @@ void LoopDetector::load(const std::string& path) {
                        options_.distribution.fan_bins, &loaded_state);
   std::unique_ptr<State> new_state(new State);
   static_cast<DetectorState&>(*new_state) = std::move(loaded_state);
+  // The loaded entries' odometry positions are in the frame of the run that
+  // saved them; the keyframes that follow come from a new one.
+  ++new_state->odometry_run;
   database_.swap(loaded);
   state_.swap(new_state);
   last_candidates_.clear();
@@ -156,6 +165,8 @@ LoopResult LoopDetector::process(const KeyframeInput& keyframe) {
   entry.descriptors = f.descriptors;
   entry.intrinsics = keyframe.intrinsics;
   entry.odometer = keyframe.odometer;
+  entry.position = keyframe.position;
+  entry.odometry_run = state_->odometry_run;
   fanCentre(keyframe, &entry.centre_x, &entry.centre_y);
 
   if (f.empty()) {

@@ -8,6 +8,7 @@
 
 #include "bowg/detection/geometric_verification.h"
 #include "bowg/detection/islands.h"
+#include "bowg/detection/odometry_gate.h"
 #include "bowg/scoring/similarity.h"
 #include "bowg/scoring/temporal_alignment.h"
 
@@ -436,6 +437,18 @@ void runQuery(const QueryContext& ctx, const DatabaseQuery& q, const DatabaseEnt
       ctx.candidates.begin(), ctx.candidates.end(),
       [](const CandidateScores& a, const CandidateScores& b) { return a.eta < b.eta; });
 
+  // The odometry gate: candidates above the threshold where the odometry
+  // says the robot cannot be are not candidates (the temporal memory above
+  // keeps their scores: the gate judges places, not the score's history).
+  if (options.islands.odometry_gate_m > 0.0) {
+    const auto outside = [&](const std::pair<EntryId, double>& c) {
+      return c.second >= options.islands.min_score &&
+             !withinOdometryGate(query_entry, ctx.database.entry(c.first), options.islands);
+    };
+    const auto end = std::remove_if(etas.begin(), etas.end(), outside);
+    r->candidates_gated = static_cast<std::size_t>(etas.end() - end);
+    etas.erase(end, etas.end());
+  }
   // Islands (Sec. III-D, eq. 10) and temporal verification.
   std::vector<Island> islands = computeIslands(etas, options.islands);
   for (Island& i : islands) {

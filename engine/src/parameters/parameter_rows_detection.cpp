@@ -30,6 +30,15 @@ void addDetectionRows(std::vector<Row>* rows) {
   rows->push_back(intRow("min_island_size", det, "islands.min_island_size", 1, 10000, false,
                          BOWG_FIELD(int, detector.islands.min_island_size),
                          "Islands with fewer members are ignored"));
+  rows->push_back(doubleRow("odometry_gate_m", det, "islands.odometry_gate_m", 0.0, 1e6, false,
+                            BOWG_FIELD(double, detector.islands.odometry_gate_m),
+                            "Odometry gate: with odometry positions, entries farther from the "
+                            "query than this plus odometry_gate_drift times the metres driven "
+                            "between them are no candidates (0 = no gate)"));
+  rows->push_back(doubleRow("odometry_gate_drift", det, "islands.odometry_gate_drift", 0.0, 10.0,
+                            false, BOWG_FIELD(double, detector.islands.odometry_gate_drift),
+                            "Odometry gate: metres of dead-reckoning error allowed per metre "
+                            "driven"));
   // --- Temporal verification.
   rows->push_back(intRow("temporal_k", det, "temporal_verification.k", 0, 100, true,
                          BOWG_FIELD(int, detector.temporal_verification.k),

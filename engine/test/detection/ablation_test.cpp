@@ -65,7 +65,9 @@ TEST(Ablation, PaperRowIsTheFullMethodWithoutTheExtensions) {
   base.temporal_score.alignment_window_m = 0.05;
   base.temporal_verification.max_island_distance_m = 0.1;
   base.islands.recent_exclusion_m = 3.0;
+  base.islands.odometry_gate_m = 0.5;
   const LoopDetectorOptions o = LoopDetectorOptions::ablation("paper", base);
+  EXPECT_EQ(o.islands.odometry_gate_m, 0.0);
   EXPECT_EQ(o.temporal_score.alignment_window_m, 0.0);
   EXPECT_EQ(o.temporal_verification.max_island_distance_m, 0.0);
   EXPECT_EQ(o.islands.recent_exclusion_m, 3.0);  // the same candidates in every row
@@ -116,6 +118,7 @@ TEST(Ablation, WithoutRowsSwitchOffOneExtensionEach) {
   base.temporal_verification.hypotheses = 3;
   base.temporal_verification.min_step_m = 0.02;
   base.temporal_verification.linked_places = true;
+  base.islands.odometry_gate_m = 0.5;
   base.geometric.candidates = 10;
   // Which extensions are on, in the order of the rows below.
   auto on = [](const LoopDetectorOptions& o) {
@@ -128,22 +131,23 @@ TEST(Ablation, WithoutRowsSwitchOffOneExtensionEach) {
         o.temporal_verification.hypotheses > 1,
         o.temporal_verification.min_step_m > 0,
         o.temporal_verification.linked_places,
+        o.islands.odometry_gate_m > 0,
         o.geometric.candidates > 1};
   };
-  const char* rows[] = {"without_floor",         "without_normaliser_distance",
-                        "without_alignment",     "without_missed_queries",
-                        "without_hypotheses",    "without_min_step",
-                        "without_linked_places", "without_reranking"};
-  ASSERT_EQ(on(base), std::vector<bool>(8, true));
-  for (int r = 0; r < 8; ++r) {
-    std::vector<bool> expected(8, true);
+  const char* rows[] = {
+      "without_floor",          "without_normaliser_distance", "without_alignment",
+      "without_missed_queries", "without_hypotheses",          "without_min_step",
+      "without_linked_places",  "without_odometry_gate",       "without_reranking"};
+  ASSERT_EQ(on(base), std::vector<bool>(9, true));
+  for (int r = 0; r < 9; ++r) {
+    std::vector<bool> expected(9, true);
     expected[r] = false;
     const LoopDetectorOptions o = LoopDetectorOptions::ablation(rows[r], base);
     EXPECT_EQ(on(o), expected) << rows[r];
     EXPECT_NO_THROW(o.validate()) << rows[r];
   }
   // Every "without" row switches off something the paper row also switches off.
-  EXPECT_EQ(on(LoopDetectorOptions::ablation("paper", base)), std::vector<bool>(8, false));
+  EXPECT_EQ(on(LoopDetectorOptions::ablation("paper", base)), std::vector<bool>(9, false));
 }
 
 TEST(Ablation, KeepsTheOtherFields) {

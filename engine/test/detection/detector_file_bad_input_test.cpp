@@ -181,8 +181,9 @@ TEST(DatabaseIo, ForgedContentIsRefusedByName) {
   // query odometers (16), the hypothesis count (4), the scale factors (u32 +
   // 52 x 4) and the checksum (8).
   const std::size_t scale_factors = 4 + 52 * 4, place_links = 4 + 52 * 4;
-  const std::size_t chain =
-      good.size() - (8 + place_links + scale_factors + 4 + 16 + 4 + 52 * 8 + 8 + 4 + 50 * 24 + 4);
+  const std::size_t positions = 4 + 4 + 52 * (4 + 3 * 8);
+  const std::size_t chain = good.size() - (8 + positions + place_links + scale_factors + 4 + 16 +
+                                           4 + 52 * 8 + 8 + 4 + 50 * 24 + 4);
   const std::int32_t forever = 0x7fffffff;
   forge("chain.bowgdb", chain, &forever, 4, "chain length 2147483647 outside 0..52");
   // Entry 0's word groups follow its BoW vector: u32 count, (u32, f64) pairs.
@@ -191,11 +192,20 @@ TEST(DatabaseIo, ForgedContentIsRefusedByName) {
   std::memcpy(&group_count, &good[groups], 4);
   ASSERT_GT(group_count, 0u);
   forge("group.bowgdb", groups + 4 + 4, &negative, 8, "entry 0 has a word-group weight <= 0");
-  // From the end: checksum 8, the place links, the scale factors,
-  // hypothesis count 4 (none stored), the two query odometers 16, the
-  // odometers (u32 + 52 x 8), the missed-query counters 8, the normalisers
-  // (u32 + 50 x 24).
-  const std::size_t links = good.size() - 8 - place_links;
+  // From the end: checksum 8, the odometry positions (the current run u32,
+  // then u32 count and per entry u32 run and 3 f64), the place links, the
+  // scale factors, hypothesis count 4 (none stored), the two query
+  // odometers 16, the odometers (u32 + 52 x 8), the missed-query counters
+  // 8, the normalisers (u32 + 50 x 24).
+  const std::size_t run = good.size() - 8 - positions;
+  const std::uint32_t run_count_short = 51, later_run = 1;
+  forge("position_count.bowgdb", run + 4, &run_count_short, 4,
+        "odometry position count differs from the entry count");
+  forge("position_run.bowgdb", run + 8 + 28 * 2, &later_run, 4,
+        "entry 2 belongs to odometry run 1, after the current run 0");
+  forge("position_partial.bowgdb", run + 8 + 28 * 3 + 4 + 8, &negative, 8,
+        "entry 3 has an odometry position that is neither all finite nor all NaN");
+  const std::size_t links = run - place_links;
   const std::uint32_t later = 7;
   const std::uint32_t fewer_links = 51;
   forge("link_count.bowgdb", links, &fewer_links, 4,

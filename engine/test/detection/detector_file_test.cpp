@@ -32,6 +32,10 @@ void putLe(std::string* bytes, std::size_t at, std::uint64_t v, int n) {
 // A saved detector file as version `version` wrote it: without the last
 // `dropped` payload bytes (the sections later versions append), its
 // version, payload size (the header is 28 bytes) and checksum rewritten.
+// The version-7 section of a file of `n` entries: the current odometry run
+// (u32), then a u32 count and each entry's u32 run and three f64.
+std::size_t odometryPositionBytes(std::size_t n) { return 4 + 4 + n * (4 + 3 * 8); }
+
 std::string asVersion(std::string bytes, std::size_t dropped, std::uint32_t version) {
   EXPECT_GT(bytes.size(), dropped + 8 + 28);
   bytes.resize(bytes.size() - 8 - dropped);
@@ -80,9 +84,10 @@ TEST(DatabaseIo, PlaceLinksRoundTrip) {
   const std::string path = outPath("links.bowgdb"), again = outPath("links_again.bowgdb");
   a.save(path);
   const std::string bytes = readBytes(path);
-  // The links close the payload: u32 count, then each entry's parent.
+  // The links close the version-6 payload: u32 count, then each entry's
+  // parent.
   const std::size_t n = kfs.size();
-  const std::size_t links = bytes.size() - 8 - 4 * n;
+  const std::size_t links = bytes.size() - 8 - odometryPositionBytes(n) - 4 * n;
   std::size_t joined = 0;
   for (std::size_t i = 0; i < n; ++i) {
     std::uint32_t parent = 0;
@@ -94,9 +99,14 @@ TEST(DatabaseIo, PlaceLinksRoundTrip) {
   LoopDetector b(voc, o);
   b.load(path);
   b.save(again);
-  EXPECT_EQ(readBytes(again), bytes);
+  // The same bytes but the odometry run, which the load advanced (compared
+  // whole: a mismatch would print ~100 kB).
+  std::string expected = bytes;
+  putLe(&expected, bytes.size() - 8 - odometryPositionBytes(n), 1, 4);
+  testing::resealChecksum(&expected);
+  EXPECT_TRUE(readBytes(again) == expected);
   // Version 5: no links; saved again, every entry is its own place.
-  writeBytes(path, asVersion(bytes, 4 + 4 * n, 5));
+  writeBytes(path, asVersion(bytes, 4 + 4 * n + odometryPositionBytes(n), 5));
   LoopDetector c(voc, o);
   c.load(path);
   c.save(again);
@@ -195,6 +205,63 @@ TEST(DatabaseIo, OdometersAndMissedQueryCountersRoundTrip) {
   std::remove(path.c_str());
 }
 
+// Odometry positions and their runs come back (version 7); the keyframes a
+// loaded detector takes next belong to a new run (the restarted robot's
+// odometry frame), and a version-6 file loads with unknown positions.
+TEST(DatabaseIo, OdometryPositionsRoundTrip) {
+  const auto voc = vocabulary();
+  auto kfs = keyframes();
+  // Forward along x 0..39, then back; no position for the first five
+  // keyframes (odometry that started late).
+  for (std::size_t i = 0; i < kfs.size(); ++i) {
+    kfs[i].odometer = static_cast<double>(i);
+    if (i < 5) continue;
+    kfs[i].position.x = i < 40 ? static_cast<double>(i) : 79.0 - static_cast<double>(i);
+    kfs[i].position.y = 0.25;
+    kfs[i].position.z = -1.0;
+  }
+  LoopDetectorOptions o = options();
+  o.islands.odometry_gate_m = 1.0;
+  LoopDetector a(voc, o);
+  for (int i = 0; i < 50; ++i) a.process(kfs[i]);
+  const std::string path = outPath("positions.bowgdb"), again = outPath("positions_again.bowgdb");
+  a.save(path);
+  const std::string bytes = readBytes(path);
+  LoopDetector b(voc, o);
+  b.load(path);
+  ASSERT_EQ(b.database().size(), 50u);
+  for (EntryId i = 0; i < 50; ++i) {
+    const DatabaseEntry& e = b.database().entry(i);
+    EXPECT_EQ(e.odometry_run, 0u);
+    if (i < 5) {
+      EXPECT_TRUE(e.position.unknown()) << i;
+    } else {
+      EXPECT_EQ(e.position.x, kfs[i].position.x) << i;
+      EXPECT_EQ(e.position.y, 0.25);
+      EXPECT_EQ(e.position.z, -1.0);
+    }
+  }
+  b.process(kfs[50]);
+  EXPECT_EQ(b.database().entry(50).odometry_run, 1u);
+  EXPECT_EQ(a.process(kfs[50]).query_id, 50u);
+  EXPECT_EQ(a.database().entry(50).odometry_run, 0u);
+  // Saved again, the file holds both runs; loaded, a third one starts.
+  b.save(again);
+  LoopDetector c(voc, o);
+  c.load(again);
+  EXPECT_EQ(c.database().entry(49).odometry_run, 0u);
+  EXPECT_EQ(c.database().entry(50).odometry_run, 1u);
+  c.process(kfs[51]);
+  EXPECT_EQ(c.database().entry(51).odometry_run, 2u);
+  // Version 6: no positions.
+  writeBytes(path, asVersion(bytes, odometryPositionBytes(50), 6));
+  LoopDetector d(voc, o);
+  d.load(path);
+  for (const DatabaseEntry& e : d.database().entries()) EXPECT_TRUE(e.position.unknown());
+  std::remove(path.c_str());
+  std::remove(again.c_str());
+}
+
 // A file whose checksum is right but whose content no run can produce (a
 // forged or buggy writer): refused by name, the detector untouched. Offsets
 // from the layout (detector_file.cpp): header 28 bytes, u32 scoring, u32 entry
@@ -286,10 +353,11 @@ TEST(DatabaseIo, PackedPositionsRoundTrip) {
     EXPECT_EQ(e.points.scaleFactor(), 1.2f);
   }
 
-  // Version 4: the same bytes without the scale factors and the place links
-  // (u32 count + 45 f32, u32 count + 45 u32 before the checksum).
+  // Version 4: the same bytes without the scale factors, the place links
+  // and the odometry positions (u32 count + 45 f32, u32 count + 45 u32,
+  // odometryPositionBytes before the checksum).
   const std::string v4 = outPath("packed_v4.bowgdb");
-  writeBytes(v4, asVersion(readBytes(v5), 2 * (4 + 45 * 4), 4));
+  writeBytes(v4, asVersion(readBytes(v5), 2 * (4 + 45 * 4) + odometryPositionBytes(45), 4));
   LoopDetector c(voc, options());
   c.load(v4);
   expectSamePositions(a.database(), c.database());
@@ -318,10 +386,10 @@ TEST(DatabaseIo, VersionOneFilesLoadWithAnEmptyHistory) {
   // count + 45 f64) and two query odometers (f64), version 4 the other
   // temporal hypotheses (u32 count, 0 with one hypothesis), version 5 the
   // entries' scale factors (u32 count + 45 f32), version 6 the place links
-  // (u32 count + 45 u32), then the u64 checksum. 44 keyframes had a
-  // previous one; the window is 50.
-  const std::size_t history =
-      4 + 44 * 24 + 2 * 4 + 4 + 45 * 8 + 2 * 8 + 4 + 4 + 45 * 4 + 4 + 45 * 4;
+  // (u32 count + 45 u32), version 7 the odometry positions, then the u64
+  // checksum. 44 keyframes had a previous one; the window is 50.
+  const std::size_t history = 4 + 44 * 24 + 2 * 4 + 4 + 45 * 8 + 2 * 8 + 4 + 4 + 45 * 4 + 4 +
+                              45 * 4 + odometryPositionBytes(45);
   const std::string v1 = outPath("v1.bowgdb");
   writeBytes(v1, asVersion(bytes, history, 1));
   LoopDetector b(voc, options());
@@ -332,12 +400,12 @@ TEST(DatabaseIo, VersionOneFilesLoadWithAnEmptyHistory) {
     expectSameCandidates(a, b);
   }
   // Versions beyond the current one are refused by number.
-  writeBytes(v1, asVersion(bytes, history, 7));
+  writeBytes(v1, asVersion(bytes, history, 8));
   try {
     b.load(v1);
-    ADD_FAILURE() << "version 7 accepted";
+    ADD_FAILURE() << "version 8 accepted";
   } catch (const FormatError& e) {
-    EXPECT_NE(std::string(e.what()).find("unsupported version 7"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("unsupported version 8"), std::string::npos) << e.what();
   }
   std::remove(v1.c_str());
   std::remove(v2.c_str());

@@ -39,7 +39,11 @@ using testing::vocabulary;
 // word score beats the true place while no epipolar geometry explains it.
 // Only the best-scored island verified (the paper), the query yields no loop;
 // with geometric re-ranking the true place wins.
-LoopResult queryBehindALookAlike(int candidates, int min_inliers = 40, int rerank_ransacs = 100) {
+// With `odometry_gate`, every keyframe carries the odometer and position of
+// where it was taken (the look-alike after keyframe 39, at x = 40) and the
+// gate is on.
+LoopResult queryBehindALookAlike(int candidates, int min_inliers = 40, int rerank_ransacs = 100,
+                                 bool odometry_gate = false) {
   const testing::Corridor c = testing::makeCorridor(70, 50, 5);
   std::mt19937_64 rng(11);
   LoopDetectorOptions o = defaultOptions();
@@ -51,27 +55,39 @@ LoopResult queryBehindALookAlike(int candidates, int min_inliers = 40, int reran
   o.islands.min_score = 0.0;
   o.geometric.candidates = candidates;
   o.geometric.rerank_ransacs = rerank_ransacs;
+  if (odometry_gate) o.islands.odometry_gate_m = 1.0;  // drift 0.1 per metre
   // ~400 random correspondences give RANSAC ~15 chance inliers (one line
   // constraint per point); the true place gives hundreds.
   o.geometric.min_inliers = min_inliers;
   LoopDetector det(vocabulary(), o);
-  double stamp = 1.0;
-  for (int i = 0; i < 40; ++i) det.process(testing::observeCorridor(c, i, stamp++, rng, 2, 0.5));
+  double stamp = 1.0, driven = 0.0, at = 0.0;
+  // Drives to x and takes keyframe `kf` there.
+  const auto take = [&](KeyframeInput kf, double x) {
+    if (odometry_gate) {
+      driven += std::fabs(x - at);
+      at = x;
+      kf.odometer = driven;
+      kf.position.x = x;
+      kf.position.y = kf.position.z = 0.0;
+    }
+    return det.process(kf);
+  };
+  for (int i = 0; i < 40; ++i) take(testing::observeCorridor(c, i, stamp++, rng, 2, 0.5), i);
   KeyframeInput query = testing::observeCorridor(c, 10.2, 0.0, rng, 0, 0.5);
   KeyframeInput look_alike = query;  // entry 40
   // A random permutation: no homography (a reflection would be one, and
   // points related by a homography fit many fundamental matrices).
   std::shuffle(look_alike.features.keypoints.begin(), look_alike.features.keypoints.end(), rng);
   look_alike.stamp = stamp++;
-  det.process(look_alike);
+  take(look_alike, 40.0);
   // Far away (entries 41..45, excluded as recent), then back near x = 10 so
   // that the query's previous keyframe is a healthy normaliser.
   for (int i = 0; i < 5; ++i)
-    det.process(testing::observeCorridor(c, 50 + i, stamp++, rng, 2, 0.5));
-  det.process(testing::observeCorridor(c, 8.2, stamp++, rng, 2, 0.5));
-  det.process(testing::observeCorridor(c, 9.2, stamp++, rng, 2, 0.5));
+    take(testing::observeCorridor(c, 50 + i, stamp++, rng, 2, 0.5), 50 + i);
+  take(testing::observeCorridor(c, 8.2, stamp++, rng, 2, 0.5), 8.2);
+  take(testing::observeCorridor(c, 9.2, stamp++, rng, 2, 0.5), 9.2);
   query.stamp = stamp++;
-  const LoopResult r = det.process(query);
+  const LoopResult r = take(query, 10.2);
   // The look-alike is the best-scored candidate in both cases.
   const auto& all = det.lastCandidates();
   const auto best = std::max_element(
@@ -86,6 +102,19 @@ TEST(LoopDetector, WithoutReRankingALookAlikeHidesTheTruePlace) {
   EXPECT_EQ(r.match_id, 0u);
   EXPECT_NE(r.status, LoopStatus::kLoopDetected);
   EXPECT_EQ(r.island_first, 40u);
+}
+
+// The look-alike was taken at x = 40, 29.8 m from the query, with 61.8 m
+// driven between them: the gate's radius is 1 + 0.1 * 61.8 = 7.18 m, so it
+// is no candidate. The true place (x = 10, 0.2 m away, 91.8 m driven: radius
+// 10.18 m) is, and without re-ranking it is the loop.
+TEST(LoopDetector, OdometryGateRemovesALookAlikeTheRobotCannotBeAt) {
+  const LoopResult r = queryBehindALookAlike(1, 40, 100, true);
+  ASSERT_EQ(r.status, LoopStatus::kLoopDetected) << toString(r.status);
+  EXPECT_GE(r.match_id, 9u);
+  EXPECT_LE(r.match_id, 11u);
+  EXPECT_GE(r.candidates_gated, 1u);
+  EXPECT_EQ(queryBehindALookAlike(1).candidates_gated, 0u);
 }
 
 TEST(LoopDetector, GeometricReRankingFindsTheTruePlaceBehindALookAlike) {

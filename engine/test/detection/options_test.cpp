@@ -2,6 +2,7 @@
 // The ablation rows: ablation_test.cpp.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <functional>
 #include <limits>
 #include <string>
@@ -206,6 +207,10 @@ TEST(Options, Geometric) {
                  "geometric.candidates");
   expectRejected([](LoopDetectorOptions& o) { o.geometric.rerank_ransacs = -1; },
                  "geometric.rerank_ransacs");
+  expectRejected([](LoopDetectorOptions& o) { o.islands.odometry_gate_m = -0.5; },
+                 "islands.odometry_gate_m");
+  expectRejected([](LoopDetectorOptions& o) { o.islands.odometry_gate_drift = std::nan(""); },
+                 "islands.odometry_gate_drift");
   expectRejected([](LoopDetectorOptions& o) { o.temporal_verification.hypotheses = 0; },
                  "temporal_verification.hypotheses");
   expectRejected([](LoopDetectorOptions& o) { o.similarity.normaliser_distance_m = -0.1; },

@@ -35,6 +35,9 @@ const char* const kUsage =
     "                             file's x,y,z: its path length, e.g. the drifting\n"
     "                             odometry.csv): the windows in metres (recent_exclusion_m) and\n"
     "                             with --intrinsics the loops' metric translation\n"
+    "  --odometry-poses FILE      the robot's dead-reckoned position per frame (CSV with 'frame',\n"
+    "                             'x', 'y', 'z', e.g. the generator's drifting odometry.csv):\n"
+    "                             with --odometry, the odometry gate (odometry_gate_m)\n"
     "Engine:\n"
     "  --vocabulary FILE          any format bowg::loadVocabulary reads (required)\n"
     "  --config FILE              parameter file, e.g. config/pipe.yaml [engine defaults]\n"
@@ -50,7 +53,8 @@ const char* const kUsage =
     "                             without_floor, without_normaliser_distance,\n"
     "                             without_alignment, without_missed_queries,\n"
     "                             without_hypotheses, without_min_step,\n"
-    "                             without_linked_places, without_reranking\n"
+    "                             without_linked_places, without_odometry_gate,\n"
+    "                             without_reranking\n"
     "                             (the configuration with one extension switched off)\n"
     "  --sweep rerun|score        PR curve: re-run the detector per threshold (exact, slower)\n"
     "                             or sweep the final score of one run at the lowest threshold\n"
@@ -156,6 +160,8 @@ Args parseArgs(int argc, char** argv) {
       a.dump_candidates = v;
     else if (flag == "--odometry")
       a.odometry = v;
+    else if (flag == "--odometry-poses")
+      a.odometry_poses = v;
     else if (flag == "--intrinsics")
       a.intrinsics = v;
     else if (flag == "--rows") {

@@ -13,6 +13,7 @@ struct Args {
   std::string bag, image_topic = "/camera/image_raw", info_topic = "/camera/camera_info";
   std::string images, vocabulary, config, gt, output = "bowg_evaluation", sweep = "rerun";
   std::string odometry;
+  std::string odometry_poses;
   std::string intrinsics;  ///< --intrinsics: fx,fy,cx,cy of folder images
   std::string dump_candidates;
   double rate = 1.0;

@@ -144,5 +144,14 @@ void attachOdometry(const std::string& path, std::vector<FrameInput>* frames) {
   for (std::size_t i = 0; i < frames->size(); ++i) (*frames)[i].odometer = odometer[i];
 }
 
+void attachOdometryPositions(const std::string& path, std::vector<FrameInput>* frames) {
+  const std::vector<OdometryPosition> positions = readOdometryPositions(path);
+  if (positions.size() < frames->size()) {
+    throw FormatError(path + ": odometry positions for " + std::to_string(positions.size()) +
+                      " frames, the input has " + std::to_string(frames->size()));
+  }
+  for (std::size_t i = 0; i < frames->size(); ++i) (*frames)[i].position = positions[i];
+}
+
 }  // namespace evaluate_app
 }  // namespace bowg

@@ -17,6 +17,9 @@ std::vector<eval::FrameInput> loadFrames(const Args& a, const FeatureExtractor& 
 
 /// Sets every frame's odometer from --odometry (one per frame at least).
 void attachOdometry(const std::string& path, std::vector<eval::FrameInput>* frames);
+/// Sets every frame's odometry position from `path` (odometry_file.h);
+/// throws bowg::FormatError naming the file when it lists fewer frames.
+void attachOdometryPositions(const std::string& path, std::vector<eval::FrameInput>* frames);
 
 }  // namespace evaluate_app
 }  // namespace bowg

@@ -70,6 +70,7 @@ int run(int argc, char** argv) {
 
   std::vector<FrameInput> frames = loadFrames(a, extractor);
   if (!a.odometry.empty()) attachOdometry(a.odometry, &frames);
+  if (!a.odometry_poses.empty()) attachOdometryPositions(a.odometry_poses, &frames);
   const GroundTruth gt = usedGroundTruth(all_gt, a, frames.size());
   if (!a.dump_candidates.empty()) {
     if (!has_gt) throw std::invalid_argument("--dump-candidates needs --gt FILE");

@@ -5,8 +5,10 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 namespace bowg {
@@ -87,6 +89,17 @@ using EntryId = std::uint32_t;  ///< keyframe index in the database, 0..N-1
 struct CameraIntrinsics {
   bool valid = false;
   double fx = 0, fy = 0, cx = 0, cy = 0;
+};
+
+/// The robot's position in its odometry's fixed frame (metres; REP-105's
+/// `odom`): dead reckoning, drifting with the metres driven. All three NaN
+/// when unknown.
+struct OdometryPosition {
+  double x = std::numeric_limits<double>::quiet_NaN();
+  double y = std::numeric_limits<double>::quiet_NaN();
+  double z = std::numeric_limits<double>::quiet_NaN();
+  bool known() const { return std::isfinite(x) && std::isfinite(y) && std::isfinite(z); }
+  bool unknown() const { return std::isnan(x) && std::isnan(y) && std::isnan(z); }
 };
 
 }  // namespace bowg

@@ -70,6 +70,11 @@ struct DatabaseEntry {
   /// Metres driven since the first keyframe (KeyframeInput::odometer); NaN
   /// when unknown.
   double odometer = std::numeric_limits<double>::quiet_NaN();
+  /// KeyframeInput::position, and the odometry run it belongs to: positions
+  /// are compared within one run only (one odometry frame; a detector
+  /// loaded from a file starts a new run, DetectorState::odometry_run).
+  OdometryPosition position;
+  std::uint32_t odometry_run = 0;
   // Derived from `words` when needed, not kept: the BoW vector
   // (Database::bow()), the raw groups (Database::rawGroups()) and the direct
   // index at Database::directLevel() (directIndexFromWords). The distribution vector for the

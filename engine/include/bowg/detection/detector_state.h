@@ -32,6 +32,10 @@ struct DetectorState {
   /// Entries joined by accepted loops (TemporalVerificationOptions::
   /// linked_places); recorded whether or not the option is on.
   PlaceLinks place_links;
+  /// The odometry run new entries belong to (DatabaseEntry::odometry_run):
+  /// a robot restarted with a saved database has a new odometry frame, so
+  /// LoopDetector::load starts a new run.
+  std::uint32_t odometry_run = 0;
 };
 
 }  // namespace bowg

@@ -54,6 +54,11 @@ struct KeyframeInput {
   /// used), never decreasing; NaN = unknown. With it the recent-exclusion
   /// window is measured in metres (IslandOptions::recent_exclusion_m).
   double odometer = std::numeric_limits<double>::quiet_NaN();
+  /// Optional: the robot's position in the odometry's fixed frame, with the
+  /// odometer. With both, candidates farther from the query than the
+  /// odometry's drift allows are not candidates (IslandOptions::
+  /// odometry_gate_m). All three finite, or all NaN (unknown).
+  OdometryPosition position;
 };
 
 struct LoopResult {
@@ -96,6 +101,9 @@ struct LoopResult {
   /// normaliser floor where they were unusually small (0 when not queried).
   double word_divisor = 0, group_divisor = 0, distribution_divisor = 0;
   std::size_t candidates_scored = 0;
+  /// Of those, the candidates above min_score the odometry gate removed
+  /// (IslandOptions::odometry_gate_m).
+  std::size_t candidates_gated = 0;
   StageTimings timings;
 };
 

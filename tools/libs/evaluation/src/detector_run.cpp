@@ -18,6 +18,7 @@ KeyframeInput toKeyframeInput(const FrameInput& frame) {
   input.features = frame.features;
   input.intrinsics = frame.intrinsics;
   input.odometer = frame.odometer;
+  input.position = frame.position;
   return input;
 }
 

@@ -78,5 +78,51 @@ std::vector<double> readOdometry(const std::string& path) {
   return parseOdometry(readTextFile(path, "odometry"), path);
 }
 
+std::vector<OdometryPosition> parseOdometryPositions(const std::string& text,
+                                                     const std::string& source) {
+  CsvLines csv(text, source);
+  std::vector<std::string> header;
+  csv.next(&header);
+  int frame_col = -1, xyz[3] = {-1, -1, -1};
+  for (std::size_t i = 0; i < header.size(); ++i) {
+    if (header[i] == "frame") frame_col = static_cast<int>(i);
+    for (int a = 0; a < 3; ++a) {
+      if (header[i] == std::string(1, static_cast<char>('x' + a))) xyz[a] = static_cast<int>(i);
+    }
+  }
+  if (frame_col < 0 || xyz[0] < 0 || xyz[1] < 0 || xyz[2] < 0) {
+    csv.fail("the header needs 'frame', 'x', 'y' and 'z' columns");
+  }
+  const int last_col = std::max(frame_col, std::max(xyz[0], std::max(xyz[1], xyz[2])));
+  std::vector<OdometryPosition> positions;
+  std::vector<std::string> cells;
+  while (csv.next(&cells)) {
+    if (static_cast<int>(cells.size()) <= last_col) csv.fail("too few columns");
+    double frame = 0;
+    if (!toDouble(cells[frame_col], &frame) || frame < 0 || frame != std::floor(frame) ||
+        frame > 1e9) {
+      csv.fail("frame '" + cells[frame_col] + "' is not a non-negative integer");
+    }
+    double p[3];
+    for (int a = 0; a < 3; ++a) {
+      if (!toDouble(cells[xyz[a]], &p[a]) || !std::isfinite(p[a])) {
+        csv.fail("position '" + cells[xyz[a]] + "' is not a finite number");
+      }
+    }
+    const std::size_t f = static_cast<std::size_t>(frame);
+    if (f < positions.size())
+      csv.fail("frame " + cells[frame_col] + " is not after the previous row's");
+    positions.resize(f + 1);
+    positions[f].x = p[0];
+    positions[f].y = p[1];
+    positions[f].z = p[2];
+  }
+  return positions;
+}
+
+std::vector<OdometryPosition> readOdometryPositions(const std::string& path) {
+  return parseOdometryPositions(readTextFile(path, "odometry positions"), path);
+}
+
 }  // namespace eval
 }  // namespace bowg

@@ -81,6 +81,40 @@ TEST(OdometryFile, BadFilesNameTheFileAndLine) {
   EXPECT_THROW(readOdometry("/nonexistent/poses.csv"), IoError);
 }
 
+std::string positionErrorOf(const std::string& text) {
+  try {
+    parseOdometryPositions(text, "odometry.csv");
+  } catch (const FormatError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(OdometryFile, PositionsOfAPoseFileAndUnknownFramesBetween) {
+  const std::string text =
+      "frame,stamp,x,y,z,qx,qy,qz,qw\n"
+      "0,0.0,1.0,2.0,0.0,0,0,0,1\n"
+      "2,1.0,1.08,-2.24,0.5,0,0,0,1\n";
+  const std::vector<OdometryPosition> p = parseOdometryPositions(text, "odometry.csv");
+  ASSERT_EQ(p.size(), 3u);
+  EXPECT_EQ(p[0].x, 1.0);
+  EXPECT_EQ(p[0].y, 2.0);
+  EXPECT_EQ(p[0].z, 0.0);
+  EXPECT_TRUE(p[1].unknown());
+  EXPECT_EQ(p[2].x, 1.08);
+  EXPECT_EQ(p[2].y, -2.24);
+  EXPECT_EQ(p[2].z, 0.5);
+  EXPECT_EQ(positionErrorOf("frame,x,y\n0,1,2\n"),
+            "odometry.csv:1: the header needs 'frame', 'x', 'y' and 'z' columns");
+  EXPECT_EQ(positionErrorOf("frame,x,y,z\n0,1,nan,0\n"),
+            "odometry.csv:2: position 'nan' is not a finite number");
+  EXPECT_EQ(positionErrorOf("frame,x,y,z\n3,1,1,0\n2,1,1,0\n"),
+            "odometry.csv:3: frame 2 is not after the previous row's");
+  EXPECT_EQ(positionErrorOf("frame,x,y,z\n-1,1,1,0\n"),
+            "odometry.csv:2: frame '-1' is not a non-negative integer");
+  EXPECT_EQ(positionErrorOf("frame,x,y,z\n0,1,1\n"), "odometry.csv:2: too few columns");
+}
+
 }  // namespace
 }  // namespace eval
 }  // namespace bowg

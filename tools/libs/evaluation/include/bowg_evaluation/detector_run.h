@@ -31,6 +31,8 @@ struct FrameInput {
   double feature_ms = 0;  ///< time the feature extraction took
   /// Metres driven (odometry_file.h); NaN = unknown.
   double odometer = std::numeric_limits<double>::quiet_NaN();
+  /// Position in the odometry's frame (odometry_file.h); unknown = NaN.
+  OdometryPosition position;
 };
 
 /// The detector's input for one frame (a copy of its features).

@@ -9,10 +9,19 @@
 // `odometer` column exists, or else `x`, `y`, `z`: a pose file (the
 // generator's drifting odometry.csv), whose metres driven are the path length
 // through its positions from the first row. Other columns are ignored.
+//
+// Odometry positions per frame (`bowg_evaluate --odometry-poses FILE`): the
+// robot's dead-reckoned position in the odometry's frame, for the odometry
+// gate (IslandOptions::odometry_gate_m), as the nodelet takes it from `odom`.
+// Format: CSV with `frame`, `x`, `y` and `z` columns (the generator's
+// drifting odometry.csv; its ground-truth poses.csv would let the gate see
+// the truth). Other columns are ignored.
 #pragma once
 
 #include <string>
 #include <vector>
+
+#include "bowg/core/types.h"
 
 namespace bowg {
 namespace eval {
@@ -24,6 +33,15 @@ namespace eval {
 std::vector<double> readOdometry(const std::string& path);
 /// Same, from text (`source` names it in messages).
 std::vector<double> parseOdometry(const std::string& text, const std::string& source);
+
+/// position[frame]; frames the file does not list are unknown (NaN).
+/// Throws bowg::IoError when the file cannot be read, bowg::FormatError
+/// ("<path>:<line>: <why>") on a missing column, a non-finite coordinate or
+/// frames out of order.
+std::vector<OdometryPosition> readOdometryPositions(const std::string& path);
+/// Same, from text (`source` names it in messages).
+std::vector<OdometryPosition> parseOdometryPositions(const std::string& text,
+                                                     const std::string& source);
 
 }  // namespace eval
 }  // namespace bowg
