@@ -135,22 +135,30 @@ std::vector<FrameInput> loadFrames(const Args& a, const FeatureExtractor& extrac
   return frames;
 }
 
-void attachOdometry(const std::string& path, std::vector<FrameInput>* frames) {
-  const std::vector<double> odometer = readOdometry(path);
-  if (odometer.size() < frames->size()) {
-    throw FormatError(path + ": odometers for " + std::to_string(odometer.size()) +
+namespace {
+
+// Gives every frame its value of `values` (one per frame at least, read
+// from `path`: `what` names them in the error).
+template <typename T, typename Set>
+void attachPerFrame(const std::string& path, const std::vector<T>& values, const char* what,
+                    std::vector<FrameInput>* frames, Set set) {
+  if (values.size() < frames->size()) {
+    throw FormatError(path + ": " + what + " for " + std::to_string(values.size()) +
                       " frames, the input has " + std::to_string(frames->size()));
   }
-  for (std::size_t i = 0; i < frames->size(); ++i) (*frames)[i].odometer = odometer[i];
+  for (std::size_t i = 0; i < frames->size(); ++i) set(&(*frames)[i], values[i]);
+}
+
+}  // namespace
+
+void attachOdometry(const std::string& path, std::vector<FrameInput>* frames) {
+  attachPerFrame(path, readOdometry(path), "odometers", frames,
+                 [](FrameInput* f, double odometer) { f->odometer = odometer; });
 }
 
 void attachOdometryPositions(const std::string& path, std::vector<FrameInput>* frames) {
-  const std::vector<OdometryPosition> positions = readOdometryPositions(path);
-  if (positions.size() < frames->size()) {
-    throw FormatError(path + ": odometry positions for " + std::to_string(positions.size()) +
-                      " frames, the input has " + std::to_string(frames->size()));
-  }
-  for (std::size_t i = 0; i < frames->size(); ++i) (*frames)[i].position = positions[i];
+  attachPerFrame(path, readOdometryPositions(path), "odometry positions", frames,
+                 [](FrameInput* f, const OdometryPosition& p) { f->position = p; });
 }
 
 }  // namespace evaluate_app

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <sstream>
 #include <string>
 
 #include "shell_command.h"
@@ -154,6 +155,40 @@ TEST_F(EvaluateCli, BadOptionsAreRefusedWithAMessage) {
   // A missing intrinsics file is named.
   EXPECT_NE(run(evaluate("--intrinsics " + kDir + "/no_intrinsics.csv", "bad"), log), 0);
   EXPECT_NE(readAll(log).find(kDir + "/no_intrinsics.csv"), std::string::npos) << readAll(log);
+  // Odometry positions for fewer frames than the input: the file is named.
+  writeFile(kDir + "/short_odometry.csv", "frame,x,y,z\n0,0,0,0\n1,0.1,0,0\n");
+  EXPECT_NE(run(evaluate("--odometry-poses " + kDir + "/short_odometry.csv", "bad"), log), 0);
+  EXPECT_NE(readAll(log).find(kDir + "/short_odometry.csv: odometry positions for 2 frames"),
+            std::string::npos)
+      << readAll(log);
+}
+
+// Odometry positions reach the odometry gate: with the generator's drifting
+// odometry the revisits are loops; with positions 1 km apart from frame to
+// frame no candidate is within the gate.
+TEST_F(EvaluateCli, OdometryPositionsFeedTheOdometryGate) {
+  writeFile(kDir + "/gated.yaml",
+            "feature_detector: gftt\nmin_score: 0.7\nrecent_exclusion: 30\n"
+            "direct_index_level: 2\nodometry_gate_m: 0.5\nodometry_gate_drift: 0.05\n");
+  std::string far = "frame,x,y,z\n";
+  for (int i = 0; i < 300; ++i)
+    far += std::to_string(i) + "," + std::to_string(1000 * i) + ",0,0\n";
+  writeFile(kDir + "/far.csv", far);
+  const std::string base = kEvaluate + " --quiet --images " + kDir + "/frames --gt " + kDir +
+                           "/frames/ground_truth.txt --vocabulary " + BOWG_DEFAULT_VOCABULARY +
+                           " --config " + kDir + "/gated.yaml --thresholds 0.7 --odometry " + kDir +
+                           "/frames/odometry.csv --output " + kDir + "/";
+  ASSERT_EQ(run(base + "near --odometry-poses " + kDir + "/frames/odometry.csv"), 0);
+  ASSERT_EQ(run(base + "far --odometry-poses " + kDir + "/far.csv"), 0);
+  const auto loops = [](const std::string& csv) {
+    std::istringstream in(readAll(csv));
+    std::string line;
+    int n = -1;  // the header
+    while (std::getline(in, line)) n += !line.empty();
+    return n;
+  };
+  EXPECT_GT(loops(kDir + "/near/detections_bowg.csv"), 0);
+  EXPECT_EQ(loops(kDir + "/far/detections_bowg.csv"), 0);
 }
 
 }  // namespace

@@ -11,13 +11,23 @@ namespace bowg {
 namespace eval {
 namespace {
 
-std::string errorOf(const std::string& text) {
+// The message of the FormatError `parse` throws on `text`; "" when none.
+template <typename Parse>
+std::string messageOf(Parse parse, const std::string& text) {
   try {
-    parseOdometry(text, "poses.csv");
+    parse(text);
   } catch (const FormatError& e) {
     return e.what();
   }
   return "";
+}
+
+std::string errorOf(const std::string& text) {
+  return messageOf([](const std::string& t) { parseOdometry(t, "poses.csv"); }, text);
+}
+
+std::string positionErrorOf(const std::string& text) {
+  return messageOf([](const std::string& t) { parseOdometryPositions(t, "odometry.csv"); }, text);
 }
 
 TEST(OdometryFile, ReadsTheOdometerColumnOfTheGeneratorsPoses) {
@@ -79,15 +89,6 @@ TEST(OdometryFile, BadFilesNameTheFileAndLine) {
             "poses.csv:2: frame '0.5' is not a non-negative integer");
   EXPECT_EQ(errorOf("frame,odometer\n0\n"), "poses.csv:2: too few columns");
   EXPECT_THROW(readOdometry("/nonexistent/poses.csv"), IoError);
-}
-
-std::string positionErrorOf(const std::string& text) {
-  try {
-    parseOdometryPositions(text, "odometry.csv");
-  } catch (const FormatError& e) {
-    return e.what();
-  }
-  return "";
 }
 
 TEST(OdometryFile, PositionsOfAPoseFileAndUnknownFramesBetween) {
