@@ -309,7 +309,7 @@ void readOdometryPositions(Reader* p, std::vector<DatabaseEntry>* entries, Detec
               std::to_string(e.odometry_run) + ", after the current run " +
               std::to_string(state->odometry_run));
     }
-    if (!e.position.known() && !e.position.unknown()) {
+    if (!e.position.valid()) {
       p->fail("entry " + std::to_string(i) +
               " has an odometry position that is neither all "
               "finite nor all NaN");

@@ -85,7 +85,7 @@ void checkKeyframe(const KeyframeInput& keyframe, const Database& database) {
     }
   }
   const OdometryPosition& p = keyframe.position;
-  if (!p.known() && !p.unknown()) {
+  if (!p.valid()) {
     throw std::invalid_argument("LoopDetector::process: keyframe.position (" + std::to_string(p.x) +
                                 ", " + std::to_string(p.y) + ", " + std::to_string(p.z) +
                                 ") must be all finite or all NaN (unknown)");

@@ -244,9 +244,9 @@ struct IslandChoice {
   GeometricVerificationResult g;  ///< of its best entry, when verified
   bool verified = false;
   /// Its best entry's correspondences when the re-ranking chose it by them
-  /// without RANSAC (GeometricVerificationOptions::rerank_ransacs 0).
+  /// without RANSAC (GeometricVerificationOptions::rerank_ransacs 0); empty
+  /// otherwise (a choice by correspondences has at least min_inliers >= 8).
   std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
-  bool have_pairs = false;
   double rerank_ms = 0;
 };
 
@@ -287,7 +287,6 @@ IslandChoice chooseIsland(const std::vector<Island>& islands,
     if (static_cast<int>(pairs[order[0]].size()) >= go.min_inliers) {
       c.chosen = order[0];
       c.pairs = std::move(pairs[order[0]]);
-      c.have_pairs = true;
     }
     c.rerank_ms = msBetween(t_rerank, Clock::now());
     return c;
@@ -373,7 +372,7 @@ void verifyMatch(const QueryContext& ctx, const Island& island, IslandChoice* ch
     return;
   }
   GeometricVerificationResult& g = choice->g;
-  if (choice->have_pairs) {
+  if (!choice->pairs.empty()) {
     g = verifyCorrespondences(choice->pairs, verifier->query(),
                               verifier->features(island.best_entry), verifier->intrinsics(), go);
   } else if (!choice->verified) {

@@ -270,6 +270,14 @@ TEST(LoopDetector, BadOdometersAreRefused) {
   EXPECT_THROW(det.process(back), std::invalid_argument);
   back.odometer = std::numeric_limits<double>::infinity();
   EXPECT_THROW(det.process(back), std::invalid_argument);
+  // A position is known or unknown as a whole.
+  back.odometer = 1.0;
+  back.position.x = 2.0;  // y and z still NaN
+  EXPECT_THROW(det.process(back), std::invalid_argument);
+  back.position.y = back.position.z = 0.0;
+  back.position.x = std::numeric_limits<double>::infinity();
+  EXPECT_THROW(det.process(back), std::invalid_argument);
+  back.position = OdometryPosition();
   EXPECT_EQ(det.database().size(), 2u);
   back.odometer = std::numeric_limits<double>::quiet_NaN();  // unknown: fine
   EXPECT_NO_THROW(det.process(back));

@@ -100,6 +100,8 @@ struct OdometryPosition {
   double z = std::numeric_limits<double>::quiet_NaN();
   bool known() const { return std::isfinite(x) && std::isfinite(y) && std::isfinite(z); }
   bool unknown() const { return std::isnan(x) && std::isnan(y) && std::isnan(z); }
+  /// Known or unknown as a whole: what a keyframe and a detector file may hold.
+  bool valid() const { return known() || unknown(); }
 };
 
 }  // namespace bowg
