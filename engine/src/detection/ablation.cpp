@@ -21,8 +21,7 @@ LoopDetectorOptions LoopDetectorOptions::ablation(const std::string& row,
     // with pure bag-of-words scores (DBoW2 + DLoopDetector's islands and
     // checks): every extension of this implementation off (normaliser floor,
     // aligned temporal score, missed-query tolerance, geometric re-ranking,
-    // the odometry gate;
-    // docs/method.md). The configuration's
+    // the odometry gates; docs/method.md). The configuration's
     // thresholds and its recent-exclusion window (the "immediate past", in
     // metres where odometry is given) are kept: every row is judged on the
     // same candidates.
@@ -42,6 +41,7 @@ LoopDetectorOptions LoopDetectorOptions::ablation(const std::string& row,
     o.temporal_verification.linked_places = false;
     o.geometric.candidates = 1;
     o.islands.odometry_gate_m = 0.0;
+    o.islands.odometry_anchor_m = 0.0;
     return o;
   }
   // One extension back to the paper's version, every other field as configured.
@@ -76,8 +76,13 @@ LoopDetectorOptions LoopDetectorOptions::ablation(const std::string& row,
     o.temporal_verification.linked_places = false;
     return o;
   }
-  if (row == "without_odometry_gate") {
+  if (row == "without_odometry_gate") {  // both gates: no use of the odometry's positions
     o.islands.odometry_gate_m = 0.0;
+    o.islands.odometry_anchor_m = 0.0;
+    return o;
+  }
+  if (row == "without_loop_anchor") {
+    o.islands.odometry_anchor_m = 0.0;
     return o;
   }
   if (row == "without_reranking") {
@@ -106,7 +111,8 @@ LoopDetectorOptions LoopDetectorOptions::ablation(const std::string& row,
                            "paper_bow, paper, configured, without_floor, "
                            "without_normaliser_distance, without_alignment, "
                            "without_missed_queries, without_hypotheses, without_min_step, "
-                           "without_linked_places, without_odometry_gate, without_reranking");
+                           "without_linked_places, without_odometry_gate, without_loop_anchor, "
+                           "without_reranking");
   }
   return o;
 }

@@ -16,6 +16,7 @@ void IslandOptions::validate() const {
   requireIntAtLeast("islands.min_island_size", min_island_size, 1);
   requireFiniteAtLeast("islands.odometry_gate_m", odometry_gate_m, 0.0);
   requireFiniteAtLeast("islands.odometry_gate_drift", odometry_gate_drift, 0.0);
+  requireFiniteAtLeast("islands.odometry_anchor_m", odometry_anchor_m, 0.0);
 }
 
 void TemporalVerificationOptions::validate() const {

@@ -3,6 +3,16 @@
 #include <cmath>
 
 namespace bowg {
+namespace {
+
+// Whether `e` has a position and an odometer of odometry run `run`.
+bool placed(const DatabaseEntry& e, std::uint32_t run) {
+  return e.position.known() && e.odometry_run == run && std::isfinite(e.odometer);
+}
+
+double squaredNorm(double dx, double dy, double dz) { return dx * dx + dy * dy + dz * dz; }
+
+}  // namespace
 
 double odometryGateRadius(const IslandOptions& options, double driven_m) {
   return options.odometry_gate_m + options.odometry_gate_drift * std::fabs(driven_m);
@@ -11,14 +21,38 @@ double odometryGateRadius(const IslandOptions& options, double driven_m) {
 bool withinOdometryGate(const DatabaseEntry& query, const DatabaseEntry& entry,
                         const IslandOptions& options) {
   if (!(options.odometry_gate_m > 0.0)) return true;
-  if (!query.position.known() || !entry.position.known()) return true;
-  if (query.odometry_run != entry.odometry_run) return true;
-  if (!std::isfinite(query.odometer) || !std::isfinite(entry.odometer)) return true;
-  const double dx = query.position.x - entry.position.x;
-  const double dy = query.position.y - entry.position.y;
-  const double dz = query.position.z - entry.position.z;
+  if (!placed(query, query.odometry_run) || !placed(entry, query.odometry_run)) return true;
   const double radius = odometryGateRadius(options, query.odometer - entry.odometer);
-  return dx * dx + dy * dy + dz * dz <= radius * radius;
+  return squaredNorm(query.position.x - entry.position.x, query.position.y - entry.position.y,
+                     query.position.z - entry.position.z) <= radius * radius;
+}
+
+double loopAnchorRadius(const IslandOptions& options, double query_driven_m,
+                        double entry_driven_m) {
+  return options.odometry_anchor_m +
+         options.odometry_gate_drift * (std::fabs(query_driven_m) + std::fabs(entry_driven_m));
+}
+
+bool withinLoopAnchor(const DatabaseEntry& query, const DatabaseEntry& entry,
+                      const DatabaseEntry& anchor_query, const DatabaseEntry& anchor_match,
+                      const IslandOptions& options) {
+  if (!(options.odometry_anchor_m > 0.0)) return true;
+  const std::uint32_t run = query.odometry_run;
+  if (!placed(query, run) || !placed(entry, run) || !placed(anchor_query, run) ||
+      !placed(anchor_match, run)) {
+    return true;
+  }
+  // The loop said anchor_query and anchor_match are one place: entry is
+  // where query is when it moved from anchor_match as query moved from
+  // anchor_query.
+  const OdometryPosition& q = query.position;
+  const OdometryPosition& e = entry.position;
+  const OdometryPosition& q0 = anchor_query.position;
+  const OdometryPosition& m0 = anchor_match.position;
+  const double radius = loopAnchorRadius(options, query.odometer - anchor_query.odometer,
+                                         entry.odometer - anchor_match.odometer);
+  return squaredNorm((q.x - q0.x) - (e.x - m0.x), (q.y - q0.y) - (e.y - m0.y),
+                     (q.z - q0.z) - (e.z - m0.z)) <= radius * radius;
 }
 
 }  // namespace bowg

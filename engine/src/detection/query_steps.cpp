@@ -436,13 +436,20 @@ void runQuery(const QueryContext& ctx, const DatabaseQuery& q, const DatabaseEnt
       ctx.candidates.begin(), ctx.candidates.end(),
       [](const CandidateScores& a, const CandidateScores& b) { return a.eta < b.eta; });
 
-  // The odometry gate: candidates above the threshold where the odometry
+  // The odometry gates: candidates above the threshold where the odometry
   // says the robot cannot be are not candidates (the temporal memory above
-  // keeps their scores: the gate judges places, not the score's history).
-  if (options.islands.odometry_gate_m > 0.0) {
+  // keeps their scores: the gates judge places, not the score's history).
+  const IslandOptions& io = options.islands;
+  const LoopAnchor& anchor = ctx.state.last_loop;
+  const bool anchored = io.odometry_anchor_m > 0.0 && anchor.set &&
+                        anchor.query < ctx.database.size() && anchor.match < ctx.database.size();
+  if (io.odometry_gate_m > 0.0 || anchored) {
     const auto outside = [&](const std::pair<EntryId, double>& c) {
-      return c.second >= options.islands.min_score &&
-             !withinOdometryGate(query_entry, ctx.database.entry(c.first), options.islands);
+      if (c.second < io.min_score) return false;
+      const DatabaseEntry& e = ctx.database.entry(c.first);
+      return !withinOdometryGate(query_entry, e, io) ||
+             (anchored && !withinLoopAnchor(query_entry, e, ctx.database.entry(anchor.query),
+                                            ctx.database.entry(anchor.match), io));
     };
     const auto end = std::remove_if(etas.begin(), etas.end(), outside);
     r->candidates_gated = static_cast<std::size_t>(etas.end() - end);
@@ -489,7 +496,10 @@ void runQuery(const QueryContext& ctx, const DatabaseQuery& q, const DatabaseEnt
     return;
   }
   verifyMatch(ctx, island, &choice, &verifier, t_verify, r);
-  if (r->status == LoopStatus::kLoopDetected) ctx.state.place_links.link(r->query_id, r->match_id);
+  if (r->status == LoopStatus::kLoopDetected) {
+    ctx.state.place_links.link(r->query_id, r->match_id);
+    ctx.state.last_loop = LoopAnchor{true, r->query_id, r->match_id};
+  }
 }
 
 }  // namespace query_steps

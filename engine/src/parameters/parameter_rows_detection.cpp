@@ -39,6 +39,12 @@ void addDetectionRows(std::vector<Row>* rows) {
                             false, BOWG_FIELD(double, detector.islands.odometry_gate_drift),
                             "Odometry gate: metres of dead-reckoning error allowed per metre "
                             "driven"));
+  rows->push_back(doubleRow("odometry_anchor_m", det, "islands.odometry_anchor_m", 0.0, 1e6, false,
+                            BOWG_FIELD(double, detector.islands.odometry_anchor_m),
+                            "Loop-anchored gate: after a loop, entries whose odometry "
+                            "displacement from its match differs from the query's since it by "
+                            "more than this plus odometry_gate_drift times the metres driven "
+                            "are no candidates (0 = off)"));
   // --- Temporal verification.
   rows->push_back(intRow("temporal_k", det, "temporal_verification.k", 0, 100, true,
                          BOWG_FIELD(int, detector.temporal_verification.k),

@@ -119,6 +119,7 @@ TEST(Ablation, WithoutRowsSwitchOffOneExtensionEach) {
   base.temporal_verification.min_step_m = 0.02;
   base.temporal_verification.linked_places = true;
   base.islands.odometry_gate_m = 0.5;
+  base.islands.odometry_anchor_m = 0.3;
   base.geometric.candidates = 10;
   // Which extensions are on, in the order of the rows below.
   auto on = [](const LoopDetectorOptions& o) {
@@ -132,22 +133,27 @@ TEST(Ablation, WithoutRowsSwitchOffOneExtensionEach) {
         o.temporal_verification.min_step_m > 0,
         o.temporal_verification.linked_places,
         o.islands.odometry_gate_m > 0,
+        o.islands.odometry_anchor_m > 0,
         o.geometric.candidates > 1};
   };
-  const char* rows[] = {
-      "without_floor",          "without_normaliser_distance", "without_alignment",
-      "without_missed_queries", "without_hypotheses",          "without_min_step",
-      "without_linked_places",  "without_odometry_gate",       "without_reranking"};
-  ASSERT_EQ(on(base), std::vector<bool>(9, true));
-  for (int r = 0; r < 9; ++r) {
-    std::vector<bool> expected(9, true);
+  const char* rows[] = {"without_floor",         "without_normaliser_distance",
+                        "without_alignment",     "without_missed_queries",
+                        "without_hypotheses",    "without_min_step",
+                        "without_linked_places", "without_odometry_gate",
+                        "without_loop_anchor",   "without_reranking"};
+  const int n = 10;
+  ASSERT_EQ(on(base), std::vector<bool>(n, true));
+  for (int r = 0; r < n; ++r) {
+    std::vector<bool> expected(n, true);
     expected[r] = false;
+    // Without the odometry's positions neither gate can run.
+    if (std::string(rows[r]) == "without_odometry_gate") expected[r + 1] = false;
     const LoopDetectorOptions o = LoopDetectorOptions::ablation(rows[r], base);
     EXPECT_EQ(on(o), expected) << rows[r];
     EXPECT_NO_THROW(o.validate()) << rows[r];
   }
   // Every "without" row switches off something the paper row also switches off.
-  EXPECT_EQ(on(LoopDetectorOptions::ablation("paper", base)), std::vector<bool>(9, false));
+  EXPECT_EQ(on(LoopDetectorOptions::ablation("paper", base)), std::vector<bool>(n, false));
 }
 
 TEST(Ablation, KeepsTheOtherFields) {

@@ -14,6 +14,7 @@
 #include <set>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "bowg/core/errors.h"
 #include "bowg/database/database.h"
@@ -115,6 +116,86 @@ TEST(LoopDetector, OdometryGateRemovesALookAlikeTheRobotCannotBeAt) {
   EXPECT_LE(r.match_id, 11u);
   EXPECT_GE(r.candidates_gated, 1u);
   EXPECT_EQ(queryBehindALookAlike(1).candidates_gated, 0u);
+}
+
+// The loop-anchored gate (odometry_anchor_m). A corridor driven at x = 0..39
+// (keyframe i at x = i; keyframe 12 is a look-alike of the query: its
+// descriptors at shuffled positions), then, after x = 50..54, back at x =
+// 8.2 and 9.2 (the loop to 9 found with geometric re-ranking: the
+// look-alike outscores it too) and the query at 10.2, verified without
+// re-ranking. The absolute gate, wide after ~80 m driven (1 + 0.1 * 80 m),
+// admits the look-alike 1.8 m away; it is the best-scored candidate and
+// without the anchor the query has no loop. The last loop (9.2 -> keyframe 9) anchors the query: it
+// drove 1.0 m since, so its place is 1.0 m past keyframe 9; the look-alike is 3.0 m past it, 2.0 m
+// off, beyond the anchored radius 0.5 + 0.1 * (1.0 + 3.0) = 0.9 m; keyframe 10 (0.0 m off, radius
+// 0.6 m) passes.
+LoopResult queryNextToAnchoredLookAlike(double anchor_m, std::vector<LoopResult>* warm_up) {
+  const testing::Corridor c = testing::makeCorridor(70, 50, 5);
+  std::mt19937_64 rng(13);
+  LoopDetectorOptions o = defaultOptions();
+  o.word_groups.enabled = false;
+  o.temporal_score.enabled = false;
+  o.temporal_verification.k = 0;
+  o.islands.max_intra_island_gap = 0;  // every entry its own island
+  o.islands.recent_exclusion = 5;
+  o.islands.min_score = 0.0;
+  o.geometric.candidates = 5;
+  o.geometric.min_inliers = 40;
+  o.islands.odometry_gate_m = 1.0;  // drift 0.1 per metre
+  o.islands.odometry_anchor_m = anchor_m;
+  LoopDetector det(vocabulary(), o);
+  double stamp = 1.0, driven = 0.0, at = 0.0;
+  const auto take = [&](KeyframeInput kf, double x) {
+    driven += std::fabs(x - at);
+    at = x;
+    kf.stamp = stamp++;
+    kf.odometer = driven;
+    kf.position.x = x;
+    kf.position.y = kf.position.z = 0.0;
+    return det.process(kf);
+  };
+  KeyframeInput query = testing::observeCorridor(c, 10.2, 0.0, rng, 0, 0.5);
+  for (int i = 0; i < 40; ++i) {
+    if (i == 12) {
+      KeyframeInput look_alike = query;
+      std::shuffle(look_alike.features.keypoints.begin(), look_alike.features.keypoints.end(), rng);
+      take(look_alike, 12.0);
+    } else {
+      take(testing::observeCorridor(c, i, 0.0, rng, 2, 0.5), i);
+    }
+  }
+  for (int i = 0; i < 5; ++i) take(testing::observeCorridor(c, 50 + i, 0.0, rng, 2, 0.5), 50 + i);
+  warm_up->push_back(take(testing::observeCorridor(c, 8.2, 0.0, rng, 2, 0.5), 8.2));
+  warm_up->push_back(take(testing::observeCorridor(c, 9.2, 0.0, rng, 2, 0.5), 9.2));
+  o.geometric.candidates = 1;
+  det.setOptions(o);
+  const LoopResult r = take(query, 10.2);
+  const auto& all = det.lastCandidates();
+  const auto best = std::max_element(
+      all.begin(), all.end(),
+      [](const CandidateScores& a, const CandidateScores& b) { return a.eta < b.eta; });
+  EXPECT_EQ(best->entry, 12u);  // the look-alike is the best-scored, gate or not
+  return r;
+}
+
+TEST(LoopDetector, LoopAnchorRemovesALookAlikeNearTheLastLoop) {
+  std::vector<LoopResult> warm_up;
+  const LoopResult without = queryNextToAnchoredLookAlike(0.0, &warm_up);
+  ASSERT_EQ(warm_up.size(), 2u);
+  // 8.2 follows x = 54: a low normaliser; 9.2 is the anchor.
+  ASSERT_EQ(warm_up[1].status, LoopStatus::kLoopDetected) << toString(warm_up[1].status);
+  EXPECT_EQ(warm_up[1].match_id, 9u);
+  EXPECT_EQ(without.island_first, 12u);
+  EXPECT_NE(without.status, LoopStatus::kLoopDetected);
+
+  warm_up.clear();
+  const LoopResult with = queryNextToAnchoredLookAlike(0.5, &warm_up);
+  ASSERT_EQ(with.status, LoopStatus::kLoopDetected) << toString(with.status);
+  EXPECT_EQ(with.match_id, 10u);
+  // The absolute gate removes the far entries in both runs; the anchor
+  // removes the look-alike and every other keyframe of the first pass but
+  // x = 10 besides (each 1 m or more off).
+  EXPECT_GE(with.candidates_gated, without.candidates_gated + 3);
 }
 
 TEST(LoopDetector, GeometricReRankingFindsTheTruePlaceBehindALookAlike) {

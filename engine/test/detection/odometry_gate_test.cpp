@@ -59,5 +59,62 @@ TEST(OdometryGate, WithoutComparablePositionsEverythingPasses) {
   EXPECT_TRUE(withinOdometryGate(query, no_odometer, gate(0.5, 0.1)));
 }
 
+IslandOptions anchor(double anchor_m, double drift) {
+  IslandOptions o;
+  o.odometry_anchor_m = anchor_m;
+  o.odometry_gate_drift = drift;
+  return o;
+}
+
+TEST(LoopAnchor, RadiusGrowsWithTheMetresDrivenOnBothSides) {
+  EXPECT_DOUBLE_EQ(loopAnchorRadius(anchor(0.3, 0.05), 0.0, 0.0), 0.3);
+  // 2 m since the anchor's query, 14 m (a lap) from its match: 0.3 + 0.8.
+  EXPECT_DOUBLE_EQ(loopAnchorRadius(anchor(0.3, 0.05), 2.0, -14.0), 1.1);
+  EXPECT_DOUBLE_EQ(loopAnchorRadius(anchor(0.3, 0.0), 50.0, 50.0), 0.3);
+}
+
+TEST(LoopAnchor, TheEntryMustHaveMovedFromTheMatchAsTheQueryFromItsLoop) {
+  const IslandOptions o = anchor(0.3, 0.05);
+  // The last loop: the robot at (30, 1, 0) (odometer 60) was at the place of
+  // the entry at (29.6, 0, 0) (odometer 29.6): the odometry drifted 0.4 m
+  // in x and 1 m in y in 30 m. The query drove 1.0 m on to (31, 1, 0).
+  const DatabaseEntry q0 = at(30, 1, 0, 60.0);
+  const DatabaseEntry m0 = at(29.6, 0, 0, 29.6);
+  const DatabaseEntry q = at(31, 1, 0, 61.0);
+  // (30.6, 0, 0): moved 1.0 m from m0 as the query from q0: 0 m off.
+  EXPECT_TRUE(withinLoopAnchor(q, at(30.6, 0, 0, 30.6), q0, m0, o));
+  // A look-alike 0.5 m further, (31.1, 0, 0): 0.5 m off; radius 0.3 +
+  // 0.05 * (1.0 + 1.5) = 0.425 m. Yet the absolute gate, 1 + 0.05 * 30.4,
+  // would let it through (1.005 m away).
+  EXPECT_FALSE(withinLoopAnchor(q, at(31.1, 0, 0, 31.1), q0, m0, o));
+  EXPECT_TRUE(withinOdometryGate(q, at(31.1, 0, 0, 31.1), gate(1.0, 0.05)));
+  // 0.4 m off sideways after 1.0 m along: (31.0, 0.4, 0) is sqrt(0.4^2 +
+  // 0.4^2) = 0.566 m off, radius 0.3 + 0.05 * (1.0 + 1.4) = 0.42: outside;
+  // (30.9, 0.2, 0): sqrt(0.3^2 + 0.2^2) = 0.361 m off, radius 0.415: inside.
+  EXPECT_FALSE(withinLoopAnchor(q, at(31.0, 0.4, 0, 31.0), q0, m0, o));
+  EXPECT_TRUE(withinLoopAnchor(q, at(30.9, 0.2, 0, 30.9), q0, m0, o));
+  // Boundary, without drift allowance (radius 0.25 m) and with an anchor
+  // match at (29.5, 0, 0): (30.75, 0, 0) moved 1.25 m, exactly 0.25 m off:
+  // inside; (30.8, 0, 0) is 0.3 m off: outside.
+  const DatabaseEntry m1 = at(29.5, 0, 0, 29.5);
+  EXPECT_TRUE(withinLoopAnchor(q, at(30.75, 0, 0, 30.75), q0, m1, anchor(0.25, 0.0)));
+  EXPECT_FALSE(withinLoopAnchor(q, at(30.8, 0, 0, 30.8), q0, m1, anchor(0.25, 0.0)));
+}
+
+TEST(LoopAnchor, WithoutComparablePositionsEverythingPasses) {
+  const DatabaseEntry q0 = at(30, 1, 0, 60.0);
+  const DatabaseEntry m0 = at(29.6, 0, 0, 29.6);
+  const DatabaseEntry q = at(31, 1, 0, 61.0);
+  const DatabaseEntry far = at(80, 0, 0, 80.0);
+  EXPECT_FALSE(withinLoopAnchor(q, far, q0, m0, anchor(0.3, 0.05)));
+  EXPECT_TRUE(withinLoopAnchor(q, far, q0, m0, anchor(0.0, 0.05)));  // off
+  EXPECT_TRUE(withinLoopAnchor(q, DatabaseEntry(), q0, m0, anchor(0.3, 0.05)));
+  EXPECT_TRUE(withinLoopAnchor(q, far, DatabaseEntry(), m0, anchor(0.3, 0.05)));
+  EXPECT_TRUE(withinLoopAnchor(q, far, q0, DatabaseEntry(), anchor(0.3, 0.05)));
+  // An anchor of another odometry run (a loaded detector's old loop).
+  EXPECT_TRUE(withinLoopAnchor(q, far, q0, at(29.6, 0, 0, 29.6, 1), anchor(0.3, 0.05)));
+  EXPECT_TRUE(withinLoopAnchor(q, at(80, 0, 0, 80.0, 1), q0, m0, anchor(0.3, 0.05)));
+}
+
 }  // namespace
 }  // namespace bowg

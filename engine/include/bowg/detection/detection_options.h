@@ -40,6 +40,17 @@ struct IslandOptions {
   /// 0 = no gate. >= 0, both.
   double odometry_gate_m = 0.0;
   double odometry_gate_drift = 0.1;
+  /// Loop-anchored gate (odometry_gate.h, LoopAnchor): after an accepted
+  /// loop (q0, m0) of the same odometry run, an entry e is a candidate of
+  /// query q only when q's odometry displacement since q0 and e's since m0
+  /// agree within
+  ///   odometry_anchor_m + odometry_gate_drift * (|driven q0..q| + |driven m0..e|)
+  /// metres. Dead reckoning drifts metres over a lap but only centimetres
+  /// over the last metre: right after a loop the robot knows where along
+  /// the earlier pass it is to a keyframe or two, closer than the
+  /// periodic look-alikes (every 0.5-2 m in the tuning half) that the
+  /// absolute gate's radius still admits. 0 = off. >= 0.
+  double odometry_anchor_m = 0.0;
   void validate() const;
 };
 

@@ -10,6 +10,7 @@
 
 #include "bowg/core/types.h"
 #include "bowg/detection/islands.h"
+#include "bowg/detection/odometry_gate.h"
 #include "bowg/detection/place_links.h"
 #include "bowg/scoring/normaliser_history.h"
 
@@ -36,6 +37,9 @@ struct DetectorState {
   /// a robot restarted with a saved database has a new odometry frame, so
   /// LoopDetector::load starts a new run.
   std::uint32_t odometry_run = 0;
+  /// The last accepted loop (IslandOptions::odometry_anchor_m); recorded
+  /// whether or not the option is on. Not saved (LoopAnchor).
+  LoopAnchor last_loop;
 };
 
 }  // namespace bowg
