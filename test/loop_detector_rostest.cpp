@@ -53,6 +53,50 @@ TEST(LoopDetectorNodelet, OdometryGateKeepsLoopsWhereTheOdometryAgrees) {
   EXPECT_GT(gated, 0u);
 }
 
+// The loop-anchored gate end to end (odometry_anchor_m, absolute gate
+// off): halfway through the revisit the odometry jumps 3 m ahead (a wheel
+// slipping on a joint). Without the anchor the loops go on; with it the
+// last loop before the jump anchors the robot's place, the second half's
+// true places lie 3 m from where the anchor puts them, and they are gated.
+std::vector<cv::Point3d> jumpingRevisitPositions() {
+  std::vector<cv::Point3d> p = revisitPositions(0.0);
+  for (int j = kRevisit / 2; j < kRevisit; ++j) p[kForward + j].x += 3.0;
+  return p;
+}
+
+std::size_t loopsAfter(const std::vector<LoopClosure>& loops, std::uint32_t first_query) {
+  std::size_t n = 0;
+  for (const LoopClosure& l : loops) n += l.query_id >= first_query ? 1 : 0;
+  return n;
+}
+
+TEST(LoopDetectorNodelet, LoopAnchorGatesPlacesTheOdometrySinceTheLastLoopRulesOut) {
+  const cv::Mat world = test::makeWorld(kForward * kStep + kViewWidth + kOffset, kViewHeight, 1);
+  const std::uint32_t jump = kForward + kRevisit / 2;
+  for (const double anchor_m : {0.0, 0.3}) {
+    SCOPED_TRACE(anchor_m);
+    Detector d(
+        anchor_m > 0.0 ? "/anchor_on" : "/anchor_off",
+        {{"odometry_gate_m", 0.0}, {"odometry_gate_drift", 0.0}, {"odometry_anchor_m", anchor_m}});
+    ASSERT_TRUE(d.loaded());
+    ASSERT_TRUE(d.run(world, test::trajectory(kForward, kRevisit, kStep, kOffset), 1000.0,
+                      revisitBrightness(), 25.0, jumpingRevisitPositions()));
+    ros::WallDuration(0.3).sleep();
+    const std::vector<LoopClosure> loops = d.loops();
+    expectRightIds(loops);
+    EXPECT_GE(loops.size() - loopsAfter(loops, jump), 1u) << "no loop before the jump";
+    std::uint64_t gated = 0;
+    for (const KeyframeStatus& s : d.statuses()) gated += s.candidates_gated;
+    if (anchor_m > 0.0) {
+      EXPECT_EQ(loopsAfter(loops, jump), 0u) << "loops the anchored odometry rules out";
+      EXPECT_GT(gated, 0u);
+    } else {
+      EXPECT_GE(loopsAfter(loops, jump), 3u) << "too few loops after the jump without the anchor";
+      EXPECT_EQ(gated, 0u);
+    }
+  }
+}
+
 TEST(LoopDetectorNodelet, RevisitGivesLoopClosuresWithTheRightIds) {
   Detector d("/revisit", {});
   ASSERT_TRUE(d.loaded());
