@@ -12,6 +12,34 @@ bool placed(const DatabaseEntry& e, std::uint32_t run) {
 
 double squaredNorm(double dx, double dy, double dz) { return dx * dx + dy * dy + dz * dz; }
 
+// Whether the four entries carry positions and odometers of the query's run.
+bool anchorApplies(const DatabaseEntry& query, const DatabaseEntry& entry,
+                   const DatabaseEntry& anchor_query, const DatabaseEntry& anchor_match) {
+  const std::uint32_t run = query.odometry_run;
+  return placed(query, run) && placed(entry, run) && placed(anchor_query, run) &&
+         placed(anchor_match, run);
+}
+
+double anchorRadius(const DatabaseEntry& query, const DatabaseEntry& entry,
+                    const DatabaseEntry& anchor_query, const DatabaseEntry& anchor_match,
+                    const IslandOptions& options) {
+  return loopAnchorRadius(options, query.odometer - anchor_query.odometer,
+                          entry.odometer - anchor_match.odometer);
+}
+
+// The loop said anchor_query and anchor_match are one place: entry is where
+// query is when it moved from anchor_match as query moved from anchor_query.
+bool anchoredWithin(const DatabaseEntry& query, const DatabaseEntry& entry,
+                    const DatabaseEntry& anchor_query, const DatabaseEntry& anchor_match,
+                    double radius) {
+  const OdometryPosition& q = query.position;
+  const OdometryPosition& e = entry.position;
+  const OdometryPosition& q0 = anchor_query.position;
+  const OdometryPosition& m0 = anchor_match.position;
+  return squaredNorm((q.x - q0.x) - (e.x - m0.x), (q.y - q0.y) - (e.y - m0.y),
+                     (q.z - q0.z) - (e.z - m0.z)) <= radius * radius;
+}
+
 }  // namespace
 
 double odometryGateRadius(const IslandOptions& options, double driven_m) {
@@ -37,22 +65,25 @@ bool withinLoopAnchor(const DatabaseEntry& query, const DatabaseEntry& entry,
                       const DatabaseEntry& anchor_query, const DatabaseEntry& anchor_match,
                       const IslandOptions& options) {
   if (!(options.odometry_anchor_m > 0.0)) return true;
-  const std::uint32_t run = query.odometry_run;
-  if (!placed(query, run) || !placed(entry, run) || !placed(anchor_query, run) ||
-      !placed(anchor_match, run)) {
-    return true;
+  if (!anchorApplies(query, entry, anchor_query, anchor_match)) return true;
+  return anchoredWithin(query, entry, anchor_query, anchor_match,
+                        anchorRadius(query, entry, anchor_query, anchor_match, options));
+}
+
+bool withinLoopAnchors(const DatabaseEntry& query, const DatabaseEntry& entry,
+                       const std::vector<AnchorEntries>& anchors, const IslandOptions& options) {
+  if (!(options.odometry_anchor_m > 0.0)) return true;
+  const AnchorEntries* best = nullptr;
+  double best_radius = 0.0;
+  for (const AnchorEntries& a : anchors) {
+    if (!anchorApplies(query, entry, *a.query, *a.match)) continue;
+    const double radius = anchorRadius(query, entry, *a.query, *a.match, options);
+    if (best == nullptr || radius < best_radius) {
+      best = &a;
+      best_radius = radius;
+    }
   }
-  // The loop said anchor_query and anchor_match are one place: entry is
-  // where query is when it moved from anchor_match as query moved from
-  // anchor_query.
-  const OdometryPosition& q = query.position;
-  const OdometryPosition& e = entry.position;
-  const OdometryPosition& q0 = anchor_query.position;
-  const OdometryPosition& m0 = anchor_match.position;
-  const double radius = loopAnchorRadius(options, query.odometer - anchor_query.odometer,
-                                         entry.odometer - anchor_match.odometer);
-  return squaredNorm((q.x - q0.x) - (e.x - m0.x), (q.y - q0.y) - (e.y - m0.y),
-                     (q.z - q0.z) - (e.z - m0.z)) <= radius * radius;
+  return best == nullptr || anchoredWithin(query, entry, *best->query, *best->match, best_radius);
 }
 
 }  // namespace bowg

@@ -440,16 +440,22 @@ void runQuery(const QueryContext& ctx, const DatabaseQuery& q, const DatabaseEnt
   // says the robot cannot be are not candidates (the temporal memory above
   // keeps their scores: the gates judge places, not the score's history).
   const IslandOptions& io = options.islands;
-  const LoopAnchor& anchor = ctx.state.last_loop;
-  const bool anchored = io.odometry_anchor_m > 0.0 && anchor.set &&
-                        anchor.query < ctx.database.size() && anchor.match < ctx.database.size();
+  std::vector<AnchorEntries> anchors;
+  if (io.odometry_anchor_m > 0.0) {
+    for (const LoopAnchor& a : ctx.state.recent_loops) {
+      if (a.query < ctx.database.size() && a.match < ctx.database.size()) {
+        anchors.push_back(
+            AnchorEntries{&ctx.database.entry(a.query), &ctx.database.entry(a.match)});
+      }
+    }
+  }
+  const bool anchored = !anchors.empty();
   if (io.odometry_gate_m > 0.0 || anchored) {
     const auto outside = [&](const std::pair<EntryId, double>& c) {
       if (c.second < io.min_score) return false;
       const DatabaseEntry& e = ctx.database.entry(c.first);
       return !withinOdometryGate(query_entry, e, io) ||
-             (anchored && !withinLoopAnchor(query_entry, e, ctx.database.entry(anchor.query),
-                                            ctx.database.entry(anchor.match), io));
+             (anchored && !withinLoopAnchors(query_entry, e, anchors, io));
     };
     const auto end = std::remove_if(etas.begin(), etas.end(), outside);
     r->candidates_gated = static_cast<std::size_t>(etas.end() - end);
@@ -498,7 +504,9 @@ void runQuery(const QueryContext& ctx, const DatabaseQuery& q, const DatabaseEnt
   verifyMatch(ctx, island, &choice, &verifier, t_verify, r);
   if (r->status == LoopStatus::kLoopDetected) {
     ctx.state.place_links.link(r->query_id, r->match_id);
-    ctx.state.last_loop = LoopAnchor{true, r->query_id, r->match_id};
+    std::vector<LoopAnchor>& recent = ctx.state.recent_loops;
+    if (recent.size() == kLoopAnchors) recent.erase(recent.begin());
+    recent.push_back(LoopAnchor{r->query_id, r->match_id});
   }
 }
 

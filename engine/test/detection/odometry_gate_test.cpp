@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <limits>
+#include <vector>
 
 namespace bowg {
 namespace {
@@ -114,6 +115,35 @@ TEST(LoopAnchor, WithoutComparablePositionsEverythingPasses) {
   // An anchor of another odometry run (a loaded detector's old loop).
   EXPECT_TRUE(withinLoopAnchor(q, far, q0, at(29.6, 0, 0, 29.6, 1), anchor(0.3, 0.05)));
   EXPECT_TRUE(withinLoopAnchor(q, at(80, 0, 0, 80.0, 1), q0, m0, anchor(0.3, 0.05)));
+}
+
+// A circuit of 15 m laps along x; each lap's odometry 0.3 m further off in
+// y. The query is on lap 3 at x = 1.0 (odometer 46). Two recent loops: A
+// (the last) from x = 0.5 to lap 2, B from x = 0 to lap 1.
+TEST(LoopAnchor, EachEntryIsJudgedByTheAnchorOnItsOwnLap) {
+  const IslandOptions o = anchor(0.3, 0.05);
+  const DatabaseEntry q = at(1.0, 0.9, 0, 46.0);
+  const DatabaseEntry a_query = at(0.5, 0.9, 0, 45.5), a_match = at(0.5, 0.6, 0, 30.5);
+  const DatabaseEntry b_query = at(0.0, 0.9, 0, 45.0), b_match = at(0.0, 0.3, 0, 15.0);
+  const std::vector<AnchorEntries> a{{&a_query, &a_match}};
+  const std::vector<AnchorEntries> ab{{&a_query, &a_match}, {&b_query, &b_match}};
+  // The true place on lap 1 (x = 1.0, odometer 16): by B, radius 0.3 + 0.05
+  // * (1.0 + 1.0) = 0.4 (A's would be 0.3 + 0.05 * (0.5 + 14.5) = 1.05):
+  // it moved 1.0 m from B's match as the query from B's query: 0 m off.
+  const DatabaseEntry place = at(1.0, 0.3, 0, 16.0);
+  EXPECT_TRUE(withinLoopAnchors(q, place, ab, o));
+  // A look-alike 0.5 m further on lap 1: by B 0.5 m off, radius 0.425:
+  // outside. A alone, a lap from it, has radius 0.3 + 0.05 * (0.5 + 14) =
+  // 1.025 and finds it sqrt(0.5^2 + 0.3^2) = 0.583 m off: inside.
+  const DatabaseEntry look_alike = at(1.5, 0.3, 0, 16.5);
+  EXPECT_TRUE(withinLoopAnchors(q, look_alike, a, o));
+  EXPECT_FALSE(withinLoopAnchors(q, look_alike, ab, o));
+  // Without anchors, with the gate off, or with anchors of another run:
+  // nothing is gated.
+  EXPECT_TRUE(withinLoopAnchors(q, look_alike, {}, o));
+  EXPECT_TRUE(withinLoopAnchors(q, look_alike, ab, anchor(0.0, 0.05)));
+  const DatabaseEntry old_match = at(0.0, 0.3, 0, 15.0, 1);
+  EXPECT_TRUE(withinLoopAnchors(q, look_alike, {{&a_query, &a_match}, {&b_query, &old_match}}, o));
 }
 
 }  // namespace

@@ -45,7 +45,8 @@ struct IslandOptions {
   /// query q only when q's odometry displacement since q0 and e's since m0
   /// agree within
   ///   odometry_anchor_m + odometry_gate_drift * (|driven q0..q| + |driven m0..e|)
-  /// metres. Dead reckoning drifts metres over a lap but only centimetres
+  /// metres, judged by the one of the last kLoopAnchors loops that gives e
+  /// the smallest radius. Dead reckoning drifts metres over a lap but only centimetres
   /// over the last metre: right after a loop the robot knows where along
   /// the earlier pass it is to a keyframe or two, closer than the
   /// periodic look-alikes (every 0.5-2 m in the tuning half) that the

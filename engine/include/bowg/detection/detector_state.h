@@ -37,9 +37,10 @@ struct DetectorState {
   /// a robot restarted with a saved database has a new odometry frame, so
   /// LoopDetector::load starts a new run.
   std::uint32_t odometry_run = 0;
-  /// The last accepted loop (IslandOptions::odometry_anchor_m); recorded
-  /// whether or not the option is on. Not saved (LoopAnchor).
-  LoopAnchor last_loop;
+  /// The last kLoopAnchors accepted loops, oldest first
+  /// (IslandOptions::odometry_anchor_m); recorded whether or not the option
+  /// is on. Not saved (LoopAnchor).
+  std::vector<LoopAnchor> recent_loops;
 };
 
 }  // namespace bowg

@@ -5,21 +5,30 @@
 // drift.
 #pragma once
 
+#include <cstddef>
+#include <vector>
+
 #include "bowg/core/types.h"
 #include "bowg/database/database.h"
 #include "bowg/detection/detection_options.h"
 
 namespace bowg {
 
-/// The last accepted loop of the current odometry run: where the robot was
+/// An accepted loop of the current odometry run: where the robot was
 /// (`query`, an entry once its query is done) and the earlier entry it was
 /// recognised at (`match`). Not saved with the detector: a loaded detector
 /// starts a new odometry run, in which an old anchor never applies.
 struct LoopAnchor {
-  bool set = false;
   EntryId query = 0;
   EntryId match = 0;
 };
+
+/// The loop-anchored gate remembers this many of the last accepted loops
+/// (DetectorState::recent_loops). On a circuit driven lap after lap the
+/// re-ranking's match jumps between the earlier laps from query to query,
+/// so the last few loops hold a recent anchor on each lap the robot is
+/// recognised on; an older one only widens its radius (loopAnchorRadius).
+constexpr std::size_t kLoopAnchors = 8;
 
 /// The largest distance (m) between the odometry positions of two entries
 /// `driven_m` metres of driving apart that the gate lets through:
@@ -43,13 +52,27 @@ bool withinOdometryGate(const DatabaseEntry& query, const DatabaseEntry& entry,
 double loopAnchorRadius(const IslandOptions& options, double query_driven_m, double entry_driven_m);
 
 /// Whether `entry` may be a candidate of `query` by the loop-anchored gate,
-/// with `anchor_query` and `anchor_match` the entries of the last accepted
-/// loop: true when the gate is off (odometry_anchor_m 0) or when any of the
-/// four lacks a position or an odometer or belongs to another odometry run;
+/// with `anchor_query` and `anchor_match` the entries of an accepted loop:
+/// true when the gate is off (odometry_anchor_m 0) or when any of the four
+/// lacks a position or an odometer or belongs to another odometry run;
 /// otherwise whether the displacements (query - anchor_query) and (entry -
 /// anchor_match) differ by at most loopAnchorRadius.
 bool withinLoopAnchor(const DatabaseEntry& query, const DatabaseEntry& entry,
                       const DatabaseEntry& anchor_query, const DatabaseEntry& anchor_match,
                       const IslandOptions& options);
+
+/// An accepted loop's two entries, as withinLoopAnchors reads them.
+struct AnchorEntries {
+  const DatabaseEntry* query;
+  const DatabaseEntry* match;
+};
+
+/// The loop-anchored gate over several loops: `entry` is judged by the
+/// anchor that predicts its place best, the one whose loopAnchorRadius for
+/// it is the smallest among the `anchors` that apply (all four entries
+/// placed in the query's odometry run); true when none applies or the gate
+/// is off.
+bool withinLoopAnchors(const DatabaseEntry& query, const DatabaseEntry& entry,
+                       const std::vector<AnchorEntries>& anchors, const IslandOptions& options);
 
 }  // namespace bowg
