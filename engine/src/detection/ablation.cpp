@@ -39,6 +39,7 @@ LoopDetectorOptions LoopDetectorOptions::ablation(const std::string& row,
     o.temporal_verification.hypotheses = 1;
     o.temporal_verification.min_step_m = 0.0;
     o.temporal_verification.linked_places = false;
+    o.temporal_verification.anchored_chain = false;
     o.geometric.candidates = 1;
     o.islands.odometry_gate_m = 0.0;
     o.islands.odometry_anchor_m = 0.0;
@@ -76,13 +77,19 @@ LoopDetectorOptions LoopDetectorOptions::ablation(const std::string& row,
     o.temporal_verification.linked_places = false;
     return o;
   }
-  if (row == "without_odometry_gate") {  // both gates: no use of the odometry's positions
+  if (row == "without_odometry_gate") {  // no use of the odometry's positions at all
     o.islands.odometry_gate_m = 0.0;
     o.islands.odometry_anchor_m = 0.0;
+    o.temporal_verification.anchored_chain = false;
     return o;
   }
-  if (row == "without_loop_anchor") {
+  if (row == "without_loop_anchor") {  // the anchored chain needs the anchor
     o.islands.odometry_anchor_m = 0.0;
+    o.temporal_verification.anchored_chain = false;
+    return o;
+  }
+  if (row == "without_anchored_chain") {
+    o.temporal_verification.anchored_chain = false;
     return o;
   }
   if (row == "without_reranking") {
@@ -112,7 +119,7 @@ LoopDetectorOptions LoopDetectorOptions::ablation(const std::string& row,
                            "without_normaliser_distance, without_alignment, "
                            "without_missed_queries, without_hypotheses, without_min_step, "
                            "without_linked_places, without_odometry_gate, without_loop_anchor, "
-                           "without_reranking");
+                           "without_anchored_chain, without_reranking");
   }
   return o;
 }

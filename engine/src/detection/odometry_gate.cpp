@@ -40,6 +40,23 @@ bool anchoredWithin(const DatabaseEntry& query, const DatabaseEntry& entry,
                      (q.z - q0.z) - (e.z - m0.z)) <= radius * radius;
 }
 
+// The anchor that judges `entry` (the smallest radius among those that
+// apply) and its radius; nullptr when none applies.
+const AnchorEntries* bestAnchor(const DatabaseEntry& query, const DatabaseEntry& entry,
+                                const std::vector<AnchorEntries>& anchors,
+                                const IslandOptions& options, double* radius) {
+  const AnchorEntries* best = nullptr;
+  for (const AnchorEntries& a : anchors) {
+    if (!anchorApplies(query, entry, *a.query, *a.match)) continue;
+    const double r = anchorRadius(query, entry, *a.query, *a.match, options);
+    if (best == nullptr || r < *radius) {
+      best = &a;
+      *radius = r;
+    }
+  }
+  return best;
+}
+
 }  // namespace
 
 double odometryGateRadius(const IslandOptions& options, double driven_m) {
@@ -73,17 +90,18 @@ bool withinLoopAnchor(const DatabaseEntry& query, const DatabaseEntry& entry,
 bool withinLoopAnchors(const DatabaseEntry& query, const DatabaseEntry& entry,
                        const std::vector<AnchorEntries>& anchors, const IslandOptions& options) {
   if (!(options.odometry_anchor_m > 0.0)) return true;
-  const AnchorEntries* best = nullptr;
-  double best_radius = 0.0;
-  for (const AnchorEntries& a : anchors) {
-    if (!anchorApplies(query, entry, *a.query, *a.match)) continue;
-    const double radius = anchorRadius(query, entry, *a.query, *a.match, options);
-    if (best == nullptr || radius < best_radius) {
-      best = &a;
-      best_radius = radius;
-    }
-  }
-  return best == nullptr || anchoredWithin(query, entry, *best->query, *best->match, best_radius);
+  double radius = 0.0;
+  const AnchorEntries* best = bestAnchor(query, entry, anchors, options, &radius);
+  return best == nullptr || anchoredWithin(query, entry, *best->query, *best->match, radius);
+}
+
+bool anchoredByRecentLoop(const DatabaseEntry& query, const DatabaseEntry& entry,
+                          const std::vector<AnchorEntries>& anchors, const IslandOptions& options) {
+  if (!(options.odometry_anchor_m > 0.0)) return false;
+  double radius = 0.0;
+  const AnchorEntries* best = bestAnchor(query, entry, anchors, options, &radius);
+  return best != nullptr && radius <= 2.0 * options.odometry_anchor_m &&
+         anchoredWithin(query, entry, *best->query, *best->match, radius);
 }
 
 }  // namespace bowg

@@ -492,8 +492,11 @@ void runQuery(const QueryContext& ctx, const DatabaseQuery& q, const DatabaseEnt
   }
   const TemporalVerificationOptions& tv = options.temporal_verification;
   const bool linked = tv.linked_places && continuesLinkedChain(ctx, followed, query_entry.odometer);
-  const bool consistent =
-      ctx.state.consistency.update(followed, 0, tv, query_entry.odometer) || linked;
+  const bool anchored_chain =
+      tv.anchored_chain && anchored &&
+      anchoredByRecentLoop(query_entry, ctx.database.entry(island.best_entry), anchors, io);
+  const bool consistent = ctx.state.consistency.update(followed, 0, tv, query_entry.odometer) ||
+                          linked || anchored_chain;
   const auto t_verify = Clock::now();
   r->timings.islands_ms = msBetween(t_islands, t_verify) - choice.rerank_ms;
   r->timings.verification_ms = choice.rerank_ms;

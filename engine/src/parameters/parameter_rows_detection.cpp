@@ -76,6 +76,10 @@ void addDetectionRows(std::vector<Row>* rows) {
                           false, BOWG_FIELD(bool, detector.temporal_verification.linked_places),
                           "An island at a place joined by accepted loops to a chain's island "
                           "continues that chain (false = DLoopDetector)"));
+  rows->push_back(boolRow("temporal_anchored_chain", det, "temporal_verification.anchored_chain",
+                          false, BOWG_FIELD(bool, detector.temporal_verification.anchored_chain),
+                          "An island a loop of the last few metres anchors (odometry_anchor_m) "
+                          "passes the temporal verification (false = DLoopDetector)"));
   // --- Geometric verification.
   rows->push_back(boolRow("geometric_verification", det, "geometric.enabled", true,
                           BOWG_FIELD(bool, detector.geometric.enabled),

@@ -120,6 +120,7 @@ TEST(Ablation, WithoutRowsSwitchOffOneExtensionEach) {
   base.temporal_verification.linked_places = true;
   base.islands.odometry_gate_m = 0.5;
   base.islands.odometry_anchor_m = 0.3;
+  base.temporal_verification.anchored_chain = true;
   base.geometric.candidates = 10;
   // Which extensions are on, in the order of the rows below.
   auto on = [](const LoopDetectorOptions& o) {
@@ -134,20 +135,25 @@ TEST(Ablation, WithoutRowsSwitchOffOneExtensionEach) {
         o.temporal_verification.linked_places,
         o.islands.odometry_gate_m > 0,
         o.islands.odometry_anchor_m > 0,
+        o.temporal_verification.anchored_chain,
         o.geometric.candidates > 1};
   };
   const char* rows[] = {"without_floor",         "without_normaliser_distance",
                         "without_alignment",     "without_missed_queries",
                         "without_hypotheses",    "without_min_step",
                         "without_linked_places", "without_odometry_gate",
-                        "without_loop_anchor",   "without_reranking"};
-  const int n = 10;
+                        "without_loop_anchor",   "without_anchored_chain",
+                        "without_reranking"};
+  const int n = 11;
   ASSERT_EQ(on(base), std::vector<bool>(n, true));
   for (int r = 0; r < n; ++r) {
     std::vector<bool> expected(n, true);
     expected[r] = false;
-    // Without the odometry's positions neither gate can run.
-    if (std::string(rows[r]) == "without_odometry_gate") expected[r + 1] = false;
+    // Without the odometry's positions neither gate nor the anchored chain
+    // can run; without the anchor, not the anchored chain.
+    const std::string row = rows[r];
+    if (row == "without_odometry_gate") expected[r + 1] = expected[r + 2] = false;
+    if (row == "without_loop_anchor") expected[r + 1] = false;
     const LoopDetectorOptions o = LoopDetectorOptions::ablation(rows[r], base);
     EXPECT_EQ(on(o), expected) << rows[r];
     EXPECT_NO_THROW(o.validate()) << rows[r];

@@ -14,6 +14,7 @@
 #include <set>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "bowg/core/errors.h"
@@ -196,6 +197,70 @@ TEST(LoopDetector, LoopAnchorRemovesALookAlikeNearTheLastLoop) {
   // removes the look-alike and every other keyframe of the first pass but
   // x = 10 besides (each 1 m or more off).
   EXPECT_GE(with.candidates_gated, without.candidates_gated + 3);
+}
+
+// The anchored chain (temporal_verification.anchored_chain). A corridor
+// driven at x = 0..39, then back at x = 5.2, 6.2, ... with the temporal
+// check at k = 1 until a loop anchors the robot, then at k = 50 (no chain
+// of islands can pass: as at 15 cm between keyframes, where a revisit
+// rarely has k islands in a row). Returns the loops after the switch, each
+// with the x its query was taken at.
+std::vector<std::pair<double, LoopResult>> loopsAfterTheChainBecomesUnreachable(
+    bool anchored_chain) {
+  const testing::Corridor c = testing::makeCorridor(70, 50, 5);
+  std::mt19937_64 rng(17);
+  LoopDetectorOptions o = defaultOptions();
+  o.word_groups.enabled = false;
+  o.temporal_score.enabled = false;
+  o.temporal_verification.k = 1;
+  o.temporal_verification.anchored_chain = anchored_chain;
+  o.islands.recent_exclusion = 5;
+  o.geometric.candidates = 5;
+  o.islands.odometry_gate_m = 1.0;  // drift 0.1 per metre
+  o.islands.odometry_anchor_m = 0.5;
+  LoopDetector det(vocabulary(), o);
+  double stamp = 1.0, driven = 0.0, at = 0.0;
+  const auto take = [&](double x) {
+    KeyframeInput kf = testing::observeCorridor(c, x, stamp++, rng, 2, 0.5);
+    driven += std::fabs(x - at);
+    at = x;
+    kf.odometer = driven;
+    kf.position.x = x;
+    kf.position.y = kf.position.z = 0.0;
+    return det.process(kf);
+  };
+  for (int i = 0; i < 40; ++i) take(i);
+  for (int i = 0; i < 5; ++i) take(50 + i);
+  bool anchored = false;
+  for (double x = 4.2; x < 9.0 && !anchored; x += 1.0) {
+    anchored = take(x).status == LoopStatus::kLoopDetected;
+  }
+  EXPECT_TRUE(anchored) << "no loop at k = 1";
+  o.temporal_verification.k = 50;
+  det.setOptions(o);
+  std::vector<std::pair<double, LoopResult>> loops;
+  for (double x = at + 1.0; x < 20.0; x += 1.0) {
+    const LoopResult r = take(x);
+    if (r.status == LoopStatus::kLoopDetected) loops.emplace_back(x, r);
+    if (!anchored_chain) {
+      EXPECT_EQ(r.status, LoopStatus::kNoTemporalConsistency) << toString(r.status) << " at " << x;
+    }
+  }
+  return loops;
+}
+
+// A loop 1 m back and the odometry since it anchor each next query's place
+// (radius 0.5 + 0.1 * 2 m = 0.7 <= 2 * 0.5): each passes without k islands
+// in a row and its loop anchors the next; without the option none passes.
+TEST(LoopDetector, ARecentLoopAnchorsTheNextQueriesWithoutTheirChain) {
+  EXPECT_TRUE(loopsAfterTheChainBecomesUnreachable(false).empty());
+  const std::vector<std::pair<double, LoopResult>> loops =
+      loopsAfterTheChainBecomesUnreachable(true);
+  EXPECT_GE(loops.size(), 8u);
+  for (const auto& l : loops) {
+    // Keyframe i of the first pass is at x = i.
+    EXPECT_LE(std::fabs(static_cast<double>(l.second.match_id) - l.first), 1.0) << "x " << l.first;
+  }
 }
 
 TEST(LoopDetector, GeometricReRankingFindsTheTruePlaceBehindALookAlike) {

@@ -146,5 +146,30 @@ TEST(LoopAnchor, EachEntryIsJudgedByTheAnchorOnItsOwnLap) {
   EXPECT_TRUE(withinLoopAnchors(q, look_alike, {{&a_query, &a_match}, {&b_query, &old_match}}, o));
 }
 
+// anchoredByRecentLoop: the anchor's radius must be at most twice
+// odometry_anchor_m. With 0.25 m and 0.0625 per metre (exact in binary):
+// 0.25 + 0.0625 * (driven since the loop on both sides) <= 0.5 up to 4 m
+// of driving together.
+TEST(LoopAnchor, OnlyARecentLoopAnchorsThePlace) {
+  const IslandOptions o = anchor(0.25, 0.0625);
+  const DatabaseEntry m0 = at(10.0, 0, 0, 10.0);
+  const DatabaseEntry q0 = at(30.0, 0.25, 0, 60.0);
+  // 1 m on both passes since the loop: radius 0.375, 0 m off.
+  const DatabaseEntry q = at(31.0, 0.25, 0, 61.0);
+  const std::vector<AnchorEntries> recent{{&q0, &m0}};
+  EXPECT_TRUE(anchoredByRecentLoop(q, at(11.0, 0, 0, 11.0), recent, o));
+  // 0.5 m off the anchored place: outside its radius 0.25 + 0.0625 * 2.5.
+  EXPECT_FALSE(anchoredByRecentLoop(q, at(11.5, 0, 0, 11.5), recent, o));
+  // 2 m on both: radius 0.5, the limit: anchored. 2.5 m on both (radius
+  // 0.5625): within the anchor's radius, but not anchored.
+  EXPECT_TRUE(anchoredByRecentLoop(at(32.0, 0.25, 0, 62.0), at(12.0, 0, 0, 12.0), recent, o));
+  const DatabaseEntry q25 = at(32.5, 0.25, 0, 62.5), e25 = at(12.5, 0, 0, 12.5);
+  EXPECT_TRUE(withinLoopAnchors(q25, e25, recent, o));
+  EXPECT_FALSE(anchoredByRecentLoop(q25, e25, recent, o));
+  // No anchor, or the gate off: nothing is anchored.
+  EXPECT_FALSE(anchoredByRecentLoop(q, at(11.0, 0, 0, 11.0), {}, o));
+  EXPECT_FALSE(anchoredByRecentLoop(q, at(11.0, 0, 0, 11.0), recent, anchor(0.0, 0.0625)));
+}
+
 }  // namespace
 }  // namespace bowg

@@ -98,6 +98,14 @@ struct TemporalVerificationOptions {
   /// equally true earlier laps of the same place. false = DLoopDetector (a
   /// chain follows one pass of the place).
   bool linked_places = false;
+  /// An island whose best entry a recent loop anchors (anchoredByRecentLoop,
+  /// odometry_gate.h: the odometry since a loop within the last few metres
+  /// puts the robot there) passes the temporal verification: the loop and
+  /// the odometry since it are the consistency the k previous queries would
+  /// show, and at 15 cm between keyframes a revisit that lands between two
+  /// earlier keyframes often has no k consecutive islands. Needs
+  /// IslandOptions::odometry_anchor_m. false = DLoopDetector.
+  bool anchored_chain = false;
   void validate() const;
 };
 

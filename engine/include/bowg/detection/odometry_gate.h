@@ -75,4 +75,12 @@ struct AnchorEntries {
 bool withinLoopAnchors(const DatabaseEntry& query, const DatabaseEntry& entry,
                        const std::vector<AnchorEntries>& anchors, const IslandOptions& options);
 
+/// Whether a recent loop places `entry` where the query is: the anchor that
+/// judges it (withinLoopAnchors) has a radius of at most twice
+/// odometry_anchor_m (its drift allowance no larger than the base: at 5 %
+/// per metre, 6 m of driving on both sides together) and `entry` is within
+/// it. False when the gate is off or no anchor applies.
+bool anchoredByRecentLoop(const DatabaseEntry& query, const DatabaseEntry& entry,
+                          const std::vector<AnchorEntries>& anchors, const IslandOptions& options);
+
 }  // namespace bowg
