@@ -37,6 +37,40 @@ using testing::returnStatuses;
 using testing::runCorridor;
 using testing::vocabulary;
 
+// Options of the look-alike scenarios below: word scores alone (no groups,
+// no temporal score), no temporal check, every entry its own island, every
+// candidate above the threshold, the 5 newest keyframes excluded.
+LoopDetectorOptions lookAlikeOptions() {
+  LoopDetectorOptions o = defaultOptions();
+  o.word_groups.enabled = false;
+  o.temporal_score.enabled = false;
+  o.temporal_verification.k = 0;
+  o.islands.max_intra_island_gap = 0;
+  o.islands.recent_exclusion = 5;
+  o.islands.min_score = 0.0;
+  return o;
+}
+
+// Feeds keyframes to a detector as a robot driving along x would: each
+// with the odometer and the odometry position of where it was taken.
+class DrivenRun {
+ public:
+  explicit DrivenRun(LoopDetector* det) : det_(det) {}
+  LoopResult take(KeyframeInput kf, double x) {
+    driven_ += std::fabs(x - at_);
+    at_ = x;
+    kf.odometer = driven_;
+    kf.position.x = x;
+    kf.position.y = kf.position.z = 0.0;
+    return det_->process(kf);
+  }
+  double at() const { return at_; }
+
+ private:
+  LoopDetector* det_;
+  double driven_ = 0.0, at_ = 0.0;
+};
+
 // A look-alike: the query's own descriptors at shuffled positions, so its
 // word score beats the true place while no epipolar geometry explains it.
 // Only the best-scored island verified (the paper), the query yields no loop;
@@ -48,13 +82,7 @@ LoopResult queryBehindALookAlike(int candidates, int min_inliers = 40, int reran
                                  bool odometry_gate = false) {
   const testing::Corridor c = testing::makeCorridor(70, 50, 5);
   std::mt19937_64 rng(11);
-  LoopDetectorOptions o = defaultOptions();
-  o.word_groups.enabled = false;
-  o.temporal_score.enabled = false;
-  o.temporal_verification.k = 0;
-  o.islands.max_intra_island_gap = 0;  // every entry its own island
-  o.islands.recent_exclusion = 5;
-  o.islands.min_score = 0.0;
+  LoopDetectorOptions o = lookAlikeOptions();
   o.geometric.candidates = candidates;
   o.geometric.rerank_ransacs = rerank_ransacs;
   if (odometry_gate) o.islands.odometry_gate_m = 1.0;  // drift 0.1 per metre
@@ -62,17 +90,11 @@ LoopResult queryBehindALookAlike(int candidates, int min_inliers = 40, int reran
   // constraint per point); the true place gives hundreds.
   o.geometric.min_inliers = min_inliers;
   LoopDetector det(vocabulary(), o);
-  double stamp = 1.0, driven = 0.0, at = 0.0;
+  DrivenRun run(&det);
+  double stamp = 1.0;
   // Drives to x and takes keyframe `kf` there.
   const auto take = [&](KeyframeInput kf, double x) {
-    if (odometry_gate) {
-      driven += std::fabs(x - at);
-      at = x;
-      kf.odometer = driven;
-      kf.position.x = x;
-      kf.position.y = kf.position.z = 0.0;
-    }
-    return det.process(kf);
+    return odometry_gate ? run.take(kf, x) : det.process(kf);
   };
   for (int i = 0; i < 40; ++i) take(testing::observeCorridor(c, i, stamp++, rng, 2, 0.5), i);
   KeyframeInput query = testing::observeCorridor(c, 10.2, 0.0, rng, 0, 0.5);
@@ -126,34 +148,25 @@ TEST(LoopDetector, OdometryGateRemovesALookAlikeTheRobotCannotBeAt) {
 // look-alike outscores it too) and the query at 10.2, verified without
 // re-ranking. The absolute gate, wide after ~80 m driven (1 + 0.1 * 80 m),
 // admits the look-alike 1.8 m away; it is the best-scored candidate and
-// without the anchor the query has no loop. The last loop (9.2 -> keyframe 9) anchors the query: it
-// drove 1.0 m since, so its place is 1.0 m past keyframe 9; the look-alike is 3.0 m past it, 2.0 m
-// off, beyond the anchored radius 0.5 + 0.1 * (1.0 + 3.0) = 0.9 m; keyframe 10 (0.0 m off, radius
-// 0.6 m) passes.
+// without the anchor the query has no loop. The last loop (9.2 -> keyframe
+// 9) anchors the query: it drove 1.0 m since, so its place is 1.0 m past
+// keyframe 9; the look-alike is 3.0 m past it, 2.0 m off, beyond the
+// anchored radius 0.5 + 0.1 * (1.0 + 3.0) = 0.9 m; keyframe 10 (0.0 m off,
+// radius 0.6 m) passes.
 LoopResult queryNextToAnchoredLookAlike(double anchor_m, std::vector<LoopResult>* warm_up) {
   const testing::Corridor c = testing::makeCorridor(70, 50, 5);
   std::mt19937_64 rng(13);
-  LoopDetectorOptions o = defaultOptions();
-  o.word_groups.enabled = false;
-  o.temporal_score.enabled = false;
-  o.temporal_verification.k = 0;
-  o.islands.max_intra_island_gap = 0;  // every entry its own island
-  o.islands.recent_exclusion = 5;
-  o.islands.min_score = 0.0;
+  LoopDetectorOptions o = lookAlikeOptions();
   o.geometric.candidates = 5;
   o.geometric.min_inliers = 40;
   o.islands.odometry_gate_m = 1.0;  // drift 0.1 per metre
   o.islands.odometry_anchor_m = anchor_m;
   LoopDetector det(vocabulary(), o);
-  double stamp = 1.0, driven = 0.0, at = 0.0;
+  DrivenRun run(&det);
+  double stamp = 1.0;
   const auto take = [&](KeyframeInput kf, double x) {
-    driven += std::fabs(x - at);
-    at = x;
     kf.stamp = stamp++;
-    kf.odometer = driven;
-    kf.position.x = x;
-    kf.position.y = kf.position.z = 0.0;
-    return det.process(kf);
+    return run.take(kf, x);
   };
   KeyframeInput query = testing::observeCorridor(c, 10.2, 0.0, rng, 0, 0.5);
   for (int i = 0; i < 40; ++i) {
@@ -219,15 +232,10 @@ std::vector<std::pair<double, LoopResult>> loopsAfterTheChainBecomesUnreachable(
   o.islands.odometry_gate_m = 1.0;  // drift 0.1 per metre
   o.islands.odometry_anchor_m = 0.5;
   LoopDetector det(vocabulary(), o);
-  double stamp = 1.0, driven = 0.0, at = 0.0;
+  DrivenRun run(&det);
+  double stamp = 1.0;
   const auto take = [&](double x) {
-    KeyframeInput kf = testing::observeCorridor(c, x, stamp++, rng, 2, 0.5);
-    driven += std::fabs(x - at);
-    at = x;
-    kf.odometer = driven;
-    kf.position.x = x;
-    kf.position.y = kf.position.z = 0.0;
-    return det.process(kf);
+    return run.take(testing::observeCorridor(c, x, stamp++, rng, 2, 0.5), x);
   };
   for (int i = 0; i < 40; ++i) take(i);
   for (int i = 0; i < 5; ++i) take(50 + i);
@@ -239,7 +247,7 @@ std::vector<std::pair<double, LoopResult>> loopsAfterTheChainBecomesUnreachable(
   o.temporal_verification.k = 50;
   det.setOptions(o);
   std::vector<std::pair<double, LoopResult>> loops;
-  for (double x = at + 1.0; x < 20.0; x += 1.0) {
+  for (double x = run.at() + 1.0; x < 20.0; x += 1.0) {
     const LoopResult r = take(x);
     if (r.status == LoopStatus::kLoopDetected) loops.emplace_back(x, r);
     if (!anchored_chain) {
