@@ -78,15 +78,6 @@ double loopAnchorRadius(const IslandOptions& options, double query_driven_m,
          options.odometry_gate_drift * (std::fabs(query_driven_m) + std::fabs(entry_driven_m));
 }
 
-bool withinLoopAnchor(const DatabaseEntry& query, const DatabaseEntry& entry,
-                      const DatabaseEntry& anchor_query, const DatabaseEntry& anchor_match,
-                      const IslandOptions& options) {
-  if (!(options.odometry_anchor_m > 0.0)) return true;
-  if (!anchorApplies(query, entry, anchor_query, anchor_match)) return true;
-  return anchoredWithin(query, entry, anchor_query, anchor_match,
-                        anchorRadius(query, entry, anchor_query, anchor_match, options));
-}
-
 bool withinLoopAnchors(const DatabaseEntry& query, const DatabaseEntry& entry,
                        const std::vector<AnchorEntries>& anchors, const IslandOptions& options) {
   if (!(options.odometry_anchor_m > 0.0)) return true;

@@ -67,6 +67,11 @@ IslandOptions anchor(double anchor_m, double drift) {
   return o;
 }
 
+// One accepted loop as the gate's anchors.
+std::vector<AnchorEntries> loop(const DatabaseEntry& query, const DatabaseEntry& match) {
+  return {{&query, &match}};
+}
+
 TEST(LoopAnchor, RadiusGrowsWithTheMetresDrivenOnBothSides) {
   EXPECT_DOUBLE_EQ(loopAnchorRadius(anchor(0.3, 0.05), 0.0, 0.0), 0.3);
   // 2 m since the anchor's query, 14 m (a lap) from its match: 0.3 + 0.8.
@@ -83,23 +88,23 @@ TEST(LoopAnchor, TheEntryMustHaveMovedFromTheMatchAsTheQueryFromItsLoop) {
   const DatabaseEntry m0 = at(29.6, 0, 0, 29.6);
   const DatabaseEntry q = at(31, 1, 0, 61.0);
   // (30.6, 0, 0): moved 1.0 m from m0 as the query from q0: 0 m off.
-  EXPECT_TRUE(withinLoopAnchor(q, at(30.6, 0, 0, 30.6), q0, m0, o));
+  EXPECT_TRUE(withinLoopAnchors(q, at(30.6, 0, 0, 30.6), loop(q0, m0), o));
   // A look-alike 0.5 m further, (31.1, 0, 0): 0.5 m off; radius 0.3 +
   // 0.05 * (1.0 + 1.5) = 0.425 m. Yet the absolute gate, 1 + 0.05 * 30.4,
   // would let it through (1.005 m away).
-  EXPECT_FALSE(withinLoopAnchor(q, at(31.1, 0, 0, 31.1), q0, m0, o));
+  EXPECT_FALSE(withinLoopAnchors(q, at(31.1, 0, 0, 31.1), loop(q0, m0), o));
   EXPECT_TRUE(withinOdometryGate(q, at(31.1, 0, 0, 31.1), gate(1.0, 0.05)));
   // 0.4 m off sideways after 1.0 m along: (31.0, 0.4, 0) is sqrt(0.4^2 +
   // 0.4^2) = 0.566 m off, radius 0.3 + 0.05 * (1.0 + 1.4) = 0.42: outside;
   // (30.9, 0.2, 0): sqrt(0.3^2 + 0.2^2) = 0.361 m off, radius 0.415: inside.
-  EXPECT_FALSE(withinLoopAnchor(q, at(31.0, 0.4, 0, 31.0), q0, m0, o));
-  EXPECT_TRUE(withinLoopAnchor(q, at(30.9, 0.2, 0, 30.9), q0, m0, o));
+  EXPECT_FALSE(withinLoopAnchors(q, at(31.0, 0.4, 0, 31.0), loop(q0, m0), o));
+  EXPECT_TRUE(withinLoopAnchors(q, at(30.9, 0.2, 0, 30.9), loop(q0, m0), o));
   // Boundary, without drift allowance (radius 0.25 m) and with an anchor
   // match at (29.5, 0, 0): (30.75, 0, 0) moved 1.25 m, exactly 0.25 m off:
   // inside; (30.8, 0, 0) is 0.3 m off: outside.
   const DatabaseEntry m1 = at(29.5, 0, 0, 29.5);
-  EXPECT_TRUE(withinLoopAnchor(q, at(30.75, 0, 0, 30.75), q0, m1, anchor(0.25, 0.0)));
-  EXPECT_FALSE(withinLoopAnchor(q, at(30.8, 0, 0, 30.8), q0, m1, anchor(0.25, 0.0)));
+  EXPECT_TRUE(withinLoopAnchors(q, at(30.75, 0, 0, 30.75), loop(q0, m1), anchor(0.25, 0.0)));
+  EXPECT_FALSE(withinLoopAnchors(q, at(30.8, 0, 0, 30.8), loop(q0, m1), anchor(0.25, 0.0)));
 }
 
 TEST(LoopAnchor, WithoutComparablePositionsEverythingPasses) {
@@ -107,14 +112,14 @@ TEST(LoopAnchor, WithoutComparablePositionsEverythingPasses) {
   const DatabaseEntry m0 = at(29.6, 0, 0, 29.6);
   const DatabaseEntry q = at(31, 1, 0, 61.0);
   const DatabaseEntry far = at(80, 0, 0, 80.0);
-  EXPECT_FALSE(withinLoopAnchor(q, far, q0, m0, anchor(0.3, 0.05)));
-  EXPECT_TRUE(withinLoopAnchor(q, far, q0, m0, anchor(0.0, 0.05)));  // off
-  EXPECT_TRUE(withinLoopAnchor(q, DatabaseEntry(), q0, m0, anchor(0.3, 0.05)));
-  EXPECT_TRUE(withinLoopAnchor(q, far, DatabaseEntry(), m0, anchor(0.3, 0.05)));
-  EXPECT_TRUE(withinLoopAnchor(q, far, q0, DatabaseEntry(), anchor(0.3, 0.05)));
+  EXPECT_FALSE(withinLoopAnchors(q, far, loop(q0, m0), anchor(0.3, 0.05)));
+  EXPECT_TRUE(withinLoopAnchors(q, far, loop(q0, m0), anchor(0.0, 0.05)));  // off
+  EXPECT_TRUE(withinLoopAnchors(q, DatabaseEntry(), loop(q0, m0), anchor(0.3, 0.05)));
+  EXPECT_TRUE(withinLoopAnchors(q, far, loop(DatabaseEntry(), m0), anchor(0.3, 0.05)));
+  EXPECT_TRUE(withinLoopAnchors(q, far, loop(q0, DatabaseEntry()), anchor(0.3, 0.05)));
   // An anchor of another odometry run (a loaded detector's old loop).
-  EXPECT_TRUE(withinLoopAnchor(q, far, q0, at(29.6, 0, 0, 29.6, 1), anchor(0.3, 0.05)));
-  EXPECT_TRUE(withinLoopAnchor(q, at(80, 0, 0, 80.0, 1), q0, m0, anchor(0.3, 0.05)));
+  EXPECT_TRUE(withinLoopAnchors(q, far, loop(q0, at(29.6, 0, 0, 29.6, 1)), anchor(0.3, 0.05)));
+  EXPECT_TRUE(withinLoopAnchors(q, at(80, 0, 0, 80.0, 1), loop(q0, m0), anchor(0.3, 0.05)));
 }
 
 // A circuit of 15 m laps along x; each lap's odometry 0.3 m further off in

@@ -51,27 +51,20 @@ bool withinOdometryGate(const DatabaseEntry& query, const DatabaseEntry& entry,
 /// its radius is as wide as the absolute gate's.
 double loopAnchorRadius(const IslandOptions& options, double query_driven_m, double entry_driven_m);
 
-/// Whether `entry` may be a candidate of `query` by the loop-anchored gate,
-/// with `anchor_query` and `anchor_match` the entries of an accepted loop:
-/// true when the gate is off (odometry_anchor_m 0) or when any of the four
-/// lacks a position or an odometer or belongs to another odometry run;
-/// otherwise whether the displacements (query - anchor_query) and (entry -
-/// anchor_match) differ by at most loopAnchorRadius.
-bool withinLoopAnchor(const DatabaseEntry& query, const DatabaseEntry& entry,
-                      const DatabaseEntry& anchor_query, const DatabaseEntry& anchor_match,
-                      const IslandOptions& options);
-
-/// An accepted loop's two entries, as withinLoopAnchors reads them.
+/// An accepted loop's two entries, as the loop-anchored gate reads them.
 struct AnchorEntries {
   const DatabaseEntry* query;
   const DatabaseEntry* match;
 };
 
-/// The loop-anchored gate over several loops: `entry` is judged by the
-/// anchor that predicts its place best, the one whose loopAnchorRadius for
-/// it is the smallest among the `anchors` that apply (all four entries
-/// placed in the query's odometry run); true when none applies or the gate
-/// is off.
+/// Whether `entry` may be a candidate of `query` by the loop-anchored gate.
+/// It is judged by the anchor that predicts its place best: the one whose
+/// loopAnchorRadius for it is the smallest among the `anchors` that apply
+/// (query, entry and both of the anchor's entries carry a position and an
+/// odometer of the query's odometry run). By that anchor, the displacements
+/// (query - anchor query) and (entry - anchor match) must differ by at most
+/// that radius. True when no anchor applies or the gate is off
+/// (odometry_anchor_m 0).
 bool withinLoopAnchors(const DatabaseEntry& query, const DatabaseEntry& entry,
                        const std::vector<AnchorEntries>& anchors, const IslandOptions& options);
 
