@@ -95,6 +95,7 @@ void Database::clear() {
   group_table_.clear();
   for (auto& l : index_) l.clear();
   group_overflow_.clear();
+  overflow_begin_.clear();
   word_acc_.clear();
   group_acc_.clear();
   touched_flag_.clear();
@@ -154,11 +155,12 @@ const Posting* Database::posting(WordId w, EntryId id) const {
 }
 
 double Database::overflowCount(WordId w, EntryId id) const {
-  const auto it =
-      std::lower_bound(group_overflow_.begin(), group_overflow_.end(), std::make_pair(id, w),
-                       [](const GroupOverflow& o, const std::pair<EntryId, WordId>& k) {
-                         return o.entry < k.first || (o.entry == k.first && o.word < k.second);
-                       });
+  const auto first = group_overflow_.begin() + overflow_begin_[id];
+  const auto last = id + 1 < overflow_begin_.size()
+                        ? group_overflow_.begin() + overflow_begin_[id + 1]
+                        : group_overflow_.end();
+  const auto it = std::lower_bound(
+      first, last, w, [](const GroupOverflow& o, WordId word) { return o.word < word; });
   // add() wrote one record for every posting it marked as overflowing.
   return static_cast<double>(it->count);
 }
@@ -247,7 +249,7 @@ EntryId Database::add(DatabaseEntry e, const GroupVector& raw_groups,
                        : odometers_.empty()     ? -std::numeric_limits<double>::infinity()
                                                 : odometers_.back());
   group_sums_.push_back(group_sum);
-  // The entry array grows by an eighth, not by doubling: an entry is 168
+  // The entry array grows by an eighth, not by doubling: an entry is 200
   // bytes, and a doubled array is a quarter empty on average (~50 bytes per
   // keyframe). Moving entries moves their vectors' pointers only.
   if (entries_.size() == entries_.capacity()) {
@@ -255,6 +257,7 @@ EntryId Database::add(DatabaseEntry e, const GroupVector& raw_groups,
   }
   entries_.push_back(std::move(e));
   const EntryId id = entries_.back().id;
+  overflow_begin_.push_back(group_overflow_.size());
   // One posting per word of the BoW vector or group (both sorted by id).
   forEachId(bowOfWords(words), raw_groups,
             [&](WordId w, const BowEntry* word, const GroupEntry* group) {
@@ -263,7 +266,7 @@ EntryId Database::add(DatabaseEntry e, const GroupVector& raw_groups,
                 const auto count = static_cast<std::uint32_t>(group->second);
                 code = count < Posting::kGroupOverflow ? count : Posting::kGroupOverflow;
                 if (code == Posting::kGroupOverflow)
-                  group_overflow_.push_back(GroupOverflow{id, w, count});
+                  group_overflow_.push_back(GroupOverflow{w, count});
               }
               std::vector<Posting>& list = index_[w];
               if (list.size() == list.capacity()) list.reserve(nextPostingCapacity(list.size()));
@@ -334,7 +337,7 @@ std::vector<EntryScores> Database::query(const DatabaseQuery& q, EntryId limit,
   };
   switch (scoring_) {
     case ScoringType::kL1:
-      accumulate([](double x, double y) { return bowScoreTerm(ScoringType::kL1, x, y); });
+      accumulate([](double x, double y) { return l1ScoreTerm(x, y); });
       break;
     case ScoringType::kL2:
     case ScoringType::kDotProduct:
@@ -408,7 +411,7 @@ std::size_t Database::memoryBytes() const {
   bytes +=
       vectorHeapBytes(distributions_) + vectorHeapBytes(odometers_) + vectorHeapBytes(group_sums_);
   for (const auto& l : index_) bytes += vectorHeapBytes(l);
-  bytes += vectorHeapBytes(group_overflow_);
+  bytes += vectorHeapBytes(group_overflow_) + vectorHeapBytes(overflow_begin_);
   bytes += vectorHeapBytes(index_) + group_table_.heapBytes();
   return bytes;
 }

@@ -126,6 +126,12 @@ bool scoreCandidates(const QueryContext& ctx, const DatabaseQuery& q,
                                 !std::isnan(state.previous_odometer);
   const double driven = metric_alignment ? query_entry.odometer - state.previous_odometer : 0.0;
   ctx.candidates.reserve(scores.size());
+  // The scores come in ascending entry order: one forward walk of the
+  // temporal memory for all of them.
+  AlignedPreviousScores aligned =
+      metric_alignment ? AlignedPreviousScores(state.previous_etas, database.odometers(), driven,
+                                               to.alignment_window_m)
+                       : AlignedPreviousScores(state.previous_etas, state.missed_queries, to);
   for (const EntryScores& s : scores) {
     CandidateScores c;
     c.entry = s.entry;
@@ -137,12 +143,7 @@ bool scoreCandidates(const QueryContext& ctx, const DatabaseQuery& q,
     // Eqs. 6-7: eta(t-1, tj-1) is the previous query's final score of the
     // entry before this one (alignment_window 0), or the best-aligned one
     // near it (temporal_alignment.h); 0 when none was scored then.
-    const double eta_prev =
-        metric_alignment
-            ? alignedPreviousScoreInMetres(state.previous_etas, database.odometers(), s.entry,
-                                           driven, to.alignment_window_m)
-            : alignedPreviousScore(state.previous_etas, s.entry, state.missed_queries, to);
-    c.eta = temporalScore(c.eta_sim, eta_prev, options.temporal_score);
+    c.eta = temporalScore(c.eta_sim, aligned(s.entry), options.temporal_score);
     ctx.candidates.push_back(c);
     etas->emplace_back(c.entry, c.eta);
   }

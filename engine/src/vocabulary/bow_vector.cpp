@@ -28,7 +28,7 @@ void normaliseBowVector(ScoringType scoring, BowVector* v) {
 double bowScoreTerm(ScoringType scoring, double x, double y) {
   switch (scoring) {
     case ScoringType::kL1:
-      return std::fabs(x) + std::fabs(y) - std::fabs(x - y);
+      return l1ScoreTerm(x, y);
     case ScoringType::kL2:
     case ScoringType::kDotProduct:
       return x * y;

@@ -231,6 +231,15 @@ TEST(Database, GroupCountsBeyondAPostingsByteScoreAsSmallOnes) {
   addGroups(&db, 3, c);
   EXPECT_EQ(db.rawGroups(2), c);
   EXPECT_EQ(db.rawGroups(1), b);
+  // Each entry reads its own records, also with an entry without any
+  // between two that have some, and the same words overflowing again.
+  const GroupVector d{{1, 3}, {4, 7}}, e{{4, 400}, {6, 1000}};
+  addGroups(&db, 4, d);
+  addGroups(&db, 5, e);
+  EXPECT_EQ(db.rawGroups(3), d);
+  EXPECT_EQ(db.rawGroups(4), e);
+  EXPECT_EQ(db.rawGroups(2), c);
+  EXPECT_EQ(db.rawGroups(0), a);
 }
 
 TEST(Database, PostingsPackTheEntryAndTheGroupCodeInOneWord) {

@@ -4,7 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <limits>
+#include <random>
 #include <stdexcept>
 
 #include "bowg/scoring/similarity.h"
@@ -127,6 +129,76 @@ TEST(AlignedPreviousScoreInMetres, EntriesWithoutOdometerNeverMatch) {
   const Scores previous{{0, 9.0}, {1, 9.0}, {3, 0.7}};
   EXPECT_DOUBLE_EQ(alignedPreviousScoreInMetres(previous, odometers, 4, 0.5, 0.1), 0.7);
   EXPECT_DOUBLE_EQ(alignedPreviousScoreInMetres(previous, odometers, 4, 1.0, 0.1), 0.0);
+}
+
+TEST(AlignedPreviousScores, WalksTheWindowsOfAscendingCandidatesByHand) {
+  const Scores previous{{2, 0.5}, {5, 0.9}, {6, 0.3}};
+  AlignedPreviousScores walk(previous, 0, window(1));
+  EXPECT_DOUBLE_EQ(walk(0), 0.0);                // window [0, 0] (centre -1, clipped)
+  EXPECT_DOUBLE_EQ(walk(4), 0.5);                // centre 3: [2, 4] holds entry 2
+  EXPECT_DOUBLE_EQ(walk(4), 0.5);                // the same entry again
+  EXPECT_DOUBLE_EQ(walk(7), 0.9);                // centre 6: [5, 7], best of 0.9 and 0.3
+  EXPECT_DOUBLE_EQ(walk(9), 0.0);                // centre 8: [7, 9], nothing scored
+  EXPECT_THROW(walk(8), std::invalid_argument);  // not ascending
+  EXPECT_THROW(AlignedPreviousScores(previous, -1, window(1)), std::invalid_argument);
+
+  // In metres: entries every 0.1 m, driven 0.3 m, window 0.12 m.
+  std::vector<double> odometers;
+  for (int i = 0; i <= 20; ++i) odometers.push_back(0.1 * i);
+  const Scores scored{{8, 0.4}, {10, 1.3}, {11, 0.9}, {14, 2.2}};
+  AlignedPreviousScores metres(scored, odometers, 0.3, 0.12);
+  EXPECT_DOUBLE_EQ(metres(5), 0.0);   // [0.08, 0.32]: entries 1..3
+  EXPECT_DOUBLE_EQ(metres(11), 0.4);  // [0.68, 0.92]: entries 7..9
+  EXPECT_DOUBLE_EQ(metres(13), 1.3);  // [0.88, 1.12]: entries 9..11
+  EXPECT_DOUBLE_EQ(metres(17), 2.2);  // [1.28, 1.52]: entries 13..15
+  EXPECT_THROW(metres(21), std::invalid_argument);
+  EXPECT_THROW(AlignedPreviousScores(scored, odometers, -0.1, 0.1), std::invalid_argument);
+  EXPECT_THROW(AlignedPreviousScores(scored, odometers, 0.1, std::nan("")), std::invalid_argument);
+}
+
+// The walk is an optimisation of the searches: on random histories (gaps,
+// repeated odometers, entries without odometer, candidates asked twice) it
+// must give exactly their values.
+TEST(AlignedPreviousScores, EqualsTheSearchesOnRandomHistories) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const double inf = std::numeric_limits<double>::infinity();
+  for (int trial = 0; trial < 200; ++trial) {
+    const EntryId n = 1 + rng() % 300;
+    std::vector<double> odometers;
+    double odometer = 0.0;
+    const EntryId unknown = rng() % 4 == 0 ? rng() % 10 : 0;  // leading entries without odometer
+    for (EntryId i = 0; i < n; ++i) {
+      if (i < unknown) {
+        odometers.push_back(-inf);
+        continue;
+      }
+      if (rng() % 5 != 0) odometer += 0.2 * unit(rng);  // a fifth stand still
+      odometers.push_back(odometer);
+    }
+    Scores previous;
+    for (EntryId i = 0; i < n; ++i) {
+      if (unit(rng) < 0.4) previous.emplace_back(i, unit(rng) * 3.0);
+    }
+    std::vector<EntryId> candidates;
+    for (EntryId i = 0; i < n; ++i) {
+      if (unit(rng) < 0.3) candidates.push_back(i);
+      if (unit(rng) < 0.05) candidates.push_back(i);  // asked twice
+    }
+    const int missed = static_cast<int>(rng() % 3);
+    const TemporalScoreOptions o = window(static_cast<int>(rng() % 4));
+    const double driven = unit(rng) < 0.2 ? 0.0 : unit(rng);
+    const double window_m = unit(rng) < 0.2 ? 0.0 : 0.3 * unit(rng);
+    AlignedPreviousScores in_keyframes(previous, missed, o);
+    AlignedPreviousScores in_metres(previous, odometers, driven, window_m);
+    for (const EntryId c : candidates) {
+      ASSERT_EQ(in_keyframes(c), alignedPreviousScore(previous, c, missed, o))
+          << "trial " << trial << " entry " << c;
+      ASSERT_EQ(in_metres(c),
+                alignedPreviousScoreInMetres(previous, odometers, c, driven, window_m))
+          << "trial " << trial << " entry " << c;
+    }
+  }
 }
 
 }  // namespace

@@ -8,6 +8,8 @@
 // window around tj-1 (docs/method.md, "Aligned temporal score").
 #pragma once
 
+#include <cstddef>
+#include <cstdint>
 #include <utility>
 #include <vector>
 
@@ -37,5 +39,38 @@ double alignedPreviousScore(const std::vector<std::pair<EntryId, double>>& previ
 double alignedPreviousScoreInMetres(const std::vector<std::pair<EntryId, double>>& previous,
                                     const std::vector<double>& odometers, EntryId entry,
                                     double driven, double window_m);
+
+/// alignedPreviousScore() (in keyframes) or alignedPreviousScoreInMetres()
+/// for the candidates of one query asked in ascending entry order, as
+/// Database::query returns them: the same values, found by cursors that
+/// only move forward (galloping from the previous candidate's window)
+/// instead of binary searches over the whole history for every candidate.
+/// A query on a circuit driven lap after lap scores thousands of
+/// candidates. The vectors must outlive this object and not change.
+class AlignedPreviousScores {
+ public:
+  /// In keyframes. Throws std::invalid_argument for missed < 0.
+  AlignedPreviousScores(const std::vector<std::pair<EntryId, double>>& previous, int missed,
+                        const TemporalScoreOptions& options);
+  /// In metres. Throws std::invalid_argument for a negative or non-finite
+  /// driven or window_m.
+  AlignedPreviousScores(const std::vector<std::pair<EntryId, double>>& previous,
+                        const std::vector<double>& odometers, double driven, double window_m);
+
+  /// The score for `entry`. Throws std::invalid_argument for an entry below
+  /// the previous call's or (in metres) beyond the odometers.
+  double operator()(EntryId entry);
+
+ private:
+  /// The largest previous score of the entries in [first, last].
+  double bestIn(EntryId first, EntryId last);
+
+  const std::vector<std::pair<EntryId, double>>& previous_;
+  const std::vector<double>* odometers_ = nullptr;  ///< null: in keyframes
+  std::int64_t steps_ = 1, half_ = 0;               ///< in keyframes
+  double driven_ = 0.0, window_m_ = 0.0;            ///< in metres
+  EntryId last_entry_ = 0;
+  std::size_t previous_at_ = 0, low_ = 0, high_ = 0;  ///< the cursors
+};
 
 }  // namespace bowg

@@ -3,6 +3,7 @@
 // Words for Fast Place Recognition in Image Sequences", T-RO 2012).
 #pragma once
 
+#include <cmath>
 #include <string>
 #include <utility>
 #include <vector>
@@ -61,6 +62,11 @@ double scoreBowVectors(ScoringType scoring, const BowVector& a, const BowVector&
 /// bowScoreTerm() over shared words and base = bowScoreBase(query) (non-zero
 /// for KL only).
 double bowScoreTerm(ScoringType scoring, double query_weight, double entry_weight);
+/// bowScoreTerm() of kL1 (DBoW2's default), inline: the database's query
+/// calls it for every word posting it walks.
+inline double l1ScoreTerm(double x, double y) {
+  return std::fabs(x) + std::fabs(y) - std::fabs(x - y);
+}
 double bowScoreBase(ScoringType scoring, const BowVector& query);
 double bowScoreFinish(ScoringType scoring, double acc, double base);
 
