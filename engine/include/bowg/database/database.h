@@ -260,6 +260,12 @@ class Database {
   mutable std::vector<double> word_acc_, group_acc_;
   mutable std::vector<std::uint8_t> touched_flag_;
   mutable std::vector<EntryId> touched_;
+  /// The query's words and groups with their weights, in id order.
+  struct QueryWord {
+    WordId w;
+    double qw, qg;
+  };
+  mutable std::vector<QueryWord> query_words_;
 };
 
 }  // namespace bowg
