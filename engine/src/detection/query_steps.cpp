@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include "bowg/detection/geometric_verification.h"
 #include "bowg/detection/islands.h"
@@ -463,7 +464,7 @@ void runQuery(const QueryContext& ctx, const DatabaseQuery& q, const DatabaseEnt
     etas.erase(end, etas.end());
   }
   // Islands (Sec. III-D, eq. 10) and temporal verification.
-  std::vector<Island> islands = computeIslands(etas, options.islands);
+  std::vector<Island> islands = computeIslands(std::move(etas), options.islands);
   for (Island& i : islands) {
     i.first_m = ctx.database.entry(i.first).odometer;
     i.last_m = ctx.database.entry(i.last).odometer;

@@ -22,11 +22,14 @@ std::string str(T v) {
 
 [[noreturn]] void fail(const std::string& name, const std::string& why, const std::string& got);
 
-void requireFiniteAtLeast(const std::string& name, double v, double lo);
-void requireFinitePositive(const std::string& name, double v);
-void requireUnitInterval(const std::string& name, double v);  ///< [0, 1]
-void requireIntAtLeast(const std::string& name, int v, int lo);
-void requireIntInRange(const std::string& name, int v, int lo, int hi);  ///< [lo, hi]
+// The names are C strings: options are validated where they are used too
+// (once per scored candidate in the temporal score), and a std::string
+// argument would be built, and allocated, on every call, not only on failure.
+void requireFiniteAtLeast(const char* name, double v, double lo);
+void requireFinitePositive(const char* name, double v);
+void requireUnitInterval(const char* name, double v);  ///< [0, 1]
+void requireIntAtLeast(const char* name, int v, int lo);
+void requireIntInRange(const char* name, int v, int lo, int hi);  ///< [lo, hi]
 
 }  // namespace check
 }  // namespace bowg
