@@ -321,7 +321,6 @@ std::vector<EntryScores> Database::query(const DatabaseQuery& q, EntryId limit,
   // table's CURRENT IDF (eq. 1 applied now).
   const double base = bowScoreBase(scoring_, q.bow);
   const GroupVector& groups = q.refined_groups;
-  // The metric is chosen once per query, not once per posting.
   static const GroupVector kNoGroups;
   query_words_.clear();
   forEachId(q.bow, with_groups ? groups : kNoGroups,
@@ -355,6 +354,7 @@ std::vector<EntryScores> Database::query(const DatabaseQuery& q, EntryId limit,
       }
     }
   };
+  // The metric is chosen once per query, not once per posting.
   switch (scoring_) {
     case ScoringType::kL1:
       accumulate([](double x, double y) { return l1ScoreTerm(x, y); });
