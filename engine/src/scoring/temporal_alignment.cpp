@@ -37,59 +37,23 @@ std::size_t gallop(std::size_t from, std::size_t size, Before before) {
 void requireValidMetres(double driven, double window_m) {
   if (!(std::isfinite(driven) && driven >= 0.0) || !(std::isfinite(window_m) && window_m >= 0.0)) {
     throw std::invalid_argument(
-        "alignedPreviousScoreInMetres: driven and window_m must be finite "
-        "and >= 0");
+        "aligned previous score: driven and window_m must be finite and >= 0");
   }
 }
 
 }  // namespace
 
+// One query's walk asked once: its cursors start at the beginning, so each
+// gallop is a search of the whole range.
 double alignedPreviousScore(const std::vector<std::pair<EntryId, double>>& previous, EntryId entry,
                             int missed, const TemporalScoreOptions& options) {
-  if (missed < 0) {
-    throw std::invalid_argument("alignedPreviousScore: missed must be >= 0 (got " +
-                                std::to_string(missed) + ")");
-  }
-  // Signed arithmetic: the window may start before entry 0.
-  const std::int64_t steps = 1 + static_cast<std::int64_t>(missed);
-  const std::int64_t centre = static_cast<std::int64_t>(entry) - steps;
-  const std::int64_t half = static_cast<std::int64_t>(options.alignment_window) * steps;
-  const std::int64_t last = centre + half;
-  if (last < 0) return 0.0;
-  const std::int64_t first = std::max<std::int64_t>(0, centre - half);
-  auto it = std::lower_bound(
-      previous.begin(), previous.end(), static_cast<EntryId>(first),
-      [](const std::pair<EntryId, double>& p, EntryId id) { return p.first < id; });
-  // Scores are >= 0 (eqs. 2-9 of non-negative scores): 0 stands for "not
-  // scored", as in eq. 7's reading (docs/method.md).
-  double best = 0.0;
-  for (; it != previous.end() && static_cast<std::int64_t>(it->first) <= last; ++it) {
-    best = std::max(best, it->second);
-  }
-  return best;
+  return AlignedPreviousScores(previous, missed, options)(entry);
 }
 
 double alignedPreviousScoreInMetres(const std::vector<std::pair<EntryId, double>>& previous,
                                     const std::vector<double>& odometers, EntryId entry,
                                     double driven, double window_m) {
-  if (entry >= odometers.size()) {
-    throw std::invalid_argument("alignedPreviousScoreInMetres: entry " + std::to_string(entry) +
-                                " beyond the " + std::to_string(odometers.size()) + " odometers");
-  }
-  requireValidMetres(driven, window_m);
-  // Where the entry's place was when the previous query was taken.
-  const double centre = odometers[entry] - driven;
-  const auto lo = std::lower_bound(odometers.begin(), odometers.end(), centre - window_m);
-  const auto hi = std::upper_bound(lo, odometers.end(), centre + window_m);
-  if (lo == hi) return 0.0;
-  const EntryId first = static_cast<EntryId>(lo - odometers.begin());
-  const EntryId last = static_cast<EntryId>(hi - odometers.begin()) - 1;
-  auto it = std::lower_bound(
-      previous.begin(), previous.end(), first,
-      [](const std::pair<EntryId, double>& p, EntryId id) { return p.first < id; });
-  double best = 0.0;
-  for (; it != previous.end() && it->first <= last; ++it) best = std::max(best, it->second);
-  return best;
+  return AlignedPreviousScores(previous, odometers, driven, window_m)(entry);
 }
 
 AlignedPreviousScores::AlignedPreviousScores(
@@ -97,7 +61,7 @@ AlignedPreviousScores::AlignedPreviousScores(
     const TemporalScoreOptions& options)
     : previous_(previous) {
   if (missed < 0) {
-    throw std::invalid_argument("AlignedPreviousScores: missed must be >= 0 (got " +
+    throw std::invalid_argument("aligned previous score: missed must be >= 0 (got " +
                                 std::to_string(missed) + ")");
   }
   steps_ = 1 + static_cast<std::int64_t>(missed);
@@ -113,13 +77,15 @@ AlignedPreviousScores::AlignedPreviousScores(
 
 double AlignedPreviousScores::operator()(EntryId entry) {
   if (entry < last_entry_) {
-    throw std::invalid_argument("AlignedPreviousScores: entry " + std::to_string(entry) +
+    throw std::invalid_argument("aligned previous score: entry " + std::to_string(entry) +
                                 " after entry " + std::to_string(last_entry_) +
                                 " (entries must be asked in ascending order)");
   }
   last_entry_ = entry;
   if (odometers_ == nullptr) {
-    // As alignedPreviousScore: the window's bounds only grow with the entry.
+    // Window: centre entry - (1 + missed), half-width alignment_window *
+    // (1 + missed), in signed arithmetic (it may start before entry 0). Its
+    // bounds only grow with the entry.
     const std::int64_t centre = static_cast<std::int64_t>(entry) - steps_;
     const std::int64_t last = centre + half_;
     if (last < 0) return 0.0;
@@ -128,11 +94,12 @@ double AlignedPreviousScores::operator()(EntryId entry) {
   }
   const std::vector<double>& odo = *odometers_;
   if (entry >= odo.size()) {
-    throw std::invalid_argument("AlignedPreviousScores: entry " + std::to_string(entry) +
+    throw std::invalid_argument("aligned previous score: entry " + std::to_string(entry) +
                                 " beyond the " + std::to_string(odo.size()) + " odometers");
   }
-  // As alignedPreviousScoreInMetres: odometers are non-decreasing, so the
-  // centre and both ends of the window only grow with the entry.
+  // Where the entry's place was when the previous query was taken, +/-
+  // window_m. Odometers are non-decreasing, so the centre and both ends of
+  // the window only grow with the entry.
   const double centre = odo[entry] - driven_;
   const double lo = centre - window_m_, hi = centre + window_m_;
   low_ = gallop(low_, odo.size(), [&](std::size_t i) { return odo[i] < lo; });
@@ -144,6 +111,8 @@ double AlignedPreviousScores::operator()(EntryId entry) {
 double AlignedPreviousScores::bestIn(EntryId first, EntryId last) {
   previous_at_ = gallop(previous_at_, previous_.size(),
                         [&](std::size_t i) { return previous_[i].first < first; });
+  // Scores are >= 0 (eqs. 2-9 of non-negative scores): 0 stands for "not
+  // scored", as in eq. 7's reading (docs/method.md).
   double best = 0.0;
   for (std::size_t i = previous_at_; i < previous_.size() && previous_[i].first <= last; ++i) {
     best = std::max(best, previous_[i].second);

@@ -156,10 +156,11 @@ TEST(AlignedPreviousScores, WalksTheWindowsOfAscendingCandidatesByHand) {
   EXPECT_THROW(AlignedPreviousScores(scored, odometers, 0.1, std::nan("")), std::invalid_argument);
 }
 
-// The walk is an optimisation of the searches: on random histories (gaps,
-// repeated odometers, entries without odometer, candidates asked twice) it
-// must give exactly their values.
-TEST(AlignedPreviousScores, EqualsTheSearchesOnRandomHistories) {
+// Walking the candidates of a query must give exactly what asking each one
+// alone gives (the functions: fresh cursors, a search of the whole range),
+// on random histories: gaps, repeated odometers, entries without odometer,
+// candidates asked twice.
+TEST(AlignedPreviousScores, WalkingEqualsAskingEachCandidateAloneOnRandomHistories) {
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   const double inf = std::numeric_limits<double>::infinity();

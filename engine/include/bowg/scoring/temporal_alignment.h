@@ -44,9 +44,10 @@ double alignedPreviousScoreInMetres(const std::vector<std::pair<EntryId, double>
 /// for the candidates of one query asked in ascending entry order, as
 /// Database::query returns them: the same values, found by cursors that
 /// only move forward (galloping from the previous candidate's window)
-/// instead of binary searches over the whole history for every candidate.
-/// A query on a circuit driven lap after lap scores thousands of
-/// candidates. The vectors must outlive this object and not change.
+/// instead of a search over the whole history for every candidate. A query
+/// on a circuit driven lap after lap scores thousands of candidates. The
+/// two functions above are this walk asked once. The vectors must outlive
+/// this object and not change.
 class AlignedPreviousScores {
  public:
   /// In keyframes. Throws std::invalid_argument for missed < 0.
