@@ -6,6 +6,8 @@
 // round and round (synthetic_corridor.h), so later laps revisit earlier ones
 // and share words the way real revisits do (2 flipped bits per descriptor,
 // 0.5 px noise). Targets: < 5 ms mean, < 15 ms max at 20,000 keyframes.
+// BM_PipelinePlaceIndex: the same with keyframes that closed a loop left
+// out of the inverse index (IslandOptions::index_loop_keyframes false).
 //
 // Counters (per keyframe, in ms unless named otherwise): transform,
 // word_groups, query, islands, verification, total_mean, total_max,
@@ -46,7 +48,8 @@ struct Pipeline {
   std::size_t next = 0;
 
   /// `landmarks_per_metre`: 50 gives keyframes of ~400 features, 63 of ~500.
-  explicit Pipeline(int landmarks_per_metre = 50)
+  /// `index_loop_keyframes`: IslandOptions'.
+  explicit Pipeline(int landmarks_per_metre = 50, bool index_loop_keyframes = true)
       : vocabulary(std::make_shared<Vocabulary>(testing::makeSyntheticVocabulary(10, 6, 1))),
         corridor(testing::makeCorridor(kCorridorLength, landmarks_per_metre, 5)) {
     LoopDetectorOptions o;
@@ -57,6 +60,7 @@ struct Pipeline {
     // 20-keyframe window still overlap the query; those trivial "loops" would
     // make every query run the verification.
     o.islands.recent_exclusion = 100;
+    o.islands.index_loop_keyframes = index_loop_keyframes;
     detector.reset(new LoopDetector(vocabulary, o));
   }
 
@@ -94,9 +98,15 @@ double trimmedResidentBytes() {
   return residentBytes();
 }
 
-Pipeline& pipeline() {
-  static Pipeline p;
-  return p;
+// One database per indexing policy, grown from size to size (each made on
+// first use: the other's memory stays out of a run that filters it away).
+Pipeline& pipeline(bool index_loop_keyframes) {
+  if (index_loop_keyframes) {
+    static Pipeline every(50, true);
+    return every;
+  }
+  static Pipeline places(50, false);
+  return places;
 }
 
 // Per keyframe added: the growth of the resident set and of
@@ -121,8 +131,7 @@ Growth growMeasured(Pipeline& p, std::size_t n) {
   return g;
 }
 
-void BM_Pipeline(benchmark::State& state) {
-  Pipeline& p = pipeline();
+void runPipeline(benchmark::State& state, Pipeline& p) {
   // Memory: the growth of the resident set while the database grows to this
   // size (from the previous size, or from empty), against the growth of
   // Database::memoryBytes() over the same keyframes.
@@ -175,7 +184,23 @@ void BM_Pipeline(benchmark::State& state) {
   state.counters["estimate_growth_per_keyframe"] = growth.estimate;
 }
 
+// Every keyframe indexed (IslandOptions::index_loop_keyframes, the default
+// and DBoW2's way).
+void BM_Pipeline(benchmark::State& state) { runPipeline(state, pipeline(true)); }
+
 BENCHMARK(BM_Pipeline)
+    ->Arg(1000)
+    ->Arg(5000)
+    ->Arg(20000)
+    ->Iterations(500)
+    ->Unit(benchmark::kMillisecond);
+
+// The same corridor with keyframes that closed a loop left out of the
+// inverse index (index_loop_keyframes false): the postings a query walks
+// grow with the places, not the laps.
+void BM_PipelinePlaceIndex(benchmark::State& state) { runPipeline(state, pipeline(false)); }
+
+BENCHMARK(BM_PipelinePlaceIndex)
     ->Arg(1000)
     ->Arg(5000)
     ->Arg(20000)

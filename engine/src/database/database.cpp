@@ -105,6 +105,9 @@ void Database::clear() {
   for (auto& l : index_) l.clear();
   group_overflow_.clear();
   overflow_begin_.clear();
+  archived_groups_.clear();
+  archived_begin_.clear();
+  searchable_count_ = 0;
   word_acc_.clear();
   group_acc_.clear();
   touched_flag_.clear();
@@ -121,6 +124,7 @@ void Database::setScoring(ScoringType scoring) {
     for (Posting& p : l) p.word = 0.f;
   }
   for (const auto& e : entries_) {
+    if (!e.searchable) continue;  // no postings: its BoW is rebuilt from its words
     for (const auto& w : bow(e.id)) {
       // add() made a posting for every word of the entry's vector; one is
       // inserted in order should a scoring weigh another word.
@@ -168,13 +172,23 @@ double Database::overflowCount(WordId w, EntryId id) const {
   const auto last = id + 1 < overflow_begin_.size()
                         ? group_overflow_.begin() + overflow_begin_[id + 1]
                         : group_overflow_.end();
-  const auto it = std::lower_bound(
-      first, last, w, [](const GroupOverflow& o, WordId word) { return o.word < word; });
+  const auto it = std::lower_bound(first, last, w,
+                                   [](const GroupCount& o, WordId word) { return o.word < word; });
   // add() wrote one record for every posting it marked as overflowing.
   return static_cast<double>(it->count);
 }
 
 GroupVector Database::rawGroups(EntryId id) const {
+  if (!entries_.at(id).searchable) {
+    const auto first = archived_groups_.begin() + archived_begin_[id];
+    const auto last = id + 1 < archived_begin_.size()
+                          ? archived_groups_.begin() + archived_begin_[id + 1]
+                          : archived_groups_.end();
+    GroupVector out;
+    out.reserve(static_cast<std::size_t>(last - first));
+    for (auto it = first; it != last; ++it) out.emplace_back(it->word, it->count);
+    return out;
+  }
   std::vector<WordId> words = entries_.at(id).words.unpack();
   std::sort(words.begin(), words.end());
   words.erase(std::unique(words.begin(), words.end()), words.end());
@@ -267,6 +281,16 @@ EntryId Database::add(DatabaseEntry e, const GroupVector& raw_groups,
   entries_.push_back(std::move(e));
   const EntryId id = entries_.back().id;
   overflow_begin_.push_back(group_overflow_.size());
+  archived_begin_.push_back(archived_groups_.size());
+  if (!entries_.back().searchable) {
+    // Out of the inverse index: the BoW vector comes from the words as for
+    // every entry; the raw groups are all that has to be kept.
+    for (const auto& g : raw_groups) {
+      archived_groups_.push_back(GroupCount{g.first, static_cast<std::uint32_t>(g.second)});
+    }
+    return id;
+  }
+  ++searchable_count_;
   // One posting per word of the BoW vector or group (both sorted by id).
   forEachId(bowOfWords(words), raw_groups,
             [&](WordId w, const BowEntry* word, const GroupEntry* group) {
@@ -275,7 +299,7 @@ EntryId Database::add(DatabaseEntry e, const GroupVector& raw_groups,
                 const auto count = static_cast<std::uint32_t>(group->second);
                 code = count < Posting::kGroupOverflow ? count : Posting::kGroupOverflow;
                 if (code == Posting::kGroupOverflow)
-                  group_overflow_.push_back(GroupOverflow{w, count});
+                  group_overflow_.push_back(GroupCount{w, count});
               }
               std::vector<Posting>& list = index_[w];
               if (list.size() == list.capacity()) list.reserve(nextPostingCapacity(list.size()));
@@ -432,6 +456,7 @@ std::size_t Database::memoryBytes() const {
       vectorHeapBytes(distributions_) + vectorHeapBytes(odometers_) + vectorHeapBytes(group_sums_);
   for (const auto& l : index_) bytes += vectorHeapBytes(l);
   bytes += vectorHeapBytes(group_overflow_) + vectorHeapBytes(overflow_begin_);
+  bytes += vectorHeapBytes(archived_groups_) + vectorHeapBytes(archived_begin_);
   bytes += vectorHeapBytes(index_) + group_table_.heapBytes();
   return bytes;
 }

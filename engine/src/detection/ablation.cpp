@@ -43,6 +43,7 @@ LoopDetectorOptions LoopDetectorOptions::ablation(const std::string& row,
     o.geometric.candidates = 1;
     o.islands.odometry_gate_m = 0.0;
     o.islands.odometry_anchor_m = 0.0;
+    o.islands.index_loop_keyframes = true;
     return o;
   }
   // One extension back to the paper's version, every other field as configured.
@@ -92,6 +93,10 @@ LoopDetectorOptions LoopDetectorOptions::ablation(const std::string& row,
     o.temporal_verification.anchored_chain = false;
     return o;
   }
+  if (row == "without_place_index") {  // every keyframe indexed, as DBoW2
+    o.islands.index_loop_keyframes = true;
+    return o;
+  }
   if (row == "without_reranking") {
     o.geometric.candidates = 1;
     return o;
@@ -119,7 +124,7 @@ LoopDetectorOptions LoopDetectorOptions::ablation(const std::string& row,
                            "without_normaliser_distance, without_alignment, "
                            "without_missed_queries, without_hypotheses, without_min_step, "
                            "without_linked_places, without_odometry_gate, without_loop_anchor, "
-                           "without_anchored_chain, without_reranking");
+                           "without_anchored_chain, without_place_index, without_reranking");
   }
   return o;
 }

@@ -97,6 +97,8 @@ void saveDetectorFile(const std::string& path, const Database& database,
     w.f64(e.position.y);
     w.f64(e.position.z);
   }
+  w.u32(static_cast<std::uint32_t>(database.size()));
+  for (const DatabaseEntry& e : database.entries()) w.u8(e.searchable ? 1 : 0);
 
   std::string& bytes = w.str();
   const std::uint64_t payload = bytes.size() - payload_start;

@@ -32,10 +32,13 @@ constexpr char kMagic[8] = {'B', 'O', 'W', 'G', 'D', 'B', 0, 0};
 // larger id); older files load with none. Version 7 appends the odometry
 // run new entries belong to (u32), then each entry's run and odometry
 // position (u32 count = entries, then u32 run and f64 x, y, z each, NaN =
-// unknown); older files load with unknown positions. A keypoint's size, angle, response and
+// unknown); older files load with unknown positions. Version 8 appends
+// whether each entry is in the inverse index (u32 count = entries, then u8
+// 1 = searchable, 0 = not: DatabaseEntry::searchable); older files load with
+// every entry searchable. A keypoint's size, angle, response and
 // octave are read and checked but not kept (the database keeps positions
 // only); they are written as 0, -1, 0, 0.
-constexpr std::uint32_t kVersion = 7;
+constexpr std::uint32_t kVersion = 8;
 constexpr std::uint32_t kOldestVersion = 1;
 // magic + version + fingerprint + payload size | ... | checksum
 constexpr std::size_t kHeaderBytes = 8 + 4 + 8 + 8;

@@ -317,6 +317,20 @@ void readOdometryPositions(Reader* p, std::vector<DatabaseEntry>* entries, Detec
   }
 }
 
+void readSearchable(Reader* p, std::vector<DatabaseEntry>* entries) {
+  if (p->count(1, "searchable flags") != entries->size()) {
+    p->fail("searchable flag count differs from the entry count");
+  }
+  for (std::size_t i = 0; i < entries->size(); ++i) {
+    const std::uint8_t flag = p->u8("searchable flag");
+    if (flag > 1) {
+      p->fail("entry " + std::to_string(i) + " has searchable flag " + std::to_string(flag) +
+              " (0 or 1)");
+    }
+    (*entries)[i].searchable = flag == 1;
+  }
+}
+
 // The chain's islands must lie inside the database; their odometers come
 // from the entries.
 void restoreChain(Reader* p, const Database& db, StoredChain* chain, DetectorState* state) {
@@ -372,6 +386,7 @@ std::unique_ptr<Database> loadDetectorFile(const std::string& path,
     if (version >= 5) readScaleFactors(&p, &entries);
     if (version >= 6) readPlaceLinks(&p, n, state);
     if (version >= 7) readOdometryPositions(&p, &entries, state);
+    if (version >= 8) readSearchable(&p, &entries);
     for (std::size_t i = 0; i < n; ++i) {
       db->addToGroupTable(raw_groups[i]);
       db->add(std::move(entries[i]), raw_groups[i]);

@@ -211,6 +211,9 @@ LoopResult LoopDetector::process(const KeyframeInput& keyframe) {
     database_->add(std::move(entry), raw_groups, q.distribution);
     throw;
   }
+  // A keyframe that closed a loop leaves the place to the entry it matched
+  // (IslandOptions::index_loop_keyframes).
+  entry.searchable = options_.islands.index_loop_keyframes || r.status != LoopStatus::kLoopDetected;
   // The query's distribution vector is the entry's: not computed twice.
   database_->add(std::move(entry), raw_groups, q.distribution);
   r.timings.total_ms = msBetween(t0, Clock::now());

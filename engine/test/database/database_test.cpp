@@ -242,6 +242,110 @@ TEST(Database, GroupCountsBeyondAPostingsByteScoreAsSmallOnes) {
   EXPECT_EQ(db.rawGroups(0), a);
 }
 
+// An entry out of the inverse index (DatabaseEntry::searchable false) is
+// never a query's candidate, yet scores as it would in it. The hand-worked
+// case above with B out of the index and its counts past a posting's byte
+// (B {1:300, 2:900} weighs as {1:1, 2:3} in the TF, but its counts enter
+// the table: cumulative g1 = 2+300+2 = 304, g2 = 900+2 = 902, total = 4 +
+// 1200 + 4 = 1208; log(1208/304) = 1.37969, log(1208/902) = 0.29211).
+// dot(Q, A) = (.5 1.37969)^2 = 0.47589, s_g = 1 - sqrt(1 - 0.47589) =
+// 0.27604; dot(Q, B) = .5 .25 1.37969^2 + .5 .75 0.29211^2 = 0.23794 +
+// 0.03200 = 0.26994, s_g = 1 - sqrt(1 - 0.26994) = 0.14557.
+TEST(Database, EntriesOutOfTheIndexScoreButAreNeverCandidates) {
+  Database db(vocabulary(), ScoringType::kL1, 2, 8);
+  const GroupVector a{{0, 2}, {1, 2}}, b{{1, 300}, {2, 900}};
+  addGroups(&db, 1, a);
+  DatabaseEntry e;
+  e.stamp = 2;
+  e.words = PackedWords(std::vector<WordId>{1, 2});
+  e.points = PackedPoints(std::vector<ImagePoint>(2), 0.f);
+  e.descriptors.resize(2);
+  e.searchable = false;
+  db.addToGroupTable(b);
+  EXPECT_EQ(db.add(e, b), 1u);
+  EXPECT_EQ(db.size(), 2u);
+  EXPECT_EQ(db.searchableCount(), 1u);
+  EXPECT_FALSE(db.entry(1).searchable);
+  EXPECT_EQ(db.rawGroups(1), b);
+  EXPECT_EQ(db.rawGroups(0), a);
+  const GroupVector q_raw{{1, 2}, {2, 2}};
+  db.addToGroupTable(q_raw);
+  // The query's words are B's: A shares word 1 with it.
+  const DatabaseQuery q = db.makeQuery(db.bow(1), q_raw, {}, 0, 0, false);
+  const double l1 = std::log(1208.0 / 304.0), l2 = std::log(1208.0 / 902.0);
+  std::vector<EntryScores> s = db.query(q, 2, true);
+  ASSERT_EQ(s.size(), 1u);
+  EXPECT_EQ(s[0].entry, 0u);
+  EXPECT_NEAR(s[0].s_g, 1 - std::sqrt(1 - 0.25 * l1 * l1), 1e-12);
+  EXPECT_NEAR(s[0].s_g, 0.27604, 1e-5);
+  const EntryScores sb = db.score(q, 1);
+  EXPECT_NEAR(sb.s_g, 1 - std::sqrt(1 - (0.125 * l1 * l1 + 0.375 * l2 * l2)), 1e-12);
+  EXPECT_NEAR(sb.s_g, 0.14557, 1e-5);
+  EXPECT_NEAR(sb.s_w, 1.0, 1e-12);  // the query's BoW is B's own
+  // A scoring change rewrites the postings of the indexed entries only.
+  db.setScoring(ScoringType::kL2);
+  s = db.query(db.makeQuery(db.bow(1), q_raw, {}, 0, 0, false), 2, true);
+  ASSERT_EQ(s.size(), 1u);
+  EXPECT_EQ(s[0].entry, 0u);
+  EXPECT_EQ(db.rawGroups(1), b);
+  // Later entries read their own groups, indexed or not.
+  const GroupVector c{{3, 5}};
+  addGroups(&db, 3, c);
+  EXPECT_EQ(db.rawGroups(2), c);
+  EXPECT_EQ(db.rawGroups(1), b);
+  EXPECT_EQ(db.searchableCount(), 2u);
+  db.clear();
+  EXPECT_EQ(db.searchableCount(), 0u);
+}
+
+// The same corridor keyframes in two databases, every third one out of the
+// index in the second: each entry scores the same in both, and a query
+// there returns exactly the first one's candidates that are indexed.
+TEST(Database, QueriesSkipEntriesOutOfTheIndexAndNothingElse) {
+  Database all(vocabulary(), ScoringType::kL1, 2, 8), some(vocabulary(), ScoringType::kL1, 2, 8);
+  const testing::Corridor c = testing::makeCorridor(30, 50, 21);
+  std::mt19937_64 rng(4);
+  for (int i = 0; i < 30; ++i) {
+    BowVector bow;
+    BuiltEntry b = entryFromKeyframe(all.vocabulary(),
+                                     testing::observeCorridor(c, 0.5 * i, 1.0 + i, rng, 2), &bow);
+    all.addToGroupTable(b.raw_groups);
+    some.addToGroupTable(b.raw_groups);
+    all.add(b.entry, b.raw_groups);
+    b.entry.searchable = i % 3 != 1;
+    some.add(std::move(b.entry), b.raw_groups);
+  }
+  EXPECT_EQ(some.searchableCount(), 20u);
+  BowVector qbow;
+  const BuiltEntry qe =
+      entryFromKeyframe(all.vocabulary(), testing::observeCorridor(c, 3.2, 100.0, rng, 2), &qbow);
+  all.addToGroupTable(qe.raw_groups);
+  some.addToGroupTable(qe.raw_groups);
+  const std::vector<ImagePoint> points = qe.entry.points.unpack();
+  const DatabaseQuery qa = all.makeQuery(qbow, qe.raw_groups, points, 320, 240, true);
+  const DatabaseQuery qs = some.makeQuery(qbow, qe.raw_groups, points, 320, 240, true);
+  std::vector<EntryScores> expected;
+  for (const EntryScores& e : all.query(qa, 30, true)) {
+    if (e.entry % 3 != 1) expected.push_back(e);
+  }
+  const std::vector<EntryScores> got = some.query(qs, 30, true);
+  ASSERT_EQ(got.size(), expected.size());
+  ASSERT_GT(got.size(), 5u);
+  for (std::size_t i = 0; i < got.size(); ++i) {
+    EXPECT_EQ(got[i].entry, expected[i].entry);
+    EXPECT_EQ(got[i].s_w, expected[i].s_w);
+    EXPECT_EQ(got[i].s_g, expected[i].s_g);
+    EXPECT_EQ(got[i].s_d, expected[i].s_d);
+  }
+  for (EntryId id = 0; id < 30; ++id) {
+    const EntryScores x = all.score(qa, id), y = some.score(qs, id);
+    EXPECT_EQ(x.s_w, y.s_w) << id;
+    EXPECT_EQ(x.s_g, y.s_g) << id;
+    EXPECT_EQ(x.s_d, y.s_d) << id;
+    EXPECT_EQ(all.rawGroups(id), some.rawGroups(id)) << id;
+  }
+}
+
 TEST(Database, PostingsPackTheEntryAndTheGroupCodeInOneWord) {
   EXPECT_EQ(sizeof(Posting), 8u);
   EXPECT_EQ(kMaxEntries, 16777216u);

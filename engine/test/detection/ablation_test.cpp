@@ -122,6 +122,7 @@ TEST(Ablation, WithoutRowsSwitchOffOneExtensionEach) {
   base.islands.odometry_anchor_m = 0.3;
   base.temporal_verification.anchored_chain = true;
   base.geometric.candidates = 10;
+  base.islands.index_loop_keyframes = false;
   // Which extensions are on, in the order of the rows below.
   auto on = [](const LoopDetectorOptions& o) {
     return std::vector<bool>{
@@ -136,15 +137,15 @@ TEST(Ablation, WithoutRowsSwitchOffOneExtensionEach) {
         o.islands.odometry_gate_m > 0,
         o.islands.odometry_anchor_m > 0,
         o.temporal_verification.anchored_chain,
+        !o.islands.index_loop_keyframes,
         o.geometric.candidates > 1};
   };
-  const char* rows[] = {"without_floor",         "without_normaliser_distance",
-                        "without_alignment",     "without_missed_queries",
-                        "without_hypotheses",    "without_min_step",
-                        "without_linked_places", "without_odometry_gate",
-                        "without_loop_anchor",   "without_anchored_chain",
-                        "without_reranking"};
-  const int n = 11;
+  const char* rows[] = {
+      "without_floor",          "without_normaliser_distance", "without_alignment",
+      "without_missed_queries", "without_hypotheses",          "without_min_step",
+      "without_linked_places",  "without_odometry_gate",       "without_loop_anchor",
+      "without_anchored_chain", "without_place_index",         "without_reranking"};
+  const int n = 12;
   ASSERT_EQ(on(base), std::vector<bool>(n, true));
   for (int r = 0; r < n; ++r) {
     std::vector<bool> expected(n, true);

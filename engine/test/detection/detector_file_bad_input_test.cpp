@@ -179,11 +179,13 @@ TEST(DatabaseIo, ForgedContentIsRefusedByName) {
   // The chain length: before the normaliser history (u32 + 50 x 24), the
   // two missed-query counters (8), the odometers (u32 + 52 x 8), the two
   // query odometers (16), the hypothesis count (4), the scale factors (u32 +
-  // 52 x 4) and the checksum (8).
+  // 52 x 4), the place links, the odometry positions, the searchable flags
+  // and the checksum (8).
   const std::size_t scale_factors = 4 + 52 * 4, place_links = 4 + 52 * 4;
-  const std::size_t positions = 4 + 4 + 52 * (4 + 3 * 8);
-  const std::size_t chain = good.size() - (8 + positions + place_links + scale_factors + 4 + 16 +
-                                           4 + 52 * 8 + 8 + 4 + 50 * 24 + 4);
+  const std::size_t positions = 4 + 4 + 52 * (4 + 3 * 8), searchable = 4 + 52;
+  const std::size_t chain =
+      good.size() - (8 + searchable + positions + place_links + scale_factors + 4 + 16 + 4 +
+                     52 * 8 + 8 + 4 + 50 * 24 + 4);
   const std::int32_t forever = 0x7fffffff;
   forge("chain.bowgdb", chain, &forever, 4, "chain length 2147483647 outside 0..52");
   // Entry 0's word groups follow its BoW vector: u32 count, (u32, f64) pairs.
@@ -192,12 +194,20 @@ TEST(DatabaseIo, ForgedContentIsRefusedByName) {
   std::memcpy(&group_count, &good[groups], 4);
   ASSERT_GT(group_count, 0u);
   forge("group.bowgdb", groups + 4 + 4, &negative, 8, "entry 0 has a word-group weight <= 0");
-  // From the end: checksum 8, the odometry positions (the current run u32,
+  // From the end: checksum 8, the searchable flags, the odometry positions (the current run u32,
   // then u32 count and per entry u32 run and 3 f64), the place links, the
   // scale factors, hypothesis count 4 (none stored), the two query
   // odometers 16, the odometers (u32 + 52 x 8), the missed-query counters
   // 8, the normalisers (u32 + 50 x 24).
-  const std::size_t run = good.size() - 8 - positions;
+  // The searchable flags (u32 count, a u8 per entry) close the payload.
+  const std::size_t flags = good.size() - 8 - searchable;
+  const std::uint32_t flag_count_short = 51;
+  const std::uint8_t flag_two = 2;
+  forge("searchable_count.bowgdb", flags, &flag_count_short, 4,
+        "searchable flag count differs from the entry count");
+  forge("searchable_flag.bowgdb", flags + 4 + 5, &flag_two, 1,
+        "entry 5 has searchable flag 2 (0 or 1)");
+  const std::size_t run = flags - positions;
   const std::uint32_t run_count_short = 51, later_run = 1;
   forge("position_count.bowgdb", run + 4, &run_count_short, 4,
         "odometry position count differs from the entry count");

@@ -35,6 +35,12 @@ void putLe(std::string* bytes, std::size_t at, std::uint64_t v, int n) {
 // The version-7 section of a file of `n` entries: the current odometry run
 // (u32), then a u32 count and each entry's u32 run and three f64.
 std::size_t odometryPositionBytes(std::size_t n) { return 4 + 4 + n * (4 + 3 * 8); }
+// The version-8 section: a u32 count and each entry's u8 searchable flag.
+std::size_t searchableBytes(std::size_t n) { return 4 + n; }
+// Everything from the version-7 section on.
+std::size_t fromVersion7Bytes(std::size_t n) {
+  return odometryPositionBytes(n) + searchableBytes(n);
+}
 
 std::string asVersion(std::string bytes, std::size_t dropped, std::uint32_t version) {
   EXPECT_GT(bytes.size(), dropped + 8 + 28);
@@ -87,7 +93,7 @@ TEST(DatabaseIo, PlaceLinksRoundTrip) {
   // The links close the version-6 payload: u32 count, then each entry's
   // parent.
   const std::size_t n = kfs.size();
-  const std::size_t links = bytes.size() - 8 - odometryPositionBytes(n) - 4 * n;
+  const std::size_t links = bytes.size() - 8 - fromVersion7Bytes(n) - 4 * n;
   std::size_t joined = 0;
   for (std::size_t i = 0; i < n; ++i) {
     std::uint32_t parent = 0;
@@ -102,11 +108,11 @@ TEST(DatabaseIo, PlaceLinksRoundTrip) {
   // The same bytes but the odometry run, which the load advanced (compared
   // whole: a mismatch would print ~100 kB).
   std::string expected = bytes;
-  putLe(&expected, bytes.size() - 8 - odometryPositionBytes(n), 1, 4);
+  putLe(&expected, bytes.size() - 8 - fromVersion7Bytes(n), 1, 4);
   testing::resealChecksum(&expected);
   EXPECT_TRUE(readBytes(again) == expected);
   // Version 5: no links; saved again, every entry is its own place.
-  writeBytes(path, asVersion(bytes, 4 + 4 * n + odometryPositionBytes(n), 5));
+  writeBytes(path, asVersion(bytes, 4 + 4 * n + fromVersion7Bytes(n), 5));
   LoopDetector c(voc, o);
   c.load(path);
   c.save(again);
@@ -205,6 +211,44 @@ TEST(DatabaseIo, OdometersAndMissedQueryCountersRoundTrip) {
   std::remove(path.c_str());
 }
 
+// Which entries are in the inverse index comes back (version 8): a
+// detector that leaves loop keyframes out of it, saved mid-revisit and
+// loaded, answers the next keyframes as the original does; a version-7 file
+// (without the flags) loads with every entry indexed.
+TEST(DatabaseIo, SearchableFlagsRoundTrip) {
+  const auto voc = vocabulary();
+  const auto kfs = keyframes();
+  LoopDetectorOptions o = options();
+  o.islands.index_loop_keyframes = false;
+  LoopDetector a(voc, o);
+  for (int i = 0; i < 52; ++i) a.process(kfs[i]);
+  ASSERT_LT(a.database().searchableCount(), a.database().size()) << "loops before the save";
+  const std::string path = outPath("searchable.bowgdb");
+  a.save(path);
+  const std::string bytes = readBytes(path);
+  LoopDetector b(voc, o);
+  b.load(path);
+  ASSERT_EQ(b.database().size(), 52u);
+  EXPECT_EQ(b.database().searchableCount(), a.database().searchableCount());
+  for (EntryId i = 0; i < 52; ++i) {
+    EXPECT_EQ(b.database().entry(i).searchable, a.database().entry(i).searchable) << i;
+    EXPECT_EQ(b.database().rawGroups(i), a.database().rawGroups(i)) << i;
+  }
+  int loops = 0;
+  for (std::size_t i = 52; i < kfs.size(); ++i) {
+    const LoopResult ra = a.process(kfs[i]);
+    expectSameResult(ra, b.process(kfs[i]));
+    expectSameCandidates(a, b);
+    loops += ra.status == LoopStatus::kLoopDetected;
+  }
+  EXPECT_GT(loops, 0);
+  writeBytes(path, asVersion(bytes, searchableBytes(52), 7));
+  LoopDetector c(voc, o);
+  c.load(path);
+  EXPECT_EQ(c.database().searchableCount(), 52u);
+  std::remove(path.c_str());
+}
+
 // Odometry positions and their runs come back (version 7); the keyframes a
 // loaded detector takes next belong to a new run (the restarted robot's
 // odometry frame), and a version-6 file loads with unknown positions.
@@ -254,7 +298,7 @@ TEST(DatabaseIo, OdometryPositionsRoundTrip) {
   c.process(kfs[51]);
   EXPECT_EQ(c.database().entry(51).odometry_run, 2u);
   // Version 6: no positions.
-  writeBytes(path, asVersion(bytes, odometryPositionBytes(50), 6));
+  writeBytes(path, asVersion(bytes, fromVersion7Bytes(50), 6));
   LoopDetector d(voc, o);
   d.load(path);
   for (const DatabaseEntry& e : d.database().entries()) EXPECT_TRUE(e.position.unknown());
@@ -355,9 +399,9 @@ TEST(DatabaseIo, PackedPositionsRoundTrip) {
 
   // Version 4: the same bytes without the scale factors, the place links
   // and the odometry positions (u32 count + 45 f32, u32 count + 45 u32,
-  // odometryPositionBytes before the checksum).
+  // fromVersion7Bytes before the checksum).
   const std::string v4 = outPath("packed_v4.bowgdb");
-  writeBytes(v4, asVersion(readBytes(v5), 2 * (4 + 45 * 4) + odometryPositionBytes(45), 4));
+  writeBytes(v4, asVersion(readBytes(v5), 2 * (4 + 45 * 4) + fromVersion7Bytes(45), 4));
   LoopDetector c(voc, options());
   c.load(v4);
   expectSamePositions(a.database(), c.database());
@@ -386,10 +430,11 @@ TEST(DatabaseIo, VersionOneFilesLoadWithAnEmptyHistory) {
   // count + 45 f64) and two query odometers (f64), version 4 the other
   // temporal hypotheses (u32 count, 0 with one hypothesis), version 5 the
   // entries' scale factors (u32 count + 45 f32), version 6 the place links
-  // (u32 count + 45 u32), version 7 the odometry positions, then the u64
+  // (u32 count + 45 u32), version 7 the odometry positions, version 8 the
+  // searchable flags, then the u64
   // checksum. 44 keyframes had a previous one; the window is 50.
   const std::size_t history = 4 + 44 * 24 + 2 * 4 + 4 + 45 * 8 + 2 * 8 + 4 + 4 + 45 * 4 + 4 +
-                              45 * 4 + odometryPositionBytes(45);
+                              45 * 4 + fromVersion7Bytes(45);
   const std::string v1 = outPath("v1.bowgdb");
   writeBytes(v1, asVersion(bytes, history, 1));
   LoopDetector b(voc, options());
@@ -400,12 +445,12 @@ TEST(DatabaseIo, VersionOneFilesLoadWithAnEmptyHistory) {
     expectSameCandidates(a, b);
   }
   // Versions beyond the current one are refused by number.
-  writeBytes(v1, asVersion(bytes, history, 8));
+  writeBytes(v1, asVersion(bytes, history, 9));
   try {
     b.load(v1);
-    ADD_FAILURE() << "version 8 accepted";
+    ADD_FAILURE() << "version 9 accepted";
   } catch (const FormatError& e) {
-    EXPECT_NE(std::string(e.what()).find("unsupported version 8"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("unsupported version 9"), std::string::npos) << e.what();
   }
   std::remove(v1.c_str());
   std::remove(v2.c_str());

@@ -7,6 +7,8 @@
 //    vector and raw groups are rebuilt from its words (2-3 bytes each,
 //    PackedWords) and these postings when needed (bow(), rawGroups()), not
 //    kept;
+//    Entries that are not searchable (DatabaseEntry::searchable) keep their
+//    raw groups apart instead (archived_groups_), read by entry only;
 //  - the online word-group table (eq. 1's IDF totals);
 //  - the level of the direct index (Sec. III-D's correspondence search): an
 //    entry's direct index is rebuilt from its words when it is verified
@@ -75,6 +77,13 @@ struct DatabaseEntry {
   /// loaded from a file starts a new run, DetectorState::odometry_run).
   OdometryPosition position;
   std::uint32_t odometry_run = 0;
+  /// False: the entry stays out of the inverse index (Database::add), so no
+  /// query finds it as a candidate, while its scores against a query
+  /// (Database::score, the normalisers of eqs. 2 and 4), its words, points
+  /// and descriptors stay available. A keyframe that closed a loop with an
+  /// indexed place is one (IndexingOptions): the index then grows with the
+  /// places driven, not with the laps.
+  bool searchable = true;
   // Derived from `words` when needed, not kept: the BoW vector
   // (Database::bow()), the raw groups (Database::rawGroups()) and the direct
   // index at Database::directLevel() (directIndexFromWords). The distribution vector for the
@@ -182,7 +191,8 @@ class Database {
   BowVector bow(EntryId id) const;
 
   /// Entry `id`'s raw groups w_{g,t}^(i) as add() received them, read back
-  /// from the inverse index through its words.
+  /// from the inverse index through its words (or, for an entry that is not
+  /// searchable, from the groups kept apart).
   GroupVector rawGroups(EntryId id) const;
 
   /// Step 4: the query's normalised BoW and refined groups.
@@ -190,7 +200,11 @@ class Database {
                           const std::vector<ImagePoint>& points, double centre_x, double centre_y,
                           bool with_distribution) const;
 
-  /// Scores every entry with id < limit that shares at least one word (and,
+  /// Number of searchable entries (DatabaseEntry::searchable): those a
+  /// query can return.
+  std::size_t searchableCount() const { return searchable_count_; }
+
+  /// Scores every searchable entry with id < limit that shares at least one word (and,
   /// when `with_groups`, at least one group) with the query, through the
   /// inverse index. s_d is filled when the query has a distribution vector.
   /// Result sorted by entry id.
@@ -239,12 +253,19 @@ class Database {
   /// records, not by a binary search of the whole table (pipe images with
   /// large multi-scale features overflow often: that search was a third of
   /// the query's time on a 6,000-keyframe circuit).
-  struct GroupOverflow {
+  struct GroupCount {
     WordId word;
     std::uint32_t count;
   };
-  std::vector<GroupOverflow> group_overflow_;
+  std::vector<GroupCount> group_overflow_;
   std::vector<std::size_t> overflow_begin_;
+  /// The raw groups of the entries that are not searchable, in (entry, word)
+  /// order: entry e's are [archived_begin_[e], archived_begin_[e + 1]) (the
+  /// end for the last entry), empty for a searchable entry. Read by entry
+  /// only (rawGroups), never walked by a query.
+  std::vector<GroupCount> archived_groups_;
+  std::vector<std::size_t> archived_begin_;
+  std::size_t searchable_count_ = 0;
   /// Per entry the sum of its raw group weights: eq. 1's TF is raw / sum,
   /// applied once per scored entry instead of once per posting.
   std::vector<double> group_sums_;

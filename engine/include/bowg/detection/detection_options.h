@@ -52,6 +52,12 @@ struct IslandOptions {
   /// periodic look-alikes (every 0.5-2 m in the tuning half) that the
   /// absolute gate's radius still admits. 0 = off. >= 0.
   double odometry_anchor_m = 0.0;
+  /// False: a keyframe that closed a loop does not join the inverse index
+  /// (DatabaseEntry::searchable): its place is already there, in the entry
+  /// it matched, which later passes find instead. The postings a query walks
+  /// then grow with the places driven rather than with the laps of a
+  /// circuit (DBoW2 and the paper index every keyframe: true).
+  bool index_loop_keyframes = true;
   void validate() const;
 };
 
@@ -196,7 +202,7 @@ struct LoopDetectorOptions {
   /// DLoopDetector's checks); "configured": base unchanged. "without_<x>":
   /// base with one extension of this implementation switched back to the
   /// paper (x = floor, normaliser_distance, alignment, missed_queries,
-  /// hypotheses, min_step, reranking), so that the suite shows what each
+  /// hypotheses, min_step, place_index, reranking), so that the suite shows what each
   /// extension adds to the configuration.
   static LoopDetectorOptions ablation(const std::string& row, const LoopDetectorOptions& base);
 };
