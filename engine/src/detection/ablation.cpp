@@ -43,7 +43,7 @@ LoopDetectorOptions LoopDetectorOptions::ablation(const std::string& row,
     o.geometric.candidates = 1;
     o.islands.odometry_gate_m = 0.0;
     o.islands.odometry_anchor_m = 0.0;
-    o.islands.index_loop_keyframes = true;
+    o.islands.indexed_per_place = 0;
     return o;
   }
   // One extension back to the paper's version, every other field as configured.
@@ -94,7 +94,7 @@ LoopDetectorOptions LoopDetectorOptions::ablation(const std::string& row,
     return o;
   }
   if (row == "without_place_index") {  // every keyframe indexed, as DBoW2
-    o.islands.index_loop_keyframes = true;
+    o.islands.indexed_per_place = 0;
     return o;
   }
   if (row == "without_reranking") {

@@ -17,6 +17,7 @@ void IslandOptions::validate() const {
   requireFiniteAtLeast("islands.odometry_gate_m", odometry_gate_m, 0.0);
   requireFiniteAtLeast("islands.odometry_gate_drift", odometry_gate_drift, 0.0);
   requireFiniteAtLeast("islands.odometry_anchor_m", odometry_anchor_m, 0.0);
+  requireIntAtLeast("islands.indexed_per_place", indexed_per_place, 0);
 }
 
 void TemporalVerificationOptions::validate() const {

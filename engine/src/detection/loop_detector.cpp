@@ -211,9 +211,13 @@ LoopResult LoopDetector::process(const KeyframeInput& keyframe) {
     database_->add(std::move(entry), raw_groups, q.distribution);
     throw;
   }
-  // A keyframe that closed a loop leaves the place to the entry it matched
-  // (IslandOptions::index_loop_keyframes).
-  entry.searchable = options_.islands.index_loop_keyframes || r.status != LoopStatus::kLoopDetected;
+  // A keyframe whose loop made its place larger than indexed_per_place
+  // leaves the place to the keyframes indexed before (runQuery has linked
+  // it to its match).
+  const int per_place = options_.islands.indexed_per_place;
+  entry.searchable =
+      per_place == 0 || r.status != LoopStatus::kLoopDetected ||
+      state_->place_links.placeSize(r.query_id) <= static_cast<std::size_t>(per_place);
   // The query's distribution vector is the entry's: not computed twice.
   database_->add(std::move(entry), raw_groups, q.distribution);
   r.timings.total_ms = msBetween(t0, Clock::now());

@@ -17,8 +17,17 @@ EntryId PlaceLinks::root(EntryId e) const {
 void PlaceLinks::link(EntryId a, EntryId b) {
   const std::size_t needed = static_cast<std::size_t>(std::max(a, b)) + 1;
   while (parent_.size() < needed) parent_.push_back(static_cast<EntryId>(parent_.size()));
+  size_.resize(parent_.size(), 1);
   const EntryId ra = root(a), rb = root(b);
-  if (ra != rb) parent_[std::max(ra, rb)] = std::min(ra, rb);
+  if (ra == rb) return;
+  const EntryId joined = std::min(ra, rb), other = std::max(ra, rb);
+  parent_[other] = joined;
+  size_[joined] += size_[other];
+}
+
+std::size_t PlaceLinks::placeSize(EntryId e) const {
+  const EntryId r = root(e);
+  return r < size_.size() ? size_[r] : 1;
 }
 
 bool PlaceLinks::linked(const Island& a, const Island& b) const {
@@ -47,6 +56,8 @@ void PlaceLinks::restore(std::vector<EntryId> parents) {
     }
   }
   parent_ = std::move(parents);
+  size_.assign(parent_.size(), 0);
+  for (std::size_t i = 0; i < parent_.size(); ++i) ++size_[root(static_cast<EntryId>(i))];
 }
 
 }  // namespace bowg

@@ -45,10 +45,10 @@ void addDetectionRows(std::vector<Row>* rows) {
                             "displacement from its match differs from the query's since it by "
                             "more than this plus odometry_gate_drift times the metres driven "
                             "are no candidates (0 = off)"));
-  rows->push_back(boolRow("index_loop_keyframes", det, "islands.index_loop_keyframes", false,
-                          BOWG_FIELD(bool, detector.islands.index_loop_keyframes),
-                          "Index a keyframe that closed a loop too (true = DBoW2: every keyframe; "
-                          "false: its place is already indexed, the index grows with places)"));
+  rows->push_back(intRow("indexed_per_place", det, "islands.indexed_per_place", 0, 1000000, false,
+                         BOWG_FIELD(int, detector.islands.indexed_per_place),
+                         "Keyframes a place joined by loops keeps in the inverse index; one whose "
+                         "loop makes its place larger is left out (0 = no limit, as DBoW2)"));
   // --- Temporal verification.
   rows->push_back(intRow("temporal_k", det, "temporal_verification.k", 0, 100, true,
                          BOWG_FIELD(int, detector.temporal_verification.k),

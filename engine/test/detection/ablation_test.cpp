@@ -122,7 +122,7 @@ TEST(Ablation, WithoutRowsSwitchOffOneExtensionEach) {
   base.islands.odometry_anchor_m = 0.3;
   base.temporal_verification.anchored_chain = true;
   base.geometric.candidates = 10;
-  base.islands.index_loop_keyframes = false;
+  base.islands.indexed_per_place = 2;
   // Which extensions are on, in the order of the rows below.
   auto on = [](const LoopDetectorOptions& o) {
     return std::vector<bool>{
@@ -137,7 +137,7 @@ TEST(Ablation, WithoutRowsSwitchOffOneExtensionEach) {
         o.islands.odometry_gate_m > 0,
         o.islands.odometry_anchor_m > 0,
         o.temporal_verification.anchored_chain,
-        !o.islands.index_loop_keyframes,
+        o.islands.indexed_per_place > 0,
         o.geometric.candidates > 1};
   };
   const char* rows[] = {

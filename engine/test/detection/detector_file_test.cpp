@@ -219,7 +219,7 @@ TEST(DatabaseIo, SearchableFlagsRoundTrip) {
   const auto voc = vocabulary();
   const auto kfs = keyframes();
   LoopDetectorOptions o = options();
-  o.islands.index_loop_keyframes = false;
+  o.islands.indexed_per_place = 1;
   LoopDetector a(voc, o);
   for (int i = 0; i < 52; ++i) a.process(kfs[i]);
   ASSERT_LT(a.database().searchableCount(), a.database().size()) << "loops before the save";

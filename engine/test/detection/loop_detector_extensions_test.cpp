@@ -20,6 +20,7 @@
 #include "bowg/core/errors.h"
 #include "bowg/database/database.h"
 #include "bowg/detection/loop_detector.h"
+#include "bowg/detection/place_links.h"
 #include "bowg/scoring/distribution.h"
 #include "bowg/scoring/similarity.h"
 #include "bowg/vocabulary/vocabulary.h"
@@ -384,48 +385,48 @@ TEST(LoopDetector, LinkedPlacesCarryTheChainAcrossLaps) {
   EXPECT_GE(with, without + 10) << "without links " << without << ", with " << with;
 }
 
-// Three laps of a 30-place corridor (laps 2 and 3 0.2 and 0.1 m off the
-// first). With index_loop_keyframes false a keyframe that closed a loop
-// stays out of the inverse index: no later query lists it as a candidate,
-// its place is found in the entry it matched (lap 3 closes loops with lap
-// 1), and the index holds fewer postings to walk. What one run gives:
-struct ThreeLaps {
-  int lap3_loops = 0, false_loops = 0;
+// Four laps of a 30-place corridor (laps 2-4 0.2, 0.1 and 0.3 m off the
+// first). With indexed_per_place n a keyframe whose loop makes its place
+// (PlaceLinks: keyframes joined by loops) larger than n stays out of the
+// inverse index: no later query lists it as a candidate, the last lap
+// finds its places in the keyframes indexed before, and the index holds
+// fewer postings to walk. What one run gives:
+struct IndexedLaps {
+  int last_lap_loops = 0, false_loops = 0;
   std::size_t size = 0, searchable = 0;
-  bool loop_keyframes_out = true;  ///< every loop keyframe out of the index
-  bool others_in = true;           ///< every other keyframe in it
+  bool rule_holds = true;          ///< every entry indexed as the rule says
   bool candidates_indexed = true;  ///< no candidate out of the index
-  std::set<EntryId> lap3_matches;
 };
 
-ThreeLaps threeLaps(bool index_loop_keyframes) {
-  const int n = 30;
+IndexedLaps indexedLaps(int indexed_per_place) {
+  const int n = 30, laps = 4;
+  const double offsets[laps] = {0.0, 0.2, 0.1, 0.3};
   const testing::Corridor c = testing::makeCorridor(n + 12, 50, 31);
   std::mt19937_64 rng(32);
   LoopDetectorOptions o = defaultOptions();
   o.islands.recent_exclusion = 10;
-  o.islands.index_loop_keyframes = index_loop_keyframes;
+  o.islands.indexed_per_place = indexed_per_place;
   LoopDetector det(vocabulary(), o);
-  ThreeLaps out;
+  PlaceLinks places;  // the loops so far, as the detector links them
+  IndexedLaps out;
   std::vector<double> x;
   double stamp = 1.0;
-  for (int lap = 0; lap < 3; ++lap) {
+  for (int lap = 0; lap < laps; ++lap) {
     for (int j = 0; j < n; ++j) {
-      x.push_back(j + (lap == 1 ? 0.2 : lap == 2 ? 0.1 : 0.0));
+      x.push_back(j + offsets[lap]);
       const LoopResult r = det.process(testing::observeCorridor(c, x.back(), stamp++, rng, 2, 0.5));
       for (const CandidateScores& cs : det.lastCandidates()) {
         out.candidates_indexed &= det.database().entry(cs.entry).searchable;
       }
       const bool loop = r.status == LoopStatus::kLoopDetected;
-      const bool searchable = det.database().entry(r.query_id).searchable;
-      if (loop && !index_loop_keyframes) out.loop_keyframes_out &= !searchable;
-      if (!loop || index_loop_keyframes) out.others_in &= searchable;
+      if (loop) places.link(r.query_id, r.match_id);
+      const bool expected =
+          indexed_per_place == 0 || !loop ||
+          places.placeSize(r.query_id) <= static_cast<std::size_t>(indexed_per_place);
+      out.rule_holds &= det.database().entry(r.query_id).searchable == expected;
       if (!loop) continue;
       if (std::fabs(x[r.match_id] - x.back()) > 1.0) ++out.false_loops;
-      if (lap == 2) {
-        ++out.lap3_loops;
-        out.lap3_matches.insert(r.match_id);
-      }
+      if (lap == laps - 1) ++out.last_lap_loops;
     }
   }
   out.size = det.database().size();
@@ -433,23 +434,21 @@ ThreeLaps threeLaps(bool index_loop_keyframes) {
   return out;
 }
 
-TEST(LoopDetector, LoopKeyframesStayOutOfTheIndexWhenAsked) {
-  const ThreeLaps all = threeLaps(true), places = threeLaps(false);
-  EXPECT_TRUE(all.others_in);
+TEST(LoopDetector, APlaceKeepsAtMostIndexedPerPlaceKeyframesInTheIndex) {
+  const IndexedLaps all = indexedLaps(0), one = indexedLaps(1), two = indexedLaps(2);
+  for (const IndexedLaps* run : {&all, &one, &two}) {
+    EXPECT_TRUE(run->rule_holds);
+    EXPECT_TRUE(run->candidates_indexed);
+    EXPECT_EQ(run->false_loops, 0);
+  }
   EXPECT_EQ(all.searchable, all.size);
-  EXPECT_TRUE(places.loop_keyframes_out);
-  EXPECT_TRUE(places.others_in);
-  EXPECT_TRUE(places.candidates_indexed);
-  EXPECT_EQ(all.false_loops, 0);
-  EXPECT_EQ(places.false_loops, 0);
-  // Lap 2 closed loops, so fewer entries are indexed ...
-  EXPECT_LT(places.searchable + 20, places.size) << places.searchable << " of " << places.size;
-  // ... and lap 3 still closes its loops, with entries that were indexed
-  // (lap 1, or lap 2 keyframes that closed none).
-  EXPECT_GE(places.lap3_loops, 20) << "with every keyframe indexed: " << all.lap3_loops;
-  std::size_t on_lap1 = 0;
-  for (EntryId m : places.lap3_matches) on_lap1 += m < 30;
-  EXPECT_GT(on_lap1, 0u);
+  // Laps 2-4 closed loops, so fewer entries are indexed, the fewer the
+  // smaller the limit ...
+  EXPECT_LT(two.searchable + 20, all.size) << two.searchable << " of " << two.size;
+  EXPECT_LT(one.searchable + 20, two.searchable) << one.searchable << " and " << two.searchable;
+  // ... and the last lap still closes its loops.
+  EXPECT_GE(one.last_lap_loops, 20) << "with every keyframe indexed: " << all.last_lap_loops;
+  EXPECT_GE(two.last_lap_loops, 20) << "with every keyframe indexed: " << all.last_lap_loops;
 }
 
 TEST(LoopDetector, RecentExclusionInMetresFollowsTheOdometer) {

@@ -213,6 +213,8 @@ TEST(Options, Geometric) {
                  "islands.odometry_gate_drift");
   expectRejected([](LoopDetectorOptions& o) { o.islands.odometry_anchor_m = -0.1; },
                  "islands.odometry_anchor_m");
+  expectRejected([](LoopDetectorOptions& o) { o.islands.indexed_per_place = -1; },
+                 "islands.indexed_per_place");
   expectRejected([](LoopDetectorOptions& o) { o.temporal_verification.hypotheses = 0; },
                  "temporal_verification.hypotheses");
   expectRejected([](LoopDetectorOptions& o) { o.similarity.normaliser_distance_m = -0.1; },

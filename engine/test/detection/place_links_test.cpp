@@ -23,8 +23,15 @@ TEST(PlaceLinks, LoopsJoinPlacesTransitively) {
   EXPECT_EQ(links.root(206), 6u);
   EXPECT_EQ(links.root(106), 6u);
   EXPECT_NE(links.root(5), links.root(6));  // neighbours are not one place by themselves
+  EXPECT_EQ(links.placeSize(105), 2u);      // 5, 105
+  EXPECT_EQ(links.placeSize(6), 3u);        // 6, 106, 206
+  EXPECT_EQ(links.placeSize(7), 1u);
+  EXPECT_EQ(links.placeSize(300), 1u);  // beyond every link
   links.link(6, 5);
   EXPECT_EQ(links.root(206), 5u);  // the smallest id of the place
+  EXPECT_EQ(links.placeSize(206), 5u);
+  links.link(105, 206);  // already one place
+  EXPECT_EQ(links.placeSize(5), 5u);
   // Islands: any member of one is one place with any member of the other.
   EXPECT_TRUE(links.linked(island(204, 207), island(4, 5)));
   EXPECT_TRUE(links.linked(island(3, 6), island(105, 105)));
@@ -47,6 +54,9 @@ TEST(PlaceLinks, ParentsRoundTripAndAreChecked) {
   restored.restore(parents);
   EXPECT_EQ(restored.parents(6), parents);
   EXPECT_EQ(restored.root(3), 1u);
+  EXPECT_EQ(restored.placeSize(4), 3u);  // 1, 3, 4
+  EXPECT_EQ(restored.placeSize(0), 1u);
+  EXPECT_EQ(restored.placeSize(5), 1u);
   try {
     restored.restore({0, 2, 2});
     ADD_FAILURE() << "a parent after its entry accepted";
@@ -55,6 +65,7 @@ TEST(PlaceLinks, ParentsRoundTripAndAreChecked) {
   }
   restored.clear();
   EXPECT_EQ(restored.root(3), 3u);
+  EXPECT_EQ(restored.placeSize(4), 1u);
 }
 
 }  // namespace

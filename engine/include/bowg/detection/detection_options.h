@@ -52,12 +52,13 @@ struct IslandOptions {
   /// periodic look-alikes (every 0.5-2 m in the tuning half) that the
   /// absolute gate's radius still admits. 0 = off. >= 0.
   double odometry_anchor_m = 0.0;
-  /// False: a keyframe that closed a loop does not join the inverse index
-  /// (DatabaseEntry::searchable): its place is already there, in the entry
-  /// it matched, which later passes find instead. The postings a query walks
-  /// then grow with the places driven rather than with the laps of a
-  /// circuit (DBoW2 and the paper index every keyframe: true).
-  bool index_loop_keyframes = true;
+  /// A place (keyframes joined by accepted loops, PlaceLinks) keeps at most
+  /// this many keyframes in the inverse index: a keyframe whose loop makes
+  /// its place larger stays out of it (DatabaseEntry::searchable), later
+  /// passes find the place in the keyframes indexed before. The postings a
+  /// query walks then grow with the places driven, not with the laps of a
+  /// circuit. 0 = no limit: every keyframe, as DBoW2 and the paper. >= 0.
+  int indexed_per_place = 0;
   void validate() const;
 };
 

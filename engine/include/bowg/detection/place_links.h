@@ -9,6 +9,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include "bowg/core/types.h"
@@ -24,6 +25,8 @@ class PlaceLinks {
   EntryId root(EntryId e) const;
   /// Whether an entry of `a` (first..last) and one of `b` are one place.
   bool linked(const Island& a, const Island& b) const;
+  /// How many entries `e`'s place holds (1 when never linked).
+  std::size_t placeSize(EntryId e) const;
 
   /// For persistence: every entry's parent, `entries` of them (an entry
   /// never linked is its own parent; parents are never larger ids).
@@ -31,11 +34,16 @@ class PlaceLinks {
   /// Restores parents() output; throws std::invalid_argument naming the
   /// first entry whose parent is larger than itself.
   void restore(std::vector<EntryId> parents);
-  void clear() { parent_.clear(); }
+  void clear() {
+    parent_.clear();
+    size_.clear();
+  }
 
  private:
   // Grown on demand to the largest linked id; mutable for path halving.
   mutable std::vector<EntryId> parent_;
+  // Entries of each place, read at its root (parent_'s length).
+  std::vector<std::uint32_t> size_;
 };
 
 }  // namespace bowg
