@@ -242,6 +242,12 @@ TEST(DatabaseIo, SearchableFlagsRoundTrip) {
     loops += ra.status == LoopStatus::kLoopDetected;
   }
   EXPECT_GT(loops, 0);
+  // The places' sizes came back with their links: the keyframes after the
+  // load are indexed or not as in the original.
+  ASSERT_EQ(b.database().size(), a.database().size());
+  for (EntryId i = 52; i < a.database().size(); ++i) {
+    EXPECT_EQ(b.database().entry(i).searchable, a.database().entry(i).searchable) << i;
+  }
   writeBytes(path, asVersion(bytes, searchableBytes(52), 7));
   LoopDetector c(voc, o);
   c.load(path);
