@@ -161,6 +161,29 @@ TEST(LoopDetectorNodelet, RevisitGivesLoopClosuresWithTheRightIds) {
   RecordProperty("loops", std::to_string(loops.size()));
 }
 
+// indexed_per_place end to end: with 1, every keyframe of the revisit that
+// closes a loop stays out of the inverse index (its place already has its
+// keyframe there), which the diagnostics report beside the database size.
+TEST(LoopDetectorNodelet, WithIndexedPerPlaceLoopKeyframesStayOutOfTheIndex) {
+  DiagnosticsWatcher diagnostics;
+  Detector d("/places", {{"indexed_per_place", XmlRpc::XmlRpcValue(1)}});
+  ASSERT_TRUE(d.loaded());
+  ASSERT_TRUE(d.connected());
+  const cv::Mat world = test::makeWorld(kForward * kStep + kViewWidth + kOffset, kViewHeight, 1);
+  ASSERT_TRUE(d.run(world, test::trajectory(kForward, kRevisit, kStep, kOffset), 1000.0,
+                    revisitBrightness()));
+  ros::WallDuration(0.3).sleep();
+  const std::size_t loops = d.loops().size();
+  ASSERT_GE(loops, 5u) << "too few loops on a revisit";
+  const std::string total = std::to_string(kForward + kRevisit);
+  const std::string indexed = std::to_string(kForward + kRevisit - loops);
+  // Diagnostics are published once a second: wait for one after the run.
+  for (int i = 0; i < 50 && diagnostics.value(d.name(), "database size") != total; ++i)
+    ros::WallDuration(0.1).sleep();
+  EXPECT_EQ(diagnostics.value(d.name(), "database size"), total);
+  EXPECT_EQ(diagnostics.value(d.name(), "keyframes in the inverse index"), indexed);
+}
+
 /// Median absolute difference of two 8-bit grey images of the same size
 /// (robust to the inlier lines drawn over the panels).
 int medianAbsDiff(const cv::Mat& a, const cv::Mat& b) {

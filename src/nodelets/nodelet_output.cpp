@@ -80,10 +80,13 @@ void LoopDetectorNodelet::publishResult(const Frame& frame, const bowg::LoopResu
 }
 
 void LoopDetectorNodelet::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status) {
-  std::size_t database_size = 0, thumbnail_bytes = 0;
+  std::size_t database_size = 0, indexed = 0, thumbnail_bytes = 0;
   {
     std::lock_guard<std::mutex> lock(detector_mutex_);
-    if (detector_) database_size = detector_->database().size();
+    if (detector_) {
+      database_size = detector_->database().size();
+      indexed = detector_->database().searchableCount();
+    }
     thumbnail_bytes = thumbnails_.bytes();
   }
   bool has_intrinsics;
@@ -105,6 +108,8 @@ void LoopDetectorNodelet::diagnose(diagnostic_updater::DiagnosticStatusWrapper& 
   status.add("frames received", s.frames_received);
   status.add("keyframes", s.keyframes);
   status.add("database size", database_size);
+  // Fewer than the database size with indexed_per_place: what a query walks.
+  status.add("keyframes in the inverse index", indexed);
   status.add("debug thumbnails (kB)", thumbnail_bytes / 1024.0);
   status.add("loops found", s.loops);
   status.add("dropped frames (queue full)", dropped);

@@ -106,7 +106,6 @@ void Database::clear() {
   group_overflow_.clear();
   overflow_begin_.clear();
   archived_groups_.clear();
-  archived_begin_.clear();
   searchable_count_ = 0;
   word_acc_.clear();
   group_acc_.clear();
@@ -180,13 +179,9 @@ double Database::overflowCount(WordId w, EntryId id) const {
 
 GroupVector Database::rawGroups(EntryId id) const {
   if (!entries_.at(id).searchable) {
-    const auto first = archived_groups_.begin() + archived_begin_[id];
-    const auto last = id + 1 < archived_begin_.size()
-                          ? archived_groups_.begin() + archived_begin_[id + 1]
-                          : archived_groups_.end();
     GroupVector out;
-    out.reserve(static_cast<std::size_t>(last - first));
-    for (auto it = first; it != last; ++it) out.emplace_back(it->word, it->count);
+    out.reserve(archived_groups_[id].size());
+    for (const GroupCount& g : archived_groups_[id]) out.emplace_back(g.word, g.count);
     return out;
   }
   std::vector<WordId> words = entries_.at(id).words.unpack();
@@ -281,12 +276,14 @@ EntryId Database::add(DatabaseEntry e, const GroupVector& raw_groups,
   entries_.push_back(std::move(e));
   const EntryId id = entries_.back().id;
   overflow_begin_.push_back(group_overflow_.size());
-  archived_begin_.push_back(archived_groups_.size());
+  archived_groups_.emplace_back();
   if (!entries_.back().searchable) {
     // Out of the inverse index: the BoW vector comes from the words as for
     // every entry; the raw groups are all that has to be kept.
+    std::vector<GroupCount>& kept = archived_groups_.back();
+    kept.reserve(raw_groups.size());
     for (const auto& g : raw_groups) {
-      archived_groups_.push_back(GroupCount{g.first, static_cast<std::uint32_t>(g.second)});
+      kept.push_back(GroupCount{g.first, static_cast<std::uint32_t>(g.second)});
     }
     return id;
   }
@@ -456,7 +453,8 @@ std::size_t Database::memoryBytes() const {
       vectorHeapBytes(distributions_) + vectorHeapBytes(odometers_) + vectorHeapBytes(group_sums_);
   for (const auto& l : index_) bytes += vectorHeapBytes(l);
   bytes += vectorHeapBytes(group_overflow_) + vectorHeapBytes(overflow_begin_);
-  bytes += vectorHeapBytes(archived_groups_) + vectorHeapBytes(archived_begin_);
+  bytes += vectorHeapBytes(archived_groups_);
+  for (const auto& g : archived_groups_) bytes += vectorHeapBytes(g);
   bytes += vectorHeapBytes(index_) + group_table_.heapBytes();
   return bytes;
 }

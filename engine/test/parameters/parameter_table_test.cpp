@@ -260,7 +260,7 @@ TEST(ParameterTable, LoadsEveryShippedConfig) {
   EXPECT_DOUBLE_EQ(pipe.detector.islands.odometry_gate_m, 1.0);
   EXPECT_DOUBLE_EQ(pipe.detector.islands.odometry_anchor_m, 0.3);
   EXPECT_TRUE(pipe.detector.temporal_verification.anchored_chain);
-  EXPECT_EQ(pipe.detector.islands.indexed_per_place, 0);
+  EXPECT_EQ(pipe.detector.islands.indexed_per_place, 3);
   const PipelineOptions generic = loadParameterFile(configDir() + "/generic.yaml");
   EXPECT_FALSE(generic.detector.distribution.enabled);
   EXPECT_EQ(generic.features.detector, FeatureOptions::Detector::kOrb);

@@ -6,9 +6,8 @@
 //    DBoW2's word index with the group's weight beside it. An entry's BoW
 //    vector and raw groups are rebuilt from its words (2-3 bytes each,
 //    PackedWords) and these postings when needed (bow(), rawGroups()), not
-//    kept;
-//    Entries that are not searchable (DatabaseEntry::searchable) keep their
-//    raw groups apart instead (archived_groups_), read by entry only;
+//    kept. An entry that is not searchable (DatabaseEntry::searchable) has
+//    no postings: its raw groups are kept apart (archived_groups_);
 //  - the online word-group table (eq. 1's IDF totals);
 //  - the level of the direct index (Sec. III-D's correspondence search): an
 //    entry's direct index is rebuilt from its words when it is verified
@@ -80,9 +79,9 @@ struct DatabaseEntry {
   /// False: the entry stays out of the inverse index (Database::add), so no
   /// query finds it as a candidate, while its scores against a query
   /// (Database::score, the normalisers of eqs. 2 and 4), its words, points
-  /// and descriptors stay available. A keyframe that closed a loop with an
-  /// indexed place is one (IndexingOptions): the index then grows with the
-  /// places driven, not with the laps.
+  /// and descriptors stay available. A keyframe whose loop made its place
+  /// larger than IslandOptions::indexed_per_place is one: the index then
+  /// grows with the places driven, not with the laps.
   bool searchable = true;
   // Derived from `words` when needed, not kept: the BoW vector
   // (Database::bow()), the raw groups (Database::rawGroups()) and the direct
@@ -259,12 +258,13 @@ class Database {
   };
   std::vector<GroupCount> group_overflow_;
   std::vector<std::size_t> overflow_begin_;
-  /// The raw groups of the entries that are not searchable, in (entry, word)
-  /// order: entry e's are [archived_begin_[e], archived_begin_[e + 1]) (the
-  /// end for the last entry), empty for a searchable entry. Read by entry
-  /// only (rawGroups), never walked by a query.
-  std::vector<GroupCount> archived_groups_;
-  std::vector<std::size_t> archived_begin_;
+  /// Per entry the raw groups of an entry that is not searchable, by word;
+  /// empty for a searchable entry. Read by entry only (rawGroups), never
+  /// walked by a query. A vector per entry rather than one array: one
+  /// array of every such entry's groups (~2.4 kB each) would be copied
+  /// whole when it grows, tens of MB and a keyframe of 100+ ms at 17,000
+  /// keyframes.
+  std::vector<std::vector<GroupCount>> archived_groups_;
   std::size_t searchable_count_ = 0;
   /// Per entry the sum of its raw group weights: eq. 1's TF is raw / sum,
   /// applied once per scored entry instead of once per posting.
