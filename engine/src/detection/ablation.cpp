@@ -21,7 +21,8 @@ LoopDetectorOptions LoopDetectorOptions::ablation(const std::string& row,
     // with pure bag-of-words scores (DBoW2 + DLoopDetector's islands and
     // checks): every extension of this implementation off (normaliser floor,
     // aligned temporal score, missed-query tolerance, geometric re-ranking,
-    // the odometry gates; docs/method.md). The configuration's
+    // the odometry gates, the place index, the
+    // RANSAC's sample bound; docs/method.md). The configuration's
     // thresholds and its recent-exclusion window (the "immediate past", in
     // metres where odometry is given) are kept: every row is judged on the
     // same candidates.
@@ -44,6 +45,7 @@ LoopDetectorOptions LoopDetectorOptions::ablation(const std::string& row,
     o.islands.odometry_gate_m = 0.0;
     o.islands.odometry_anchor_m = 0.0;
     o.islands.indexed_per_place = 0;
+    o.geometric.ransac_bound_confidence = 0.0;
     return o;
   }
   // One extension back to the paper's version, every other field as configured.
@@ -97,6 +99,10 @@ LoopDetectorOptions LoopDetectorOptions::ablation(const std::string& row,
     o.islands.indexed_per_place = 0;
     return o;
   }
+  if (row == "without_ransac_bound") {  // OpenCV's 1,000 RANSAC samples
+    o.geometric.ransac_bound_confidence = 0.0;
+    return o;
+  }
   if (row == "without_reranking") {
     o.geometric.candidates = 1;
     return o;
@@ -124,7 +130,8 @@ LoopDetectorOptions LoopDetectorOptions::ablation(const std::string& row,
                            "without_normaliser_distance, without_alignment, "
                            "without_missed_queries, without_hypotheses, without_min_step, "
                            "without_linked_places, without_odometry_gate, without_loop_anchor, "
-                           "without_anchored_chain, without_place_index, without_reranking");
+                           "without_anchored_chain, without_place_index, without_ransac_bound, "
+                           "without_reranking");
   }
   return o;
 }

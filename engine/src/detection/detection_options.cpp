@@ -44,6 +44,11 @@ void GeometricVerificationOptions::validate() const {
   }
   // The 8-point algorithm needs 8 correspondences; fewer inliers prove nothing.
   requireIntAtLeast("geometric.min_inliers", min_inliers, 8);
+  if (!(ransac_bound_confidence == 0.0 ||
+        (ransac_bound_confidence > 0.0 && ransac_bound_confidence < 1.0))) {
+    fail("geometric.ransac_bound_confidence", "must be 0 (no bound) or in (0, 1)",
+         str(ransac_bound_confidence));
+  }
   requireIntAtLeast("geometric.candidates", candidates, 1);
   requireIntAtLeast("geometric.rerank_ransacs", rerank_ransacs, 0);
 }

@@ -1,10 +1,20 @@
 #include "bowg/detection/geometric_verification.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <opencv2/calib3d.hpp>
 #include <opencv2/core.hpp>
+#include <opencv2/core/version.hpp>
 #include <stdexcept>
+
+// findFundamentalMat takes a sample limit (maxIters) from OpenCV 3.4.10 / 4.3.
+#if CV_VERSION_MAJOR > 4 || (CV_VERSION_MAJOR == 4 && CV_VERSION_MINOR >= 3) || \
+    (CV_VERSION_MAJOR == 3 && CV_VERSION_MINOR == 4 && CV_VERSION_REVISION >= 10)
+#define BOWG_CV_FUNDAMENTAL_MAX_ITERS 1
+#else
+#define BOWG_CV_FUNDAMENTAL_MAX_ITERS 0
+#endif
 
 namespace bowg {
 namespace {
@@ -130,6 +140,29 @@ std::vector<Pair> findCorrespondences(const VerificationView& query, const Verif
   return out;
 }
 
+int ransacSampleBound(int correspondences, int min_inliers, double confidence) {
+  constexpr int kOpenCvLimit = 1000;  // findFundamentalMat's maxIters default
+  if (correspondences <= 0 || min_inliers <= 0) return kOpenCvLimit;
+  const double w = std::min(1.0, static_cast<double>(min_inliers) / correspondences);
+  // The 7-point solver's samples are all inliers with probability w^7; N of
+  // them miss with (1 - w^7)^N <= 1 - confidence (OpenCV's
+  // RANSACUpdateNumIters, with its rounding).
+  const double all_inliers = std::pow(w, 7);
+  if (all_inliers >= 1.0) return 1;
+  const double num = std::log(std::max(1.0 - confidence, std::numeric_limits<double>::min()));
+  const double denom = std::log(1.0 - all_inliers);
+  if (!(denom < 0.0) || -num >= kOpenCvLimit * -denom) return kOpenCvLimit;
+  return std::max(1, static_cast<int>(std::lround(num / denom)));
+}
+
+bool ransacSampleBoundAvailable() {
+#if BOWG_CV_FUNDAMENTAL_MAX_ITERS
+  return true;
+#else
+  return false;
+#endif
+}
+
 bool relativePoseFromCorrespondences(const std::vector<Correspondence>& pairs,
                                      const CameraIntrinsics& intrinsics, double ransac_threshold_px,
                                      double confidence, double rotation[9],
@@ -194,8 +227,17 @@ GeometricVerificationResult verifyCorrespondences(
   std::vector<unsigned char> mask;
   cv::Mat F;
   try {
+#if BOWG_CV_FUNDAMENTAL_MAX_ITERS
+    const int samples = options.ransac_bound_confidence > 0.0
+                            ? ransacSampleBound(static_cast<int>(pairs.size()), options.min_inliers,
+                                                options.ransac_bound_confidence)
+                            : 1000;
+    F = cv::findFundamentalMat(pq, pm, cv::FM_RANSAC, options.ransac_threshold_px,
+                               options.ransac_confidence, samples, mask);
+#else
     F = cv::findFundamentalMat(pq, pm, cv::FM_RANSAC, options.ransac_threshold_px,
                                options.ransac_confidence, mask);
+#endif
   } catch (const cv::Exception&) {
     F.release();  // degenerate configuration: no model, no inliers
   }

@@ -111,6 +111,11 @@ void addDetectionRows(std::vector<Row>* rows) {
   rows->push_back(intRow("min_inliers", det, "geometric.min_inliers", 8, 10000, true,
                          BOWG_FIELD(int, detector.geometric.min_inliers),
                          "Accept a loop with at least this many RANSAC inliers"));
+  rows->push_back(doubleRow("ransac_bound_confidence", det, "geometric.ransac_bound_confidence",
+                            0.0, 0.999999, false,
+                            BOWG_FIELD(double, detector.geometric.ransac_bound_confidence),
+                            "RANSAC stops after the samples that find a model with min_inliers "
+                            "inliers at this confidence (0 = OpenCV's 1,000)"));
   rows->push_back(intRow("verified_candidates", det, "geometric.candidates", 1, 100, false,
                          BOWG_FIELD(int, detector.geometric.candidates),
                          "Geometric re-ranking: verify the best entries of this many top islands "

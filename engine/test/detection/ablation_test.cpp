@@ -138,14 +138,16 @@ TEST(Ablation, WithoutRowsSwitchOffOneExtensionEach) {
         o.islands.odometry_anchor_m > 0,
         o.temporal_verification.anchored_chain,
         o.islands.indexed_per_place > 0,
+        o.geometric.ransac_bound_confidence > 0,
         o.geometric.candidates > 1};
   };
   const char* rows[] = {
       "without_floor",          "without_normaliser_distance", "without_alignment",
       "without_missed_queries", "without_hypotheses",          "without_min_step",
       "without_linked_places",  "without_odometry_gate",       "without_loop_anchor",
-      "without_anchored_chain", "without_place_index",         "without_reranking"};
-  const int n = 12;
+      "without_anchored_chain", "without_place_index",         "without_ransac_bound",
+      "without_reranking"};
+  const int n = 13;
   ASSERT_EQ(on(base), std::vector<bool>(n, true));
   for (int r = 0; r < n; ++r) {
     std::vector<bool> expected(n, true);

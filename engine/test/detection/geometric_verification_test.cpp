@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <opencv2/core/version.hpp>
 #include <random>
 #include <stdexcept>
 
@@ -171,6 +172,78 @@ TEST(GeometricVerification, TooFewInliersWithoutConsistentGeometry) {
   EXPECT_EQ(r.status, LoopStatus::kTooFewInliers);
   EXPECT_LT(r.inliers, 30);
   EXPECT_TRUE(r.inlier_correspondences.empty());
+}
+
+// N = round(log(1 - p) / log(1 - w^7)), w = min_inliers / n, within [1, 1000]:
+//   n 45, 30 inliers: w^7 = (2/3)^7 = 128/2187 = 0.0585277, log(1 - w^7) =
+//     -0.0603103; p 0.99: 4.60517 / 0.0603103 = 76.36 -> 76; p 0.9999:
+//     9.21034 / 0.0603103 = 152.72 -> 153.
+//   n 60, 30 inliers: w^7 = 1/128, log(127/128) = -0.00784318; p 0.99:
+//     587.16 -> 587; p 0.9999: 1174.3 -> OpenCV's limit, 1000.
+//   n <= min_inliers: every pair must be an inlier, one sample (w = 1).
+TEST(GeometricVerification, RansacSampleBoundMatchesHandWorkedValues) {
+  EXPECT_EQ(ransacSampleBound(45, 30, 0.99), 76);
+  EXPECT_EQ(ransacSampleBound(45, 30, 0.9999), 153);
+  EXPECT_EQ(ransacSampleBound(60, 30, 0.99), 587);
+  EXPECT_EQ(ransacSampleBound(60, 30, 0.9999), 1000);
+  EXPECT_EQ(ransacSampleBound(30, 30, 0.99), 1);
+  EXPECT_EQ(ransacSampleBound(20, 30, 0.99), 1);
+  EXPECT_EQ(ransacSampleBound(500, 30, 0.99), 1000);
+  EXPECT_EQ(ransacSampleBound(0, 30, 0.99), 1000);
+  // More confidence, more samples; more correspondences for the same
+  // inliers (a lower ratio), more samples.
+  for (int n = 31; n < 80; ++n) {
+    EXPECT_LE(ransacSampleBound(n, 30, 0.99), ransacSampleBound(n, 30, 0.9999)) << n;
+    EXPECT_LE(ransacSampleBound(n, 30, 0.99), ransacSampleBound(n + 1, 30, 0.99)) << n;
+  }
+}
+
+// The bound shortens RANSAC without changing what it finds where the
+// acceptance is met early: a clean loop keeps OpenCV's inliers pair for pair.
+// Where no model can reach min_inliers, the bounded run stops sooner with at
+// most the full run's inliers and the same rejection.
+TEST(GeometricVerification, TheSampleBoundKeepsALoopAndOnlyShortensARejection) {
+  if (!ransacSampleBoundAvailable()) {
+    GTEST_SKIP() << "this OpenCV (" << CV_VERSION
+                 << ") is older than 3.4.10 / 4.3: findFundamentalMat takes no sample limit";
+  }
+  const double t[3] = {0.5, 0.05, 0.1};
+  GeometricVerificationOptions bounded, full;
+  bounded.exhaustive = full.exhaustive = true;
+  bounded.min_inliers = full.min_inliers = 30;
+  bounded.ransac_bound_confidence = 0.9999;
+  full.ransac_bound_confidence = 0.0;
+  {
+    const TwoViews v = makeTwoViews(rotY(0.1), t, 60, 11);
+    const VerificationView q{&v.qk, &v.qd, nullptr}, m{&v.mk, &v.md, nullptr};
+    const GeometricVerificationResult a = verifyGeometry(q, m, CameraIntrinsics(), bounded);
+    const GeometricVerificationResult b = verifyGeometry(q, m, CameraIntrinsics(), full);
+    ASSERT_EQ(a.status, LoopStatus::kLoopDetected);
+    ASSERT_EQ(b.status, LoopStatus::kLoopDetected);
+    ASSERT_EQ(a.inliers, b.inliers);
+    for (int i = 0; i < a.inliers; ++i) {
+      EXPECT_EQ(a.inlier_correspondences[i].query_index, b.inlier_correspondences[i].query_index);
+      EXPECT_EQ(a.inlier_correspondences[i].match_index, b.inlier_correspondences[i].match_index);
+    }
+  }
+  // Half the pairs scattered: ~40 consistent of 80, and an acceptance at 80
+  // bounds the bounded run to one sample (w = 1).
+  TwoViews v = makeTwoViews(rotY(0.1), t, 80, 12);
+  std::mt19937_64 rng(13);
+  std::uniform_real_distribution<float> ux(0, 640), uy(0, 480);
+  for (std::size_t i = 0; i < v.mk.size(); i += 2) {
+    v.mk[i].x = ux(rng);
+    v.mk[i].y = uy(rng);
+  }
+  bounded.min_inliers = full.min_inliers = 80;
+  ASSERT_EQ(ransacSampleBound(80, 80, bounded.ransac_bound_confidence), 1);
+  const VerificationView q{&v.qk, &v.qd, nullptr}, m{&v.mk, &v.md, nullptr};
+  const GeometricVerificationResult a = verifyGeometry(q, m, CameraIntrinsics(), bounded);
+  const GeometricVerificationResult b = verifyGeometry(q, m, CameraIntrinsics(), full);
+  EXPECT_EQ(a.status, LoopStatus::kTooFewInliers);
+  EXPECT_EQ(b.status, LoopStatus::kTooFewInliers);
+  EXPECT_GE(b.inliers, 35);         // the full run finds the consistent half
+  EXPECT_LT(a.inliers, b.inliers);  // one sample does not
 }
 
 // Hand-made descriptors: d(k) has the k lowest bits of block 0 set.

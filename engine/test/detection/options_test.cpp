@@ -207,6 +207,12 @@ TEST(Options, Geometric) {
                  "geometric.candidates");
   expectRejected([](LoopDetectorOptions& o) { o.geometric.rerank_ransacs = -1; },
                  "geometric.rerank_ransacs");
+  expectRejected([](LoopDetectorOptions& o) { o.geometric.ransac_bound_confidence = -0.1; },
+                 "geometric.ransac_bound_confidence");
+  expectRejected([](LoopDetectorOptions& o) { o.geometric.ransac_bound_confidence = 1.0; },
+                 "geometric.ransac_bound_confidence");
+  expectRejected([](LoopDetectorOptions& o) { o.geometric.ransac_bound_confidence = std::nan(""); },
+                 "geometric.ransac_bound_confidence");
   expectRejected([](LoopDetectorOptions& o) { o.islands.odometry_gate_m = -0.5; },
                  "islands.odometry_gate_m");
   expectRejected([](LoopDetectorOptions& o) { o.islands.odometry_gate_drift = std::nan(""); },
@@ -224,6 +230,7 @@ TEST(Options, Geometric) {
   expectAccepted([](LoopDetectorOptions& o) {
     o.geometric.candidates = 5;
     o.geometric.rerank_ransacs = 0;
+    o.geometric.ransac_bound_confidence = 0.0;  // no bound: OpenCV's 1,000 samples
     o.geometric.min_inliers = 8;
     o.geometric.max_neighbour_ratio = 1.0;
     o.geometric.direct_index_level = 1;

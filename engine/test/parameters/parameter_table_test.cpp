@@ -89,6 +89,7 @@ TEST(ParameterTable, SetsTheDocumentedFields) {
   setParameter("mask_path", "/tmp/mask.png", &o);
   setParameter("gftt_max_corners", "321", &o);
   setParameter("indexed_per_place", "2", &o);
+  setParameter("ransac_bound_confidence", "0.999", &o);
   EXPECT_EQ(o.detector.similarity.lambda_1, 0.25);
   EXPECT_EQ(o.detector.similarity.lambda_2, 0.125);
   EXPECT_EQ(o.detector.temporal_score.w_max, 0.5);
@@ -108,6 +109,7 @@ TEST(ParameterTable, SetsTheDocumentedFields) {
   EXPECT_EQ(o.features.mask_path, "/tmp/mask.png");
   EXPECT_EQ(o.features.gftt_max_corners, 321);
   EXPECT_EQ(o.detector.islands.indexed_per_place, 2);
+  EXPECT_EQ(o.detector.geometric.ransac_bound_confidence, 0.999);
   EXPECT_EQ(getParameter("lambda_1", o), "0.25");
   EXPECT_EQ(getParameter("temporal_score", o), "false");
   EXPECT_EQ(getParameter("scoring", o), "chi_square");
@@ -261,6 +263,7 @@ TEST(ParameterTable, LoadsEveryShippedConfig) {
   EXPECT_DOUBLE_EQ(pipe.detector.islands.odometry_anchor_m, 0.3);
   EXPECT_TRUE(pipe.detector.temporal_verification.anchored_chain);
   EXPECT_EQ(pipe.detector.islands.indexed_per_place, 3);
+  EXPECT_EQ(pipe.detector.geometric.ransac_bound_confidence, 0.9999);
   const PipelineOptions generic = loadParameterFile(configDir() + "/generic.yaml");
   EXPECT_FALSE(generic.detector.distribution.enabled);
   EXPECT_EQ(generic.features.detector, FeatureOptions::Detector::kOrb);

@@ -134,6 +134,19 @@ struct GeometricVerificationOptions {
   double ransac_confidence = 0.99;
   /// Accept with at least this many inliers. >= 8.
   int min_inliers = 15;
+  /// RANSAC draws at most ransacSampleBound(n, min_inliers,
+  /// ransac_bound_confidence) samples (geometric_verification.h): enough to
+  /// find a model with min_inliers of the n correspondences at that
+  /// confidence, instead of OpenCV's fixed 1,000. A candidate whose full run
+  /// ends below min_inliers is rejected either way (the best model only
+  /// grows with the samples); the others keep OpenCV's sample sequence, so a
+  /// loop is lost only when OpenCV finds its model after the bound. The
+  /// bound's confidence is above the RANSAC's own because a marginal loop's
+  /// first all-inlier sample often scores a few inliers short of its best.
+  /// 0 = OpenCV's 1,000 (the paper's verification; also wherever OpenCV is
+  /// older than 3.4.10 / 4.3, whose findFundamentalMat takes no sample limit:
+  /// ransacSampleBoundAvailable()). 0 or in (0, 1).
+  double ransac_bound_confidence = 0.9999;
   /// Geometric re-ranking: the best entries of the top `candidates` islands
   /// are verified and, among those with at least min_inliers
   /// correspondences, the one with the most inliers is the query's island

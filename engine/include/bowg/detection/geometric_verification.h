@@ -73,6 +73,18 @@ GeometricVerificationResult verifyCorrespondences(
     const VerificationView& query, const VerificationView& match,
     const CameraIntrinsics& intrinsics, const GeometricVerificationOptions& options);
 
+/// The fundamental-matrix RANSAC's sample limit when it only has to find a
+/// model with `min_inliers` of `correspondences` pairs: OpenCV's adaptive
+/// stop at the inlier ratio w = min_inliers / correspondences,
+/// round(log(1 - confidence) / log(1 - w^7)) (7-point samples), within
+/// [1, 1000] (1,000 is OpenCV's fixed limit). A run that finds such a model
+/// stops by then anyway; one that does not cannot accept.
+int ransacSampleBound(int correspondences, int min_inliers, double confidence);
+
+/// Whether this build's OpenCV lets findFundamentalMat's samples be limited
+/// (3.4.10 / 4.3 and later); without it ransac_bound_confidence has no effect.
+bool ransacSampleBoundAvailable();
+
 /// Relative pose T_Q_M from point pairs (query pixel, match pixel) with the
 /// essential matrix; false when it cannot be estimated.
 bool relativePoseFromCorrespondences(const std::vector<Correspondence>& pairs,
