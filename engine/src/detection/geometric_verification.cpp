@@ -207,7 +207,8 @@ GeometricVerificationResult verifyGeometry(const VerificationView& query,
 GeometricVerificationResult verifyCorrespondences(
     const std::vector<std::pair<std::uint32_t, std::uint32_t>>& pairs,
     const VerificationView& query, const VerificationView& match,
-    const CameraIntrinsics& intrinsics, const GeometricVerificationOptions& options) {
+    const CameraIntrinsics& intrinsics, const GeometricVerificationOptions& options,
+    int decisive_inliers) {
   GeometricVerificationResult result;
   result.correspondences = static_cast<int>(pairs.size());
   // 8 points: the minimum of the 8-point algorithm findFundamentalMat runs.
@@ -229,7 +230,8 @@ GeometricVerificationResult verifyCorrespondences(
   try {
 #if BOWG_CV_FUNDAMENTAL_MAX_ITERS
     const int samples = options.ransac_bound_confidence > 0.0
-                            ? ransacSampleBound(static_cast<int>(pairs.size()), options.min_inliers,
+                            ? ransacSampleBound(static_cast<int>(pairs.size()),
+                                                std::max(options.min_inliers, decisive_inliers),
                                                 options.ransac_bound_confidence)
                             : 1000;
     F = cv::findFundamentalMat(pq, pm, cv::FM_RANSAC, options.ransac_threshold_px,

@@ -244,6 +244,18 @@ TEST(GeometricVerification, TheSampleBoundKeepsALoopAndOnlyShortensARejection) {
   EXPECT_EQ(b.status, LoopStatus::kTooFewInliers);
   EXPECT_GE(b.inliers, 35);         // the full run finds the consistent half
   EXPECT_LT(a.inliers, b.inliers);  // one sample does not
+  // The same pairs accepted at 30 inliers: the bound for 30 finds the loop;
+  // a caller that needs all 80 to change its choice (decisive_inliers) gets
+  // one sample, as above.
+  bounded.min_inliers = 30;
+  const auto pairs = findCorrespondences(q, m, bounded);
+  const GeometricVerificationResult at30 =
+      verifyCorrespondences(pairs, q, m, CameraIntrinsics(), bounded);
+  const GeometricVerificationResult at80 =
+      verifyCorrespondences(pairs, q, m, CameraIntrinsics(), bounded, 80);
+  EXPECT_EQ(at30.status, LoopStatus::kLoopDetected);
+  EXPECT_EQ(at30.inliers, b.inliers);
+  EXPECT_EQ(at80.inliers, a.inliers);
 }
 
 // Hand-made descriptors: d(k) has the k lowest bits of block 0 set.

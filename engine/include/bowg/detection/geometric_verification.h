@@ -68,10 +68,14 @@ GeometricVerificationResult verifyGeometry(const VerificationView& query,
 
 /// The same on correspondences already found by findCorrespondences(query,
 /// match, options) (the re-ranking counts them before it runs RANSAC).
+/// `decisive_inliers`: the inliers a model needs to change the caller's
+/// choice when that is more than min_inliers (the re-ranking's best count so
+/// far); the RANSAC's sample bound is then computed for it.
 GeometricVerificationResult verifyCorrespondences(
     const std::vector<std::pair<std::uint32_t, std::uint32_t>>& pairs,
     const VerificationView& query, const VerificationView& match,
-    const CameraIntrinsics& intrinsics, const GeometricVerificationOptions& options);
+    const CameraIntrinsics& intrinsics, const GeometricVerificationOptions& options,
+    int decisive_inliers = 0);
 
 /// The fundamental-matrix RANSAC's sample limit when it only has to find a
 /// model with `min_inliers` of `correspondences` pairs: OpenCV's adaptive
