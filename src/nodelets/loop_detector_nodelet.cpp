@@ -2,7 +2,10 @@
 // diagnostics, live tuning, inputs last) and an orderly shutdown.
 #include "loop_detector_nodelet.h"
 
+#include <opencv2/core/version.hpp>
 #include <pluginlib/class_list_macros.hpp>
+
+#include "bowg/detection/geometric_verification.h"
 
 namespace bowg_ros {
 
@@ -43,6 +46,14 @@ bool LoopDetectorNodelet::startEngine() {
     // The direct index needs an existing level.
     for (const std::string& c : bowg::correctLiveParameters(vocabulary_->depth(), &options_)) {
       NODELET_WARN("%s", c.c_str());
+    }
+    if (options_.detector.geometric.ransac_bound_confidence > 0.0 &&
+        !bowg::ransacSampleBoundAvailable()) {
+      NODELET_WARN(
+          "~ransac_bound_confidence %g has no effect: this OpenCV (%s) is older than 3.4.10 / "
+          "4.3 and its findFundamentalMat takes no sample limit; RANSAC runs up to 1,000 "
+          "samples (same loops, more time)",
+          options_.detector.geometric.ransac_bound_confidence, CV_VERSION);
     }
     extractor_.reset(new bowg::FeatureExtractor(options_.features));
     size_limit_ = options_.features;
