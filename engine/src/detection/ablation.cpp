@@ -21,8 +21,8 @@ LoopDetectorOptions LoopDetectorOptions::ablation(const std::string& row,
     // with pure bag-of-words scores (DBoW2 + DLoopDetector's islands and
     // checks): every extension of this implementation off (normaliser floor,
     // aligned temporal score, missed-query tolerance, geometric re-ranking,
-    // the odometry gates, the place index, the
-    // RANSAC's sample bound; docs/method.md). The configuration's
+    // the odometry gates, the place index, RANSAC's sample bound;
+    // docs/method.md). The configuration's
     // thresholds and its recent-exclusion window (the "immediate past", in
     // metres where odometry is given) are kept: every row is judged on the
     // same candidates.
