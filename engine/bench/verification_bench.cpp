@@ -1,16 +1,18 @@
 // Cost of the geometric verification's RANSAC on one candidate
 // (verifyCorrespondences: the fundamental matrix on correspondences already
-// found), with OpenCV's 1,000 samples (bound 0) and with the samples bounded
-// by the acceptance (GeometricVerificationOptions::ransac_bound_confidence
-// 0.9999, the pipe preset's). Two candidates as the pipe's re-ranking sees
-// them, 640x480, min_inliers 30:
+// found). First argument: OpenCV's findFundamentalMat (0) or the native
+// 7-point RANSAC (1, GeometricVerificationOptions::native_ransac); second:
+// OpenCV's 1,000 samples (0) or the samples bounded by the acceptance (1,
+// ransac_bound_confidence 0.9999, the pipe preset's). Two candidates as the
+// pipe's re-ranking sees them, 640x480, min_inliers 30:
 //   BM_VerifyLookAlike: 48 correspondences, 22 of one rigid scene and 26
-//     scattered (a look-alike: 18 inliers, rejected). The bound is 243
-//     samples; OpenCV draws all 1,000 (its adaptive stop at 18 / 48 would
-//     be ~3,500).
-//   BM_VerifyLoop: 64 correspondences, 44 consistent (accepted): OpenCV's
+//     scattered (a look-alike: ~18 inliers, rejected). The bound is 243
+//     samples; unbounded, RANSAC draws all 1,000 (its adaptive stop at
+//     18 / 48 would be ~3,500).
+//   BM_VerifyLoop: 64 correspondences, 44 consistent (accepted): the
 //     adaptive stop comes first and the bound changes nothing.
-// Counters: inliers found, and whether the candidate was accepted.
+// Counters: inliers found, whether the candidate was accepted, and the
+// sample limit.
 #include <benchmark/benchmark.h>
 
 #include <cmath>
@@ -73,7 +75,8 @@ Candidate makeCandidate(int consistent, int scattered, std::uint64_t seed) {
 void runVerification(benchmark::State& state, const Candidate& c) {
   GeometricVerificationOptions o;
   o.min_inliers = 30;
-  o.ransac_bound_confidence = state.range(0) ? 0.9999 : 0.0;
+  o.native_ransac = state.range(0) != 0;
+  o.ransac_bound_confidence = state.range(1) ? 0.9999 : 0.0;
   const VerificationView q{&c.query, nullptr, nullptr}, m{&c.match, nullptr, nullptr};
   GeometricVerificationResult r;
   for (auto _ : state) {
@@ -82,24 +85,23 @@ void runVerification(benchmark::State& state, const Candidate& c) {
   }
   state.counters["inliers"] = r.inliers;
   state.counters["accepted"] = r.status == LoopStatus::kLoopDetected ? 1 : 0;
-  state.counters["sample_bound"] =
-      o.ransac_bound_confidence > 0
-          ? ransacSampleBound(static_cast<int>(c.pairs.size()), o.min_inliers,
-                              o.ransac_bound_confidence)
-          : 1000;
+  state.counters["sample_bound"] = o.ransac_bound_confidence > 0
+                                       ? ransacSampleBound(static_cast<int>(c.pairs.size()),
+                                                           o.min_inliers, o.ransac_bound_confidence)
+                                       : kOpenCvRansacSamples;
 }
 
 void BM_VerifyLookAlike(benchmark::State& state) {
   static const Candidate c = makeCandidate(22, 26, 5);
   runVerification(state, c);
 }
-BENCHMARK(BM_VerifyLookAlike)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_VerifyLookAlike)->ArgsProduct({{0, 1}, {0, 1}})->Unit(benchmark::kMillisecond);
 
 void BM_VerifyLoop(benchmark::State& state) {
   static const Candidate c = makeCandidate(44, 20, 6);
   runVerification(state, c);
 }
-BENCHMARK(BM_VerifyLoop)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_VerifyLoop)->ArgsProduct({{0, 1}, {0, 1}})->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace bowg

@@ -48,7 +48,7 @@ bool LoopDetectorNodelet::startEngine() {
       NODELET_WARN("%s", c.c_str());
     }
     if (options_.detector.geometric.ransac_bound_confidence > 0.0 &&
-        !bowg::ransacSampleBoundAvailable()) {
+        !bowg::ransacSampleBoundAvailable(options_.detector.geometric)) {
       NODELET_WARN(
           "~ransac_bound_confidence %g has no effect: this OpenCV (%s) is older than 3.4.10 / "
           "4.3 and its findFundamentalMat takes no sample limit; RANSAC runs up to 1,000 "

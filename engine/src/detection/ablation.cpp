@@ -46,6 +46,7 @@ LoopDetectorOptions LoopDetectorOptions::ablation(const std::string& row,
     o.islands.odometry_anchor_m = 0.0;
     o.islands.indexed_per_place = 0;
     o.geometric.ransac_bound_confidence = 0.0;
+    o.geometric.native_ransac = false;
     return o;
   }
   // One extension back to the paper's version, every other field as configured.
@@ -103,6 +104,10 @@ LoopDetectorOptions LoopDetectorOptions::ablation(const std::string& row,
     o.geometric.ransac_bound_confidence = 0.0;
     return o;
   }
+  if (row == "without_native_ransac") {  // OpenCV's findFundamentalMat
+    o.geometric.native_ransac = false;
+    return o;
+  }
   if (row == "without_reranking") {
     o.geometric.candidates = 1;
     return o;
@@ -131,7 +136,7 @@ LoopDetectorOptions LoopDetectorOptions::ablation(const std::string& row,
                            "without_missed_queries, without_hypotheses, without_min_step, "
                            "without_linked_places, without_odometry_gate, without_loop_anchor, "
                            "without_anchored_chain, without_place_index, without_ransac_bound, "
-                           "without_reranking");
+                           "without_native_ransac, without_reranking");
   }
   return o;
 }

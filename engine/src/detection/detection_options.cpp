@@ -51,6 +51,8 @@ void GeometricVerificationOptions::validate() const {
   }
   requireIntAtLeast("geometric.candidates", candidates, 1);
   requireIntAtLeast("geometric.rerank_ransacs", rerank_ransacs, 0);
+  requireIntAtLeast("geometric.ransac_refits", ransac_refits, 0);
+  requireIntAtLeast("geometric.ransac_seed", ransac_seed, 0);
 }
 
 void MetricTranslationOptions::validate() const {

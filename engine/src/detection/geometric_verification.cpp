@@ -6,7 +6,11 @@
 #include <opencv2/calib3d.hpp>
 #include <opencv2/core.hpp>
 #include <opencv2/core/version.hpp>
+#include <random>
 #include <stdexcept>
+
+#include "bowg/detection/fundamental_ransac.h"
+#include "detection/metric_geometry.h"
 
 // findFundamentalMat takes a sample limit (maxIters) from OpenCV 3.4.10 / 4.3.
 #if CV_VERSION_MAJOR > 4 || (CV_VERSION_MAJOR == 4 && CV_VERSION_MINOR >= 3) || \
@@ -98,6 +102,62 @@ void checkView(const VerificationView& v, const char* name, bool need_direct) {
   }
 }
 
+// The inliers of the fundamental matrix by our RANSAC (fundamental_ransac.h);
+// empty when it finds no model.
+std::vector<unsigned char> nativeInlierMask(const std::vector<PointPair>& points,
+                                            const GeometricVerificationOptions& options,
+                                            int samples) {
+  FundamentalRansacOptions ransac;
+  ransac.threshold_px = options.ransac_threshold_px;
+  ransac.confidence = options.ransac_confidence;
+  ransac.max_samples = samples;
+  ransac.refits = options.ransac_refits;
+  ransac.seed += static_cast<std::uint64_t>(options.ransac_seed);
+  return fundamentalRansac(points, ransac).inlier_mask;
+}
+
+// The same by cv::findFundamentalMat(FM_RANSAC) (DLoopDetector's
+// verification). OpenCV runs LMedS instead below 15 pairs and, before 3.4.10
+// / 4.3, always draws up to its 1,000 samples.
+std::vector<unsigned char> openCvInlierMask(const std::vector<PointPair>& points,
+                                            const GeometricVerificationOptions& options,
+                                            int samples) {
+  // OpenCV seeds its generator the same way on every call: another
+  // sequence is another order of the pairs (Fisher-Yates by mt19937, whose
+  // output the standard fixes).
+  std::vector<std::size_t> order(points.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  if (options.ransac_seed > 0) {
+    std::mt19937 rng(static_cast<std::uint32_t>(options.ransac_seed));
+    for (std::size_t i = order.size(); i > 1; --i) std::swap(order[i - 1], order[rng() % i]);
+  }
+  std::vector<cv::Point2f> pq, pm;
+  pq.reserve(points.size());
+  pm.reserve(points.size());
+  for (const std::size_t k : order) {
+    pq.emplace_back(static_cast<float>(points[k].x1), static_cast<float>(points[k].y1));
+    pm.emplace_back(static_cast<float>(points[k].x2), static_cast<float>(points[k].y2));
+  }
+  std::vector<unsigned char> mask;
+  cv::Mat F;
+  try {
+#if BOWG_CV_FUNDAMENTAL_MAX_ITERS
+    F = cv::findFundamentalMat(pq, pm, cv::FM_RANSAC, options.ransac_threshold_px,
+                               options.ransac_confidence, samples, mask);
+#else
+    (void)samples;
+    F = cv::findFundamentalMat(pq, pm, cv::FM_RANSAC, options.ransac_threshold_px,
+                               options.ransac_confidence, mask);
+#endif
+  } catch (const cv::Exception&) {
+    F.release();  // degenerate configuration: no model, no inliers
+  }
+  if (F.empty() || mask.size() != points.size()) return {};
+  std::vector<unsigned char> in_pair_order(points.size());
+  for (std::size_t i = 0; i < order.size(); ++i) in_pair_order[order[i]] = mask[i];
+  return in_pair_order;
+}
+
 }  // namespace
 
 std::vector<Pair> findCorrespondences(const VerificationView& query, const VerificationView& match,
@@ -141,26 +201,13 @@ std::vector<Pair> findCorrespondences(const VerificationView& query, const Verif
 }
 
 int ransacSampleBound(int correspondences, int min_inliers, double confidence) {
-  constexpr int kOpenCvLimit = 1000;  // findFundamentalMat's maxIters default
-  if (correspondences <= 0 || min_inliers <= 0) return kOpenCvLimit;
-  const double w = std::min(1.0, static_cast<double>(min_inliers) / correspondences);
-  // The 7-point solver's samples are all inliers with probability w^7; N of
-  // them miss with (1 - w^7)^N <= 1 - confidence (OpenCV's
-  // RANSACUpdateNumIters, with its rounding).
-  const double all_inliers = std::pow(w, 7);
-  if (all_inliers >= 1.0) return 1;
-  const double num = std::log(std::max(1.0 - confidence, std::numeric_limits<double>::min()));
-  const double denom = std::log(1.0 - all_inliers);
-  if (!(denom < 0.0) || -num >= kOpenCvLimit * -denom) return kOpenCvLimit;
-  return std::max(1, static_cast<int>(std::lround(num / denom)));
+  if (correspondences <= 0 || min_inliers <= 0) return kOpenCvRansacSamples;
+  return adaptiveSampleCount(static_cast<double>(min_inliers) / correspondences, confidence,
+                             kOpenCvRansacSamples);
 }
 
-bool ransacSampleBoundAvailable() {
-#if BOWG_CV_FUNDAMENTAL_MAX_ITERS
-  return true;
-#else
-  return false;
-#endif
+bool ransacSampleBoundAvailable(const GeometricVerificationOptions& options) {
+  return options.native_ransac || BOWG_CV_FUNDAMENTAL_MAX_ITERS != 0;
 }
 
 bool relativePoseFromCorrespondences(const std::vector<Correspondence>& pairs,
@@ -193,6 +240,18 @@ bool relativePoseFromCorrespondences(const std::vector<Correspondence>& pairs,
     for (int c = 0; c < 3; ++c) rotation[3 * r + c] = R.at<double>(r, c);
     translation_direction[r] = t.at<double>(r, 0);
   }
+  // RANSAC's model is a 5-point sample's (a degree or two off on a clean
+  // scene): refit it to every pair it agrees with, as the metric
+  // translation does (metric_geometry.h).
+  const cv::Matx33d k(K);
+  const std::vector<Correspondence> agreeing = metric_geometry::agreeingPairs(
+      pairs, k, rotation, translation_direction, ransac_threshold_px);
+  double r_fit[9], u_fit[3];
+  if (agreeing.size() >= 8 &&
+      metric_geometry::refitPose(agreeing, k, rotation, translation_direction, r_fit, u_fit)) {
+    std::copy(r_fit, r_fit + 9, rotation);
+    std::copy(u_fit, u_fit + 3, translation_direction);
+  }
   return true;
 }
 
@@ -216,43 +275,31 @@ GeometricVerificationResult verifyCorrespondences(
     result.status = LoopStatus::kTooFewCorrespondences;
     return result;
   }
-  std::vector<cv::Point2f> pq, pm;
-  pq.reserve(pairs.size());
-  pm.reserve(pairs.size());
+  std::vector<PointPair> points;
+  points.reserve(pairs.size());
   for (const auto& p : pairs) {
     const ImagePoint& a = (*query.points)[p.first];
     const ImagePoint& b = (*match.points)[p.second];
-    pq.emplace_back(a.x, a.y);
-    pm.emplace_back(b.x, b.y);
+    points.push_back({a.x, a.y, b.x, b.y});
   }
-  std::vector<unsigned char> mask;
-  cv::Mat F;
-  try {
-#if BOWG_CV_FUNDAMENTAL_MAX_ITERS
-    const int samples = options.ransac_bound_confidence > 0.0
-                            ? ransacSampleBound(static_cast<int>(pairs.size()),
-                                                std::max(options.min_inliers, decisive_inliers),
-                                                options.ransac_bound_confidence)
-                            : 1000;
-    F = cv::findFundamentalMat(pq, pm, cv::FM_RANSAC, options.ransac_threshold_px,
-                               options.ransac_confidence, samples, mask);
-#else
-    F = cv::findFundamentalMat(pq, pm, cv::FM_RANSAC, options.ransac_threshold_px,
-                               options.ransac_confidence, mask);
-#endif
-  } catch (const cv::Exception&) {
-    F.release();  // degenerate configuration: no model, no inliers
-  }
-  if (!F.empty() && mask.size() == pairs.size()) {
+  const int samples = options.ransac_bound_confidence > 0.0
+                          ? ransacSampleBound(static_cast<int>(pairs.size()),
+                                              std::max(options.min_inliers, decisive_inliers),
+                                              options.ransac_bound_confidence)
+                          : kOpenCvRansacSamples;
+  const std::vector<unsigned char> mask = options.native_ransac
+                                              ? nativeInlierMask(points, options, samples)
+                                              : openCvInlierMask(points, options, samples);
+  if (mask.size() == pairs.size()) {
     for (std::size_t i = 0; i < pairs.size(); ++i) {
       if (!mask[i]) continue;
       Correspondence c;
       c.query_index = pairs[i].first;
       c.match_index = pairs[i].second;
-      c.query_x = pq[i].x;
-      c.query_y = pq[i].y;
-      c.match_x = pm[i].x;
-      c.match_y = pm[i].y;
+      c.query_x = static_cast<float>(points[i].x1);
+      c.query_y = static_cast<float>(points[i].y1);
+      c.match_x = static_cast<float>(points[i].x2);
+      c.match_y = static_cast<float>(points[i].y2);
       result.inlier_correspondences.push_back(c);
     }
   }

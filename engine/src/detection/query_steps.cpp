@@ -301,14 +301,14 @@ IslandChoice chooseIsland(const std::vector<Island>& islands,
     if (have && n == c.g.inliers && i > c.chosen) continue;
     if (ransacs == go.rerank_ransacs) break;
     ++ransacs;
-    // No intrinsics: the relative pose (an essential matrix) is only worth
-    // its cost for the loop, once it is accepted (verifyMatch).
     // After a loop, only a model with more inliers (as many, for a
     // better-scored island) changes the choice: RANSAC's samples are
     // bounded for that count (GeometricVerificationOptions::
     // ransac_bound_confidence).
     const int decisive =
         have && c.g.inliers >= go.min_inliers ? c.g.inliers + (i < c.chosen ? 0 : 1) : 0;
+    // No intrinsics: the relative pose (an essential matrix) is only worth
+    // its cost for the loop, once it is accepted (verifyMatch).
     GeometricVerificationResult gi = verifyCorrespondences(
         pairs[i], qv, verifier->features(islands[i].best_entry), CameraIntrinsics(), go, decisive);
     if (!have || gi.inliers > c.g.inliers || (gi.inliers == c.g.inliers && i < c.chosen)) {

@@ -102,6 +102,18 @@ void addDetectionRows(std::vector<Row>* rows) {
   rows->push_back(doubleRow("max_neighbour_ratio", det, "geometric.max_neighbour_ratio", 0.01, 1.0,
                             false, BOWG_FIELD(double, detector.geometric.max_neighbour_ratio),
                             "Best/second-best distance ratio test for correspondences"));
+  rows->push_back(boolRow("native_ransac", det, "geometric.native_ransac", false,
+                          BOWG_FIELD(bool, detector.geometric.native_ransac),
+                          "Fundamental matrix by the engine's 7-point RANSAC (false = OpenCV's "
+                          "findFundamentalMat, the paper's verification)"));
+  rows->push_back(intRow("ransac_refits", det, "geometric.ransac_refits", 0, 10, false,
+                         BOWG_FIELD(int, detector.geometric.ransac_refits),
+                         "Native RANSAC: least-squares refits of each new best model to its "
+                         "inliers (0 = plain RANSAC)"));
+  rows->push_back(intRow("ransac_seed", det, "geometric.ransac_seed", 0, 1000000, false,
+                         BOWG_FIELD(int, detector.geometric.ransac_seed),
+                         "RANSAC's sample sequence (0 = the fixed default; evaluate a few to see "
+                         "how much a result owes to it)"));
   rows->push_back(doubleRow("ransac_threshold_px", det, "geometric.ransac_threshold_px", 0.1, 100.0,
                             false, BOWG_FIELD(double, detector.geometric.ransac_threshold_px),
                             "RANSAC reprojection threshold (px)"));

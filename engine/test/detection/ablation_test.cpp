@@ -139,15 +139,17 @@ TEST(Ablation, WithoutRowsSwitchOffOneExtensionEach) {
         o.temporal_verification.anchored_chain,
         o.islands.indexed_per_place > 0,
         o.geometric.ransac_bound_confidence > 0,
+        o.geometric.native_ransac,
         o.geometric.candidates > 1};
   };
-  const char* rows[] = {
-      "without_floor",          "without_normaliser_distance", "without_alignment",
-      "without_missed_queries", "without_hypotheses",          "without_min_step",
-      "without_linked_places",  "without_odometry_gate",       "without_loop_anchor",
-      "without_anchored_chain", "without_place_index",         "without_ransac_bound",
-      "without_reranking"};
-  const int n = 13;
+  const char* rows[] = {"without_floor",         "without_normaliser_distance",
+                        "without_alignment",     "without_missed_queries",
+                        "without_hypotheses",    "without_min_step",
+                        "without_linked_places", "without_odometry_gate",
+                        "without_loop_anchor",   "without_anchored_chain",
+                        "without_place_index",   "without_ransac_bound",
+                        "without_native_ransac", "without_reranking"};
+  const int n = 14;
   ASSERT_EQ(on(base), std::vector<bool>(n, true));
   for (int r = 0; r < n; ++r) {
     std::vector<bool> expected(n, true);

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <opencv2/core/version.hpp>
 #include <random>
+#include <set>
 #include <stdexcept>
 
 #include "bowg/database/database.h"
@@ -199,16 +200,13 @@ TEST(GeometricVerification, RansacSampleBoundMatchesHandWorkedValues) {
 }
 
 // The bound shortens RANSAC without changing what it finds where the
-// acceptance is met early: a clean loop keeps OpenCV's inliers pair for pair.
-// Where no model can reach min_inliers, the bounded run stops sooner with at
-// most the full run's inliers and the same rejection.
-TEST(GeometricVerification, TheSampleBoundKeepsALoopAndOnlyShortensARejection) {
-  if (!ransacSampleBoundAvailable()) {
-    GTEST_SKIP() << "this OpenCV (" << CV_VERSION
-                 << ") is older than 3.4.10 / 4.3: findFundamentalMat takes no sample limit";
-  }
+// acceptance is met early: a clean loop keeps the full run's inliers pair for
+// pair. Where no model can reach min_inliers, the bounded run stops sooner
+// with at most the full run's inliers and the same rejection.
+void expectTheBoundKeepsALoopAndOnlyShortensARejection(bool native_ransac) {
   const double t[3] = {0.5, 0.05, 0.1};
   GeometricVerificationOptions bounded, full;
+  bounded.native_ransac = full.native_ransac = native_ransac;
   bounded.exhaustive = full.exhaustive = true;
   bounded.min_inliers = full.min_inliers = 30;
   bounded.ransac_bound_confidence = 0.9999;
@@ -256,6 +254,69 @@ TEST(GeometricVerification, TheSampleBoundKeepsALoopAndOnlyShortensARejection) {
   EXPECT_EQ(at30.status, LoopStatus::kLoopDetected);
   EXPECT_EQ(at30.inliers, b.inliers);
   EXPECT_EQ(at80.inliers, a.inliers);
+}
+
+TEST(GeometricVerification, TheSampleBoundKeepsALoopAndOnlyShortensARejection) {
+  expectTheBoundKeepsALoopAndOnlyShortensARejection(true);
+}
+
+TEST(GeometricVerification, TheSampleBoundOfOpenCvsRansacKeepsALoopAndOnlyShortensARejection) {
+  GeometricVerificationOptions opencv;
+  opencv.native_ransac = false;
+  if (!ransacSampleBoundAvailable(opencv)) {
+    GTEST_SKIP() << "this OpenCV (" << CV_VERSION
+                 << ") is older than 3.4.10 / 4.3: findFundamentalMat takes no sample limit";
+  }
+  expectTheBoundKeepsALoopAndOnlyShortensARejection(false);
+}
+
+// Another ransac_seed draws other samples (OpenCV's RANSAC: the pairs in
+// another order) but finds the same scene: the inliers are the consistent
+// pairs, mapped back to their own features.
+void expectTheSeedChangesTheSamplesNotTheScene(bool native_ransac, int min_consistent) {
+  const double t[3] = {0.5, 0.05, 0.1};
+  TwoViews v = makeTwoViews(rotY(0.1), t, 90, 21);
+  // Two of three match positions scattered: 30 consistent pairs of 90.
+  std::mt19937_64 rng(22);
+  std::uniform_real_distribution<float> ux(0, 640), uy(0, 480);
+  for (std::size_t i = 0; i < v.mk.size(); ++i) {
+    if (i % 3 == 0) continue;
+    v.mk[i].x = ux(rng);
+    v.mk[i].y = uy(rng);
+  }
+  GeometricVerificationOptions o;
+  o.native_ransac = native_ransac;
+  o.exhaustive = true;
+  o.min_inliers = 20;
+  o.ransac_bound_confidence = 0.0;
+  const VerificationView q{&v.qk, &v.qd, nullptr}, m{&v.mk, &v.md, nullptr};
+  std::set<std::vector<std::uint32_t>> inlier_sets;
+  for (int seed = 0; seed < 4; ++seed) {
+    o.ransac_seed = seed;
+    const GeometricVerificationResult r = verifyGeometry(q, m, CameraIntrinsics(), o);
+    ASSERT_EQ(r.status, LoopStatus::kLoopDetected) << seed;
+    std::vector<std::uint32_t> inliers;
+    int consistent = 0;
+    for (const Correspondence& c : r.inlier_correspondences) {
+      consistent += c.match_index % 3 == 0;
+      inliers.push_back(c.match_index);
+      EXPECT_EQ(c.match_x, v.mk[c.match_index].x);
+      EXPECT_EQ(c.query_x, v.qk[c.query_index].x);
+    }
+    EXPECT_GE(consistent, min_consistent) << seed;
+    EXPECT_LE(r.inliers - consistent, 4) << seed;
+    inlier_sets.insert(inliers);
+  }
+  EXPECT_GT(inlier_sets.size(), 1u);  // not one sample sequence
+}
+
+TEST(GeometricVerification, TheSeedChangesTheSamplesNotTheScene) {
+  expectTheSeedChangesTheSamplesNotTheScene(true, 26);
+}
+
+TEST(GeometricVerification, TheSeedShufflesOpenCvsPairsNotTheScene) {
+  // 7-point models without a refit: 17-23 of the 30 at a third of inliers.
+  expectTheSeedChangesTheSamplesNotTheScene(false, 15);
 }
 
 // Hand-made descriptors: d(k) has the k lowest bits of block 0 set.

@@ -207,6 +207,10 @@ TEST(Options, Geometric) {
                  "geometric.candidates");
   expectRejected([](LoopDetectorOptions& o) { o.geometric.rerank_ransacs = -1; },
                  "geometric.rerank_ransacs");
+  expectRejected([](LoopDetectorOptions& o) { o.geometric.ransac_refits = -1; },
+                 "geometric.ransac_refits");
+  expectRejected([](LoopDetectorOptions& o) { o.geometric.ransac_seed = -1; },
+                 "geometric.ransac_seed");
   expectRejected([](LoopDetectorOptions& o) { o.geometric.ransac_bound_confidence = -0.1; },
                  "geometric.ransac_bound_confidence");
   expectRejected([](LoopDetectorOptions& o) { o.geometric.ransac_bound_confidence = 1.0; },

@@ -90,6 +90,9 @@ TEST(ParameterTable, SetsTheDocumentedFields) {
   setParameter("gftt_max_corners", "321", &o);
   setParameter("indexed_per_place", "2", &o);
   setParameter("ransac_bound_confidence", "0.999", &o);
+  setParameter("native_ransac", "false", &o);
+  setParameter("ransac_refits", "1", &o);
+  setParameter("ransac_seed", "7", &o);
   EXPECT_EQ(o.detector.similarity.lambda_1, 0.25);
   EXPECT_EQ(o.detector.similarity.lambda_2, 0.125);
   EXPECT_EQ(o.detector.temporal_score.w_max, 0.5);
@@ -110,6 +113,9 @@ TEST(ParameterTable, SetsTheDocumentedFields) {
   EXPECT_EQ(o.features.gftt_max_corners, 321);
   EXPECT_EQ(o.detector.islands.indexed_per_place, 2);
   EXPECT_EQ(o.detector.geometric.ransac_bound_confidence, 0.999);
+  EXPECT_FALSE(o.detector.geometric.native_ransac);
+  EXPECT_EQ(o.detector.geometric.ransac_refits, 1);
+  EXPECT_EQ(o.detector.geometric.ransac_seed, 7);
   EXPECT_EQ(getParameter("lambda_1", o), "0.25");
   EXPECT_EQ(getParameter("temporal_score", o), "false");
   EXPECT_EQ(getParameter("scoring", o), "chi_square");
@@ -264,6 +270,8 @@ TEST(ParameterTable, LoadsEveryShippedConfig) {
   EXPECT_TRUE(pipe.detector.temporal_verification.anchored_chain);
   EXPECT_EQ(pipe.detector.islands.indexed_per_place, 3);
   EXPECT_EQ(pipe.detector.geometric.ransac_bound_confidence, 0.9999);
+  EXPECT_TRUE(pipe.detector.geometric.native_ransac);
+  EXPECT_EQ(pipe.detector.geometric.ransac_refits, 3);
   const PipelineOptions generic = loadParameterFile(configDir() + "/generic.yaml");
   EXPECT_FALSE(generic.detector.distribution.enabled);
   EXPECT_EQ(generic.features.detector, FeatureOptions::Detector::kOrb);

@@ -56,7 +56,7 @@ const char* const kUsage =
     "                             without_linked_places, without_odometry_gate (both\n"
     "                             gates), without_loop_anchor, without_anchored_chain,\n"
     "                             without_place_index, without_ransac_bound,\n"
-    "                             without_reranking\n"
+    "                             without_native_ransac, without_reranking\n"
     "                             (the configuration with one extension switched off)\n"
     "  --sweep rerun|score        PR curve: re-run the detector per threshold (exact, slower)\n"
     "                             or sweep the final score of one run at the lowest threshold\n"

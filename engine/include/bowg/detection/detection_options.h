@@ -129,6 +129,24 @@ struct GeometricVerificationOptions {
   /// best ratio below max_neighbour_ratio.
   int max_hamming = 64;
   double max_neighbour_ratio = 0.8;
+  /// The fundamental matrix by fundamentalRansac (fundamental_ransac.h):
+  /// OpenCV's model, inlier test and adaptive stop with a 7-point solver
+  /// that costs ~1 us per sample instead of OpenCV's ~8 us, and its own
+  /// sample sequence. false = cv::findFundamentalMat(FM_RANSAC), the paper's
+  /// (DLoopDetector's) verification.
+  bool native_ransac = true;
+  /// The native RANSAC's least-squares refits of each new best model to its
+  /// inliers while they gain inliers (FundamentalRansacOptions::refits;
+  /// LO-RANSAC). 0 = plain RANSAC, as OpenCV's. >= 0; unused without
+  /// native_ransac.
+  int ransac_refits = 3;
+  /// The RANSAC's sample sequence: 0 = the fixed default, another value
+  /// another fixed sequence (the native RANSAC's generator seed; OpenCV's
+  /// generator is fixed, so its correspondences come in an order shuffled
+  /// by it). A candidate within a few inliers of min_inliers can fall either
+  /// way with the sequence, and a loop decides the next queries' chains:
+  /// evaluate with a few seeds to see how much a result owes to it. >= 0.
+  int ransac_seed = 0;
   /// RANSAC: reprojection threshold (px) and confidence.
   double ransac_threshold_px = 2.0;
   double ransac_confidence = 0.99;
@@ -139,13 +157,13 @@ struct GeometricVerificationOptions {
   /// find a model with min_inliers of the n correspondences at that
   /// confidence, instead of OpenCV's fixed 1,000. A candidate whose full run
   /// ends below min_inliers is rejected either way (the best model only
-  /// grows with the samples); the others keep OpenCV's sample sequence, so a
-  /// loop is lost only when OpenCV finds its model after the bound. The
+  /// grows with the samples); the others keep their sample sequence, so a
+  /// loop is lost only when the RANSAC finds its model after the bound. The
   /// bound's confidence is above the RANSAC's own because a marginal loop's
   /// first all-inlier sample often scores a few inliers short of its best.
-  /// 0 = OpenCV's 1,000 (the paper's verification; also wherever OpenCV is
-  /// older than 3.4.10 / 4.3, whose findFundamentalMat takes no sample limit:
-  /// ransacSampleBoundAvailable()). 0 or in (0, 1).
+  /// 0 = OpenCV's 1,000 (the paper's verification; also with OpenCV's RANSAC
+  /// wherever OpenCV is older than 3.4.10 / 4.3, whose findFundamentalMat
+  /// takes no sample limit: ransacSampleBoundAvailable()). 0 or in (0, 1).
   double ransac_bound_confidence = 0.9999;
   /// Geometric re-ranking: the best entries of the top `candidates` islands
   /// are verified and, among those with at least min_inliers
@@ -158,7 +176,8 @@ struct GeometricVerificationOptions {
   int candidates = 1;
   /// RANSACs the re-ranking may run, on the candidates with the most
   /// correspondences first. RANSAC is the cost of the re-ranking (1-4 ms
-  /// each on 640x480 pipe frames, ~0.05 ms for a correspondence search),
+  /// each on 640x480 pipe frames with OpenCV's, 0.1-0.5 ms with the native
+  /// one, ~0.05 ms for a correspondence search),
   /// and the candidate with the most correspondences nearly always has the
   /// most inliers: on the robustness suite's tuning half 2 gives the same
   /// recall at 100 % precision as an unbounded re-ranking at about half its

@@ -57,8 +57,9 @@ struct GeometricVerificationResult {
   double translation_direction[3] = {0, 0, 0};       ///< unit, T_Q_M
 };
 
-/// Correspondences, then cv::findFundamentalMat(FM_RANSAC,
-/// ransac_threshold_px, ransac_confidence); a loop when inliers >=
+/// Correspondences, then a fundamental matrix by RANSAC (fundamentalRansac,
+/// or cv::findFundamentalMat(FM_RANSAC) when !options.native_ransac) at
+/// ransac_threshold_px and ransac_confidence; a loop when inliers >=
 /// min_inliers. With valid `intrinsics` (assumed shared by both images),
 /// cv::findEssentialMat + cv::recoverPose on the F inliers give the pose.
 GeometricVerificationResult verifyGeometry(const VerificationView& query,
@@ -77,6 +78,10 @@ GeometricVerificationResult verifyCorrespondences(
     const CameraIntrinsics& intrinsics, const GeometricVerificationOptions& options,
     int decisive_inliers = 0);
 
+/// OpenCV findFundamentalMat's fixed sample limit (its maxIters default): the
+/// RANSAC's limit when its samples are not bounded by the acceptance.
+constexpr int kOpenCvRansacSamples = 1000;
+
 /// The fundamental-matrix RANSAC's sample limit when it only has to find a
 /// model with `min_inliers` of `correspondences` pairs: OpenCV's adaptive
 /// stop at the inlier ratio w = min_inliers / correspondences,
@@ -85,12 +90,16 @@ GeometricVerificationResult verifyCorrespondences(
 /// stops by then anyway; one that does not cannot accept.
 int ransacSampleBound(int correspondences, int min_inliers, double confidence);
 
-/// Whether this build's OpenCV lets findFundamentalMat's samples be limited
-/// (3.4.10 / 4.3 and later); without it ransac_bound_confidence has no effect.
-bool ransacSampleBoundAvailable();
+/// Whether the verification's RANSAC can be bounded: always with the native
+/// RANSAC; with OpenCV's only from 3.4.10 / 4.3, whose findFundamentalMat
+/// takes a sample limit (without it ransac_bound_confidence has no effect).
+bool ransacSampleBoundAvailable(const GeometricVerificationOptions& options);
 
 /// Relative pose T_Q_M from point pairs (query pixel, match pixel) with the
-/// essential matrix; false when it cannot be estimated.
+/// essential matrix: cv::findEssentialMat by RANSAC, its model refitted to
+/// the pairs it agrees with (Levenberg-Marquardt on their Sampson distances,
+/// as the metric translation's neighbours); false when it cannot be
+/// estimated.
 bool relativePoseFromCorrespondences(const std::vector<Correspondence>& pairs,
                                      const CameraIntrinsics& intrinsics, double ransac_threshold_px,
                                      double confidence, double rotation[9],
