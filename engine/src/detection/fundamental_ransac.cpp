@@ -68,7 +68,7 @@ inline bool isInlier(const double f[9], const PointPair& p, double t2) {
 }
 
 // Pairs tested per early-abandon check of the inlier count.
-const std::uint32_t kCountBlock = 16;
+const std::uint32_t kCountBlock = 8;
 
 // The pairs' coordinates one array each, so that the inlier test of a block
 // of pairs runs as vector instructions: counting inliers is most of
