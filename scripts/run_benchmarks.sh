@@ -15,8 +15,9 @@ bash "$repo/scripts/install_deps.sh"
 cmake -S "$repo/engine" -B "$build" -DCMAKE_BUILD_TYPE=Release -DBOWG_ENGINE_TESTS=OFF \
   -DBOWG_ENGINE_BENCHMARKS=ON > "$out/cmake.log"
 make -C "$build" -j"${BOWG_JOBS:-$(nproc)}" bowg_features_bench bowg_vocabulary_bench bowg_normaliser_history_bench \
-  bowg_pipeline_bench bowg_verification_bench bowg_vocabulary_load_once_bench > "$out/make.log"
-for b in features vocabulary normaliser_history verification pipeline; do
+  bowg_pipeline_bench bowg_verification_bench bowg_word_groups_bench bowg_vocabulary_load_once_bench \
+  > "$out/make.log"
+for b in features vocabulary normaliser_history verification word_groups pipeline; do
   echo "== bowg_${b}_bench"
   "$build/bowg_${b}_bench" --benchmark_out="$out/${b}.json" --benchmark_out_format=json \
     "$@" | tee "$out/${b}.txt"
