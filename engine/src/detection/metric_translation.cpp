@@ -34,6 +34,8 @@ const char* toString(MetricTranslationStatus s) {
       return "too_few_points";
     case MetricTranslationStatus::kPerspectiveFailed:
       return "perspective_failed";
+    case MetricTranslationStatus::kOutsideOdometry:
+      return "outside_odometry";
   }
   return "unknown";
 }

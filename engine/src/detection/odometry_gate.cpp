@@ -1,6 +1,8 @@
 #include "bowg/detection/odometry_gate.h"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace bowg {
 namespace {
@@ -38,6 +40,18 @@ bool anchoredWithin(const DatabaseEntry& query, const DatabaseEntry& entry,
   const OdometryPosition& m0 = anchor_match.position;
   return squaredNorm((q.x - q0.x) - (e.x - m0.x), (q.y - q0.y) - (e.y - m0.y),
                      (q.z - q0.z) - (e.z - m0.z)) <= radius * radius;
+}
+
+// The distance between where the anchor predicts `entry` (query moved from
+// anchor_query as entry moved from anchor_match) and `entry`.
+double anchoredDistance(const DatabaseEntry& query, const DatabaseEntry& entry,
+                        const DatabaseEntry& anchor_query, const DatabaseEntry& anchor_match) {
+  const OdometryPosition& q = query.position;
+  const OdometryPosition& e = entry.position;
+  const OdometryPosition& q0 = anchor_query.position;
+  const OdometryPosition& m0 = anchor_match.position;
+  return std::sqrt(squaredNorm((q.x - q0.x) - (e.x - m0.x), (q.y - q0.y) - (e.y - m0.y),
+                               (q.z - q0.z) - (e.z - m0.z)));
 }
 
 // The anchor that judges `entry` (the smallest radius among those that
@@ -93,6 +107,27 @@ bool anchoredByRecentLoop(const DatabaseEntry& query, const DatabaseEntry& entry
   const AnchorEntries* best = bestAnchor(query, entry, anchors, options, &radius);
   return best != nullptr && radius <= 2.0 * options.odometry_anchor_m &&
          anchoredWithin(query, entry, *best->query, *best->match, radius);
+}
+
+double odometryDistanceBound(const DatabaseEntry& query, const DatabaseEntry& entry,
+                             const std::vector<AnchorEntries>& anchors,
+                             const IslandOptions& options) {
+  double bound = std::numeric_limits<double>::infinity();
+  const std::uint32_t run = query.odometry_run;
+  if (options.odometry_gate_m > 0.0 && placed(query, run) && placed(entry, run)) {
+    bound = std::sqrt(squaredNorm(query.position.x - entry.position.x,
+                                  query.position.y - entry.position.y,
+                                  query.position.z - entry.position.z)) +
+            odometryGateRadius(options, query.odometer - entry.odometer);
+  }
+  if (options.odometry_anchor_m > 0.0) {
+    double radius = 0.0;
+    const AnchorEntries* best = bestAnchor(query, entry, anchors, options, &radius);
+    if (best != nullptr) {
+      bound = std::min(bound, anchoredDistance(query, entry, *best->query, *best->match) + radius);
+    }
+  }
+  return bound;
 }
 
 }  // namespace bowg

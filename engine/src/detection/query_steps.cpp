@@ -205,6 +205,7 @@ class Verifier {
   }
 
   const CameraIntrinsics& intrinsics() const { return intrinsics_; }
+  const DatabaseEntry& queryEntry() const { return query_; }
 
  private:
   void unpack(const DatabaseEntry& e, EntryViewStorage* storage) const {
@@ -324,8 +325,12 @@ IslandChoice chooseIsland(const std::vector<Island>& islands,
 
 // The loop's translation in metres from the odometer between the match and
 // a neighbour of it (metric_translation.h); the PnP pose replaces the
-// essential matrix's so that rotation and translation belong together.
-void estimateScale(const QueryContext& ctx, const Verifier& verifier, LoopResult* r) {
+// essential matrix's so that rotation and translation belong together. An
+// estimate longer than the odometry allows between the two keyframes (by
+// the gates' own assumptions: odometryDistanceBound, `anchors` as the
+// loop-anchored gate read them) is not published.
+void estimateScale(const QueryContext& ctx, const Verifier& verifier,
+                   const std::vector<AnchorEntries>& anchors, LoopResult* r) {
   const MetricTranslationOptions& mo = ctx.options.metric;
   if (!r->has_relative_pose) return;
   if (!mo.enabled) {
@@ -355,6 +360,13 @@ void estimateScale(const QueryContext& ctx, const Verifier& verifier, LoopResult
       neighbours, m.intrinsics, ctx.options.geometric, mo);
   r->metric_status = t.status;
   if (t.status != MetricTranslationStatus::kEstimated) return;
+  const double length =
+      std::sqrt(t.translation[0] * t.translation[0] + t.translation[1] * t.translation[1] +
+                t.translation[2] * t.translation[2]);
+  if (!(length <= odometryDistanceBound(verifier.queryEntry(), m, anchors, ctx.options.islands))) {
+    r->metric_status = MetricTranslationStatus::kOutsideOdometry;
+    return;
+  }
   r->translation_scale_known = true;
   std::copy(t.translation, t.translation + 3, r->translation_m);
   std::copy(t.covariance, t.covariance + 9, r->translation_covariance);
@@ -370,7 +382,8 @@ void estimateScale(const QueryContext& ctx, const Verifier& verifier, LoopResult
 // Geometric verification of the best entry of the chosen island (done
 // already when re-ranking); the loop, its relative pose and its scale.
 void verifyMatch(const QueryContext& ctx, const Island& island, IslandChoice* choice,
-                 Verifier* verifier, Clock::time_point t_verify, LoopResult* r) {
+                 Verifier* verifier, const std::vector<AnchorEntries>& anchors,
+                 Clock::time_point t_verify, LoopResult* r) {
   const GeometricVerificationOptions& go = ctx.options.geometric;
   const DatabaseEntry& match = ctx.database.entry(island.best_entry);
   r->match_id = match.id;
@@ -405,7 +418,7 @@ void verifyMatch(const QueryContext& ctx, const Island& island, IslandChoice* ch
   r->has_relative_pose = g.has_relative_pose;
   std::copy(g.rotation, g.rotation + 9, r->rotation);
   std::copy(g.translation_direction, g.translation_direction + 3, r->translation_direction);
-  estimateScale(ctx, *verifier, r);
+  estimateScale(ctx, *verifier, anchors, r);
   r->timings.verification_ms = choice->rerank_ms + msBetween(t_verify, Clock::now());
 }
 
@@ -512,7 +525,7 @@ void runQuery(const QueryContext& ctx, const DatabaseQuery& q, const DatabaseEnt
     r->status = LoopStatus::kNoTemporalConsistency;
     return;
   }
-  verifyMatch(ctx, island, &choice, &verifier, t_verify, r);
+  verifyMatch(ctx, island, &choice, &verifier, anchors, t_verify, r);
   if (r->status == LoopStatus::kLoopDetected) {
     ctx.state.place_links.link(r->query_id, r->match_id);
     std::vector<LoopAnchor>& recent = ctx.state.recent_loops;

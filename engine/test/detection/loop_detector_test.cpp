@@ -120,6 +120,57 @@ TEST(LoopDetector, WithOdometersTheLoopsTranslationIsMetric) {
   }
 }
 
+// The same revisit with odometry positions. True positions and a gate of
+// 3 m: every estimate is within the odometry's bound (the distance plus
+// 3 m). Positions that say the robot never moved, with a gate of 1 cm and
+// no drift: the odometry allows 1 cm between any two keyframes, the
+// revisits are 0.5-3 m apart, so no metric translation is published
+// (outside_odometry) while the loops themselves still are.
+TEST(LoopDetector, AMetricTranslationTheOdometryCannotAllowIsNotPublished) {
+  for (const bool moved : {true, false}) {
+    LoopDetectorOptions o = defaultOptions();
+    o.metric.max_baseline_m = 2.0;  // keyframes 1 m apart
+    o.islands.odometry_gate_m = moved ? 3.0 : 0.01;
+    o.islands.odometry_gate_drift = 0.0;
+    LoopDetector det(vocabulary(), o);
+    const testing::Corridor c = testing::makeCorridor(70, 50, 3);
+    std::mt19937_64 rng(103);
+    std::vector<double> x;
+    for (int i = 0; i < 60; ++i) x.push_back(i);
+    for (int i = 0; i < 60; ++i) x.push_back(59.5 - i);
+    double odometer = 0;
+    int loops = 0, metric = 0, outside = 0;
+    for (std::size_t t = 0; t < x.size(); ++t) {
+      if (t > 0) odometer += std::fabs(x[t] - x[t - 1]);
+      KeyframeInput in = testing::observeCorridor(c, x[t], 1.0 + t, rng, 2, 0.5);
+      in.odometer = odometer;
+      in.position.x = moved ? x[t] : 0.0;
+      in.position.y = 0.0;
+      in.position.z = 0.0;
+      const LoopResult r = det.process(in);
+      if (r.status != LoopStatus::kLoopDetected) continue;
+      ++loops;
+      if (r.translation_scale_known) {
+        ++metric;
+        EXPECT_EQ(r.metric_status, MetricTranslationStatus::kEstimated);
+      }
+      if (r.metric_status == MetricTranslationStatus::kOutsideOdometry) {
+        ++outside;
+        EXPECT_FALSE(r.translation_scale_known);
+        EXPECT_TRUE(r.has_relative_pose);  // the direction stays
+      }
+    }
+    EXPECT_GE(loops, 20) << (moved ? "true" : "still") << " positions";
+    if (moved) {
+      EXPECT_EQ(outside, 0);
+      EXPECT_GE(metric, loops * 3 / 4) << metric << " of " << loops;
+    } else {
+      EXPECT_EQ(metric, 0);
+      EXPECT_GE(outside, loops * 3 / 4) << outside << " of " << loops;
+    }
+  }
+}
+
 TEST(LoopDetector, FindsNoLoopWithoutRevisit) {
   LoopDetector det(vocabulary(), defaultOptions());
   const CorridorRun run = runCorridor(&det, false, 100);

@@ -244,6 +244,7 @@ TEST(MetricTranslation, SaysWhyWhenItCannotEstimate) {
   EXPECT_EQ(f.status, MetricTranslationStatus::kTooFewPoints);
   EXPECT_LE(f.triangulated, 7);
   EXPECT_STREQ(toString(MetricTranslationStatus::kTooFewPoints), "too_few_points");
+  EXPECT_STREQ(toString(MetricTranslationStatus::kOutsideOdometry), "outside_odometry");
 }
 
 std::vector<DatabaseEntry> entriesAt(const std::vector<double>& odometers) {

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <limits>
 #include <vector>
 
@@ -174,6 +175,41 @@ TEST(LoopAnchor, OnlyARecentLoopAnchorsThePlace) {
   // No anchor, or the gate off: nothing is anchored.
   EXPECT_FALSE(anchoredByRecentLoop(q, at(11.0, 0, 0, 11.0), {}, o));
   EXPECT_FALSE(anchoredByRecentLoop(q, at(11.0, 0, 0, 11.0), recent, anchor(0.0, 0.0625)));
+}
+
+// The metric translation's bound: what the gates assume of the odometry.
+TEST(OdometryDistanceBound, TheGatesDistancePlusTheirRadius) {
+  const double inf = std::numeric_limits<double>::infinity();
+  const DatabaseEntry query = at(0, 0, 0, 30.0);
+  // Absolute gate: (3, 4, 0) is 5 m away, 20 m driven apart: radius 0.5 +
+  // 0.1 * 20 = 2.5 m, bound 7.5 m.
+  EXPECT_DOUBLE_EQ(odometryDistanceBound(query, at(3, 4, 0, 10.0), {}, gate(0.5, 0.1)), 7.5);
+  // Gate off, or positions not comparable: no bound.
+  EXPECT_EQ(odometryDistanceBound(query, at(3, 4, 0, 10.0), {}, gate(0.0, 0.1)), inf);
+  EXPECT_EQ(odometryDistanceBound(query, DatabaseEntry(), {}, gate(0.5, 0.1)), inf);
+  EXPECT_EQ(odometryDistanceBound(query, at(3, 4, 0, 10.0, 1), {}, gate(0.5, 0.1)), inf);
+
+  // The loop of LoopAnchor above: q0 (30, 1, 0) at m0 (29.6, 0, 0); the
+  // query (31, 1, 0) drove 1.0 m on. The entry (30.9, 0.2, 0) is sqrt(0.3^2
+  // + 0.2^2) = 0.3606 m off the anchor's prediction (30.6, 0, 0); radius
+  // 0.3 + 0.05 * (1.0 + 1.3) = 0.415 m: bound 0.7756 m.
+  const DatabaseEntry q0 = at(30, 1, 0, 60.0);
+  const DatabaseEntry m0 = at(29.6, 0, 0, 29.6);
+  const DatabaseEntry q = at(31, 1, 0, 61.0);
+  const DatabaseEntry e = at(30.9, 0.2, 0, 30.9);
+  const double anchored = std::sqrt(0.13) + 0.415;
+  EXPECT_NEAR(odometryDistanceBound(q, e, loop(q0, m0), anchor(0.3, 0.05)), anchored, 1e-12);
+  // With the absolute gate on too, the smaller: the entry is sqrt(0.1^2 +
+  // 0.8^2) = 0.806 m from the query, 30.1 m driven apart: 0.806 + 1 + 0.05 *
+  // 30.1 = 3.31 m; the anchor's 0.776 m wins.
+  IslandOptions both = anchor(0.3, 0.05);
+  both.odometry_gate_m = 1.0;
+  EXPECT_NEAR(odometryDistanceBound(q, e, loop(q0, m0), both), anchored, 1e-12);
+  // Without an anchor, the absolute gate's.
+  EXPECT_NEAR(odometryDistanceBound(q, e, {}, both), std::sqrt(0.65) + 1.0 + 0.05 * 30.1, 1e-12);
+  // An anchor of another odometry run does not apply.
+  const DatabaseEntry other = at(29.6, 0, 0, 29.6, 1);
+  EXPECT_EQ(odometryDistanceBound(q, e, loop(q0, other), anchor(0.3, 0.05)), inf);
 }
 
 }  // namespace

@@ -46,6 +46,10 @@ enum class MetricTranslationStatus {
   kNoNeighbourPose,    ///< the match shares too few correspondences with every neighbour
   kTooFewPoints,       ///< fewer than min_points triangulated loop inliers
   kPerspectiveFailed,  ///< the PnP fit failed or kept fewer than min_points
+  /// The estimate is longer than the odometry allows between the two
+  /// keyframes (odometryDistanceBound): a wrong neighbour pose scaled the
+  /// points, and a pose graph would take metres for centimetres.
+  kOutsideOdometry,
 };
 
 const char* toString(MetricTranslationStatus s);

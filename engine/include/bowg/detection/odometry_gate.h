@@ -76,4 +76,19 @@ bool withinLoopAnchors(const DatabaseEntry& query, const DatabaseEntry& entry,
 bool anchoredByRecentLoop(const DatabaseEntry& query, const DatabaseEntry& entry,
                           const std::vector<AnchorEntries>& anchors, const IslandOptions& options);
 
+/// The longest distance (m) the odometry allows between the cameras of
+/// `query` and `entry` once they are taken for one place: what the gates
+/// above assume of the odometry, turned into a bound on the loop's metric
+/// translation. By the absolute gate, the distance between their positions
+/// plus odometryGateRadius of the metres driven between them; by the
+/// loop-anchored gate, the distance between the anchor's prediction and
+/// `entry` (withinLoopAnchors) plus that anchor's radius; the smaller of
+/// those that apply. Infinite when neither applies (a gate off, or
+/// positions missing or of another odometry run). A camera mounted off the
+/// odometry's origin adds up to twice its offset: the gates' radii are
+/// meant to cover it.
+double odometryDistanceBound(const DatabaseEntry& query, const DatabaseEntry& entry,
+                             const std::vector<AnchorEntries>& anchors,
+                             const IslandOptions& options);
+
 }  // namespace bowg
