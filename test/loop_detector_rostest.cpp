@@ -182,6 +182,11 @@ TEST(LoopDetectorNodelet, WithIndexedPerPlaceLoopKeyframesStayOutOfTheIndex) {
     ros::WallDuration(0.1).sleep();
   EXPECT_EQ(diagnostics.value(d.name(), "database size"), total);
   EXPECT_EQ(diagnostics.value(d.name(), "keyframes in the inverse index"), indexed);
+  // No odometry: no loop has a metric translation, none was ruled out.
+  EXPECT_EQ(diagnostics.value(d.name(), "loops with a metric translation"), "0");
+  EXPECT_EQ(diagnostics.value(d.name(),
+                              "metric translations outside the odometry (published without scale)"),
+            "0");
 }
 
 /// Median absolute difference of two 8-bit grey images of the same size

@@ -106,6 +106,8 @@ struct Stats {
   std::size_t frames_received = 0;
   std::size_t keyframes = 0;
   std::size_t loops = 0;
+  std::size_t metric_loops = 0;             ///< loops with a metric translation
+  std::size_t metric_outside_odometry = 0;  ///< metric translations the odometry rules out
   std::size_t skipped_out_of_order = 0;
   std::size_t bad_encoding = 0;
   std::size_t malformed = 0;  ///< image messages whose layout cannot be read

@@ -112,6 +112,9 @@ void LoopDetectorNodelet::diagnose(diagnostic_updater::DiagnosticStatusWrapper& 
   status.add("keyframes in the inverse index", indexed);
   status.add("debug thumbnails (kB)", thumbnail_bytes / 1024.0);
   status.add("loops found", s.loops);
+  status.add("loops with a metric translation", s.metric_loops);
+  status.add("metric translations outside the odometry (published without scale)",
+             s.metric_outside_odometry);
   status.add("dropped frames (queue full)", dropped);
   status.add("skipped frames (stamp order)", s.skipped_out_of_order);
   if (!s.last_stamp_rejection.empty()) status.add("last stamp-order skip", s.last_stamp_rejection);

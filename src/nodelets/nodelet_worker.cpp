@@ -74,10 +74,20 @@ void LoopDetectorNodelet::processFrame(const Frame& frame) {
 
   publishResult(frame, result, grey, num_features, database_size, convert_ms, feature_ms);
 
+  const bool outside_odometry =
+      found && result.metric_status == bowg::MetricTranslationStatus::kOutsideOdometry;
+  if (outside_odometry) {
+    NODELET_WARN_THROTTLE(2.0,
+                          "loop %u -> %u: its metric translation is longer than the odometry "
+                          "gates allow between the two keyframes; published without scale",
+                          result.query_id, result.match_id);
+  }
   std::lock_guard<std::mutex> stats_lock(stats_mutex_);
   ++stats_.keyframes;
   ++stats_.window_keyframes;
   if (found) ++stats_.loops;
+  if (found && result.translation_scale_known) ++stats_.metric_loops;
+  if (outside_odometry) ++stats_.metric_outside_odometry;
   stats_.window_convert_ms += convert_ms;
   stats_.window_feature_ms += feature_ms;
   stats_.window_transform_ms += result.timings.transform_ms;
