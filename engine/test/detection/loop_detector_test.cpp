@@ -64,6 +64,15 @@ TEST(LoopDetector, FindsTheRevisitWithTheRightIds) {
   std::printf("[          ] %d loops in the 60 return keyframes\n", loops);
 }
 
+// Where the keyframes of the odometry tests are along the wall: 60 of them
+// 1 m apart, then back, each halfway between two of the first pass.
+std::vector<double> outAndBack() {
+  std::vector<double> x;
+  for (int i = 0; i < 60; ++i) x.push_back(i);
+  for (int i = 0; i < 60; ++i) x.push_back(59.5 - i);
+  return x;
+}
+
 // The corridor revisit with odometers (metres driven): loops get their
 // translation in metres, the match camera's position in the query camera
 // (x_match - x_query along the wall: X_Q = X_M + (x_m - x_q, 0, 0)).
@@ -75,9 +84,7 @@ TEST(LoopDetector, WithOdometersTheLoopsTranslationIsMetric) {
     LoopDetector det(vocabulary(), o);
     const testing::Corridor c = testing::makeCorridor(70, 50, 3);
     std::mt19937_64 rng(103);
-    std::vector<double> x;
-    for (int i = 0; i < 60; ++i) x.push_back(i);
-    for (int i = 0; i < 60; ++i) x.push_back(59.5 - i);
+    const std::vector<double> x = outAndBack();
     double odometer = 0;
     int loops = 0, metric = 0;
     for (std::size_t t = 0; t < x.size(); ++t) {
@@ -135,9 +142,7 @@ TEST(LoopDetector, AMetricTranslationTheOdometryCannotAllowIsNotPublished) {
     LoopDetector det(vocabulary(), o);
     const testing::Corridor c = testing::makeCorridor(70, 50, 3);
     std::mt19937_64 rng(103);
-    std::vector<double> x;
-    for (int i = 0; i < 60; ++i) x.push_back(i);
-    for (int i = 0; i < 60; ++i) x.push_back(59.5 - i);
+    const std::vector<double> x = outAndBack();
     double odometer = 0;
     int loops = 0, metric = 0, outside = 0;
     for (std::size_t t = 0; t < x.size(); ++t) {
