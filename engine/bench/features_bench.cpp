@@ -5,21 +5,14 @@
 // found as the counter "features".
 #include <benchmark/benchmark.h>
 
-#include <cstdlib>
 #include <fstream>
 #include <string>
 
-#include "feature_test_images.h"
 #include "bowg/features/feature_extractor.h"
+#include "feature_test_images.h"
+#include "shared_data_dir.h"
 
 namespace {
-
-// The shared data folder comes from the build (BOWG_SHARED_DATA_DIR), and
-// may be overridden by the environment variable of the same name.
-std::string sharedDataDir() {
-  if (const char* env = std::getenv("BOWG_SHARED_DATA_DIR")) return env;
-  return BOWG_SHARED_DATA_DIR;
-}
 
 const cv::Mat& frame() {
   static const cv::Mat img = bowg::test::texturedImage(640, 480, 400, 42);
@@ -62,7 +55,7 @@ void BM_OrbMultiScaleUpright(benchmark::State& state) {
 }
 
 void BM_GfttVinsBrief(benchmark::State& state) {
-  const std::string pattern = sharedDataDir() + "/vocabularies/brief_pattern.yml";
+  const std::string pattern = bowg::bench::sharedDataDir() + "/vocabularies/brief_pattern.yml";
   if (!std::ifstream(pattern).good()) {
     state.SkipWithError(("shared BRIEF pattern absent: " + pattern).c_str());
     return;

@@ -12,7 +12,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 #include <opencv2/imgcodecs.hpp>
 #include <random>
 #include <string>
@@ -20,6 +19,7 @@
 
 #include "bowg/features/feature_extractor.h"
 #include "bowg/scoring/word_groups.h"
+#include "shared_data_dir.h"
 
 namespace bowg {
 namespace {
@@ -82,15 +82,8 @@ void BM_BuildWordGroups(benchmark::State& state) {
 }
 BENCHMARK(BM_BuildWordGroups)->Arg(500)->Arg(1000)->Unit(benchmark::kMicrosecond);
 
-// The shared data folder comes from the build (BOWG_SHARED_DATA_DIR), and
-// may be overridden by the environment variable of the same name.
-std::string sharedDataDir() {
-  if (const char* env = std::getenv("BOWG_SHARED_DATA_DIR")) return env;
-  return BOWG_SHARED_DATA_DIR;
-}
-
 void BM_BuildWordGroupsSewer(benchmark::State& state) {
-  const std::string path = sharedDataDir() + "/sewer_cctv/left/1_16_left_108100.png";
+  const std::string path = bench::sharedDataDir() + "/sewer_cctv/left/1_16_left_108100.png";
   const cv::Mat grey = cv::imread(path, cv::IMREAD_GRAYSCALE);
   if (grey.empty()) {
     state.SkipWithError(("no sewer frame at " + path + " (set BOWG_SHARED_DATA_DIR)").c_str());

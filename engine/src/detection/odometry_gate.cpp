@@ -29,29 +29,30 @@ double anchorRadius(const DatabaseEntry& query, const DatabaseEntry& entry,
                           entry.odometer - anchor_match.odometer);
 }
 
-// The loop said anchor_query and anchor_match are one place: entry is where
-// query is when it moved from anchor_match as query moved from anchor_query.
-bool anchoredWithin(const DatabaseEntry& query, const DatabaseEntry& entry,
-                    const DatabaseEntry& anchor_query, const DatabaseEntry& anchor_match,
-                    double radius) {
+// The squared distance between where the anchor predicts `entry` (query
+// moved from anchor_query as entry moved from anchor_match) and `entry`.
+double anchoredOffsetSquared(const DatabaseEntry& query, const DatabaseEntry& entry,
+                             const DatabaseEntry& anchor_query, const DatabaseEntry& anchor_match) {
   const OdometryPosition& q = query.position;
   const OdometryPosition& e = entry.position;
   const OdometryPosition& q0 = anchor_query.position;
   const OdometryPosition& m0 = anchor_match.position;
   return squaredNorm((q.x - q0.x) - (e.x - m0.x), (q.y - q0.y) - (e.y - m0.y),
-                     (q.z - q0.z) - (e.z - m0.z)) <= radius * radius;
+                     (q.z - q0.z) - (e.z - m0.z));
 }
 
-// The distance between where the anchor predicts `entry` (query moved from
-// anchor_query as entry moved from anchor_match) and `entry`.
-double anchoredDistance(const DatabaseEntry& query, const DatabaseEntry& entry,
-                        const DatabaseEntry& anchor_query, const DatabaseEntry& anchor_match) {
-  const OdometryPosition& q = query.position;
-  const OdometryPosition& e = entry.position;
-  const OdometryPosition& q0 = anchor_query.position;
-  const OdometryPosition& m0 = anchor_match.position;
-  return std::sqrt(squaredNorm((q.x - q0.x) - (e.x - m0.x), (q.y - q0.y) - (e.y - m0.y),
-                               (q.z - q0.z) - (e.z - m0.z)));
+// The loop said anchor_query and anchor_match are one place: entry is where
+// query is when it moved from anchor_match as query moved from anchor_query.
+bool anchoredWithin(const DatabaseEntry& query, const DatabaseEntry& entry,
+                    const DatabaseEntry& anchor_query, const DatabaseEntry& anchor_match,
+                    double radius) {
+  return anchoredOffsetSquared(query, entry, anchor_query, anchor_match) <= radius * radius;
+}
+
+// The squared distance between two entries' positions.
+double positionDistanceSquared(const DatabaseEntry& a, const DatabaseEntry& b) {
+  return squaredNorm(a.position.x - b.position.x, a.position.y - b.position.y,
+                     a.position.z - b.position.z);
 }
 
 // The anchor that judges `entry` (the smallest radius among those that
@@ -82,8 +83,7 @@ bool withinOdometryGate(const DatabaseEntry& query, const DatabaseEntry& entry,
   if (!(options.odometry_gate_m > 0.0)) return true;
   if (!placed(query, query.odometry_run) || !placed(entry, query.odometry_run)) return true;
   const double radius = odometryGateRadius(options, query.odometer - entry.odometer);
-  return squaredNorm(query.position.x - entry.position.x, query.position.y - entry.position.y,
-                     query.position.z - entry.position.z) <= radius * radius;
+  return positionDistanceSquared(query, entry) <= radius * radius;
 }
 
 double loopAnchorRadius(const IslandOptions& options, double query_driven_m,
@@ -115,16 +115,16 @@ double odometryDistanceBound(const DatabaseEntry& query, const DatabaseEntry& en
   double bound = std::numeric_limits<double>::infinity();
   const std::uint32_t run = query.odometry_run;
   if (options.odometry_gate_m > 0.0 && placed(query, run) && placed(entry, run)) {
-    bound = std::sqrt(squaredNorm(query.position.x - entry.position.x,
-                                  query.position.y - entry.position.y,
-                                  query.position.z - entry.position.z)) +
+    bound = std::sqrt(positionDistanceSquared(query, entry)) +
             odometryGateRadius(options, query.odometer - entry.odometer);
   }
   if (options.odometry_anchor_m > 0.0) {
     double radius = 0.0;
     const AnchorEntries* best = bestAnchor(query, entry, anchors, options, &radius);
     if (best != nullptr) {
-      bound = std::min(bound, anchoredDistance(query, entry, *best->query, *best->match) + radius);
+      bound = std::min(
+          bound,
+          std::sqrt(anchoredOffsetSquared(query, entry, *best->query, *best->match)) + radius);
     }
   }
   return bound;

@@ -360,10 +360,10 @@ void estimateScale(const QueryContext& ctx, const Verifier& verifier,
       neighbours, m.intrinsics, ctx.options.geometric, mo);
   r->metric_status = t.status;
   if (t.status != MetricTranslationStatus::kEstimated) return;
-  const double length =
+  const double norm =
       std::sqrt(t.translation[0] * t.translation[0] + t.translation[1] * t.translation[1] +
                 t.translation[2] * t.translation[2]);
-  if (!(length <= odometryDistanceBound(verifier.queryEntry(), m, anchors, ctx.options.islands))) {
+  if (!(norm <= odometryDistanceBound(verifier.queryEntry(), m, anchors, ctx.options.islands))) {
     r->metric_status = MetricTranslationStatus::kOutsideOdometry;
     return;
   }
@@ -371,9 +371,6 @@ void estimateScale(const QueryContext& ctx, const Verifier& verifier,
   std::copy(t.translation, t.translation + 3, r->translation_m);
   std::copy(t.covariance, t.covariance + 9, r->translation_covariance);
   std::copy(t.rotation, t.rotation + 9, r->rotation);
-  const double norm =
-      std::sqrt(t.translation[0] * t.translation[0] + t.translation[1] * t.translation[1] +
-                t.translation[2] * t.translation[2]);
   if (norm > 0) {
     for (int i = 0; i < 3; ++i) r->translation_direction[i] = t.translation[i] / norm;
   }
