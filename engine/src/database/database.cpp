@@ -8,6 +8,7 @@
 
 #include "bowg/core/heap_bytes.h"
 #include "bowg/scoring/distribution.h"
+#include "bowg/vocabulary/id_index_sort.h"
 #include "bowg/vocabulary/vocabulary.h"
 
 namespace bowg {
@@ -79,7 +80,7 @@ DirectIndex directIndexFromWords(const Vocabulary& vocabulary, const std::vector
     while (static_cast<int>(nodes[n].level) > level && n != 0) n = nodes[n].parent;
     out.emplace_back(n, f);
   }
-  std::sort(out.begin(), out.end());
+  sortIdIndexPairs(&out);
   return out;
 }
 
@@ -106,6 +107,7 @@ void Database::clear() {
   group_overflow_.clear();
   overflow_begin_.clear();
   archived_groups_.clear();
+  recent_.clear();
   searchable_count_ = 0;
   word_acc_.clear();
   group_acc_.clear();
@@ -116,6 +118,7 @@ void Database::clear() {
 void Database::setScoring(ScoringType scoring) {
   if (scoring == scoring_) return;
   scoring_ = scoring;
+  recent_.clear();  // their BoW vectors are normalised for the old scoring
   // The same words keep a weight under every scoring (the IDF decides which);
   // only the normalisation changes. Every posting is reset, then each
   // entry's vector is written back.
@@ -152,7 +155,26 @@ void Database::setFanBins(int m) {
   }
 }
 
-BowVector Database::bow(EntryId id) const { return bowOfWords(entries_.at(id).words.unpack()); }
+BowVector Database::bow(EntryId id) const {
+  if (const RecentEntry* r = recent(id)) return r->bow;
+  return bowOfWords(entries_.at(id).words.unpack());
+}
+
+const BowVector& Database::remember(EntryId id, BowVector bow, const GroupVector& raw_groups) {
+  if (recent_.empty())
+    recent_.resize(kRecentEntries, RecentEntry{std::numeric_limits<EntryId>::max(), {}, {}});
+  RecentEntry& r = recent_[id % kRecentEntries];
+  r.id = id;
+  r.bow = std::move(bow);
+  r.raw_groups = raw_groups;
+  return r.bow;
+}
+
+const Database::RecentEntry* Database::recent(EntryId id) const {
+  if (recent_.empty()) return nullptr;
+  const RecentEntry& r = recent_[id % kRecentEntries];
+  return id < entries_.size() && r.id == id ? &r : nullptr;
+}
 
 BowVector Database::bowOfWords(const std::vector<WordId>& words) const {
   BowVector v = vocabulary_->bowFromWords(words);
@@ -178,6 +200,7 @@ double Database::overflowCount(WordId w, EntryId id) const {
 }
 
 GroupVector Database::rawGroups(EntryId id) const {
+  if (const RecentEntry* r = recent(id)) return r->raw_groups;
   if (!entries_.at(id).searchable) {
     GroupVector out;
     out.reserve(archived_groups_[id].size());
@@ -285,11 +308,13 @@ EntryId Database::add(DatabaseEntry e, const GroupVector& raw_groups,
     for (const auto& g : raw_groups) {
       kept.push_back(GroupCount{g.first, static_cast<std::uint32_t>(g.second)});
     }
+    remember(id, bowOfWords(words), raw_groups);
     return id;
   }
   ++searchable_count_;
   // One posting per word of the BoW vector or group (both sorted by id).
-  forEachId(bowOfWords(words), raw_groups,
+  const BowVector& bow = remember(id, bowOfWords(words), raw_groups);
+  forEachId(bow, raw_groups,
             [&](WordId w, const BowEntry* word, const GroupEntry* group) {
               std::uint32_t code = 0;
               if (group) {
@@ -456,6 +481,10 @@ std::size_t Database::memoryBytes() const {
   bytes += vectorHeapBytes(archived_groups_);
   for (const auto& g : archived_groups_) bytes += vectorHeapBytes(g);
   bytes += vectorHeapBytes(index_) + group_table_.heapBytes();
+  bytes += vectorHeapBytes(recent_);
+  for (const RecentEntry& r : recent_) {
+    bytes += vectorHeapBytes(r.bow) + vectorHeapBytes(r.raw_groups);
+  }
   return bytes;
 }
 

@@ -12,6 +12,7 @@
 
 #include "bowg/core/checksum.h"
 #include "bowg/core/errors.h"
+#include "bowg/vocabulary/id_index_sort.h"
 #include "vocabulary/vocabulary_records.h"
 
 namespace bowg {
@@ -324,7 +325,7 @@ void Vocabulary::transform(const std::vector<Descriptor>& descriptors, BowVector
   const std::size_t n = descriptors.size();
 
   // Word of each descriptor (and node at the direct-index level), then one
-  // sort: no allocation per descriptor, O(n log n) overall.
+  // sort: no allocation per descriptor, O(n) overall (sortIdIndexPairs).
   std::vector<std::pair<WordId, std::uint32_t>> word_of(n);
   std::vector<std::pair<NodeId, std::uint32_t>> node_of;
   if (direct != nullptr) node_of.resize(n);
@@ -344,11 +345,11 @@ void Vocabulary::transform(const std::vector<Descriptor>& descriptors, BowVector
     words->resize(n);
     for (std::size_t i = 0; i < n; ++i) (*words)[i] = word_of[i].first;
   }
-  std::sort(word_of.begin(), word_of.end());
+  sortIdIndexPairs(&word_of);
   weighSortedWords(word_of, bow);
 
   if (direct != nullptr) {
-    std::sort(node_of.begin(), node_of.end());
+    sortIdIndexPairs(&node_of);
     *direct = std::move(node_of);
   }
 }
@@ -387,7 +388,7 @@ BowVector Vocabulary::bowFromWords(const std::vector<WordId>& words) const {
                               " >= " + std::to_string(word_to_node_.size()));
     word_of[i] = {words[i], i};
   }
-  std::sort(word_of.begin(), word_of.end());
+  sortIdIndexPairs(&word_of);
   weighSortedWords(word_of, &bow);
   return bow;
 }

@@ -496,6 +496,33 @@ TEST(Database, BowIsRebuiltFromTheWordsBitForBit) {
   EXPECT_THROW(voc.bowFromWords({static_cast<WordId>(voc.wordCount())}), std::out_of_range);
 }
 
+// The newest entries' vectors are kept, the older ones rebuilt from the
+// words and the postings: both give the same vectors bit for bit, under the
+// scoring the database has now (a scoring change drops the kept ones).
+TEST(Database, KeptAndRebuiltVectorsAreTheSame) {
+  Database db(vocabulary(), ScoringType::kL1, 2, 8);
+  BowVector qbow;
+  std::vector<GroupVector> added;
+  fill(&db, &qbow, &added);
+  for (ScoringType s : {ScoringType::kL1, ScoringType::kL2}) {
+    db.setScoring(s);
+    for (EntryId id = 0; id < db.size(); ++id) {
+      BowVector expected = db.vocabulary().bowFromWords(db.entry(id).words.unpack());
+      normaliseBowVector(s, &expected);
+      EXPECT_EQ(db.bow(id), expected) << toString(s) << " entry " << id;
+      EXPECT_EQ(db.rawGroups(id), added[id]) << "entry " << id;
+    }
+  }
+  // The last entry's vectors, read again once eight more entries have made
+  // it old: now rebuilt, still the same.
+  const EntryId last = static_cast<EntryId>(db.size() - 1);
+  const BowVector kept = db.bow(last);
+  const GroupVector kept_groups = db.rawGroups(last);
+  for (int i = 0; i < 8; ++i) addGroups(&db, 1000.0 + i, GroupVector{{3, 1}});
+  EXPECT_EQ(db.bow(last), kept);
+  EXPECT_EQ(db.rawGroups(last), kept_groups);
+}
+
 TEST(Database, AddRejectsInconsistentEntries) {
   Database db(vocabulary(), ScoringType::kL1, 2, 8);
   DatabaseEntry e;

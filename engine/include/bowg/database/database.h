@@ -186,7 +186,8 @@ class Database {
   /// Entry `id`'s BoW vector normalised for scoring(): the vocabulary's
   /// transform of its words (Vocabulary::bowFromWords), normalised; the
   /// weights the inverse index holds for it (as floats). Rebuilt on each call (a
-  /// few microseconds): keeping it would cost ~5 kB per keyframe.
+  /// few microseconds): keeping it would cost ~5 kB per keyframe. The newest
+  /// few entries' vectors are kept (see recent_).
   BowVector bow(EntryId id) const;
 
   /// Entry `id`'s raw groups w_{g,t}^(i) as add() received them, read back
@@ -220,6 +221,17 @@ class Database {
   void clear();
 
  private:
+  /// The BoW vectors and raw groups of the newest kRecentEntries entries,
+  /// as bow() and rawGroups() return them, in a ring by id: every query
+  /// scores I_{t-1}, one of them (score()), and rebuilding its vectors from
+  /// the words was a third of that (sorting, the weighting, a posting
+  /// search per word). A fixed few kB, not per keyframe.
+  struct RecentEntry {
+    EntryId id;
+    BowVector bow;
+    GroupVector raw_groups;
+  };
+  static constexpr std::size_t kRecentEntries = 8;
   /// The normalised BoW vector of an entry's words (bow()).
   BowVector bowOfWords(const std::vector<WordId>& words) const;
   /// Entry `id`'s posting in word `w`'s list, or nullptr.
@@ -235,6 +247,11 @@ class Database {
   double overflowCount(WordId w, EntryId id) const;
   /// Entry `id`'s vector copied into a reused scratch buffer (no allocation).
   const std::vector<double>& cachedDistribution(EntryId id) const;
+  /// Keeps entry `id`'s vectors in recent_, replacing the entry
+  /// kRecentEntries older; returns the kept BoW vector.
+  const BowVector& remember(EntryId id, BowVector bow, const GroupVector& raw_groups);
+  /// The kept copy of entry `id`'s vectors, or nullptr (see recent_).
+  const RecentEntry* recent(EntryId id) const;
 
   std::shared_ptr<const Vocabulary> vocabulary_;
   ScoringType scoring_;
@@ -275,6 +292,7 @@ class Database {
   /// cache-miss bound (measured: 70 % of the query time at 20,000 entries).
   std::vector<double> distributions_;
   mutable std::vector<double> distribution_scratch_;
+  std::vector<RecentEntry> recent_;
 
   // Query scratch (dense accumulators over entries + touched list): avoids a
   // hash map per query. Not thread-safe, like the LoopDetector.
