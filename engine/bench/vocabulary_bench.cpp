@@ -2,12 +2,15 @@
 // tree well under 0.5 ms; loading the k=10 L=6 .bowgvoc well under 0.5 s).
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <cstdio>
+#include <random>
 #include <string>
 
-#include "synthetic_vocabulary.h"
+#include "bowg/vocabulary/id_index_sort.h"
 #include "bowg/vocabulary/vocabulary_io.h"
 #include "bowg/vocabulary/vocabulary_trainer.h"
+#include "synthetic_vocabulary.h"
 
 namespace bowg {
 namespace {
@@ -54,6 +57,40 @@ void BM_TransformImage500WithDirectIndex(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_TransformImage500WithDirectIndex)->Unit(benchmark::kMicrosecond);
+
+// An image's (word, feature) pairs as the transform makes them: 500
+// features' words of a k=10 L=6 tree, feature index = position.
+std::vector<IdIndexPair> imageWordPairs() {
+  std::mt19937 rng(3);
+  std::uniform_int_distribution<std::uint32_t> word(0, 999999);
+  std::vector<IdIndexPair> pairs(500);
+  for (std::uint32_t i = 0; i < pairs.size(); ++i) pairs[i] = {word(rng), i};
+  return pairs;
+}
+
+// The transform's sort by word: std::sort (its comparisons of random words
+// mispredict) against sortIdIndexPairs (a radix sort over the ids' bytes).
+void BM_SortWordPairsStdSort(benchmark::State& state) {
+  const std::vector<IdIndexPair> input = imageWordPairs();
+  std::vector<IdIndexPair> pairs;
+  for (auto _ : state) {
+    pairs = input;
+    std::sort(pairs.begin(), pairs.end());
+    benchmark::DoNotOptimize(pairs.data());
+  }
+}
+BENCHMARK(BM_SortWordPairsStdSort)->Unit(benchmark::kMicrosecond);
+
+void BM_SortWordPairsRadix(benchmark::State& state) {
+  const std::vector<IdIndexPair> input = imageWordPairs();
+  std::vector<IdIndexPair> pairs;
+  for (auto _ : state) {
+    pairs = input;
+    sortIdIndexPairs(&pairs);
+    benchmark::DoNotOptimize(pairs.data());
+  }
+}
+BENCHMARK(BM_SortWordPairsRadix)->Unit(benchmark::kMicrosecond);
 
 void BM_LoadBowgK10L6(benchmark::State& state) {
   const std::string path = "/tmp/bowg_vocabulary_bench_k10L6.bowgvoc";
