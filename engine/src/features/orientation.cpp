@@ -6,6 +6,23 @@
 #include <string>
 
 namespace bowg {
+namespace {
+
+// The sum and the first moment sum_u u * I(u) of row[-w..w]. Acc: int where
+// the sums fit in it (vectorises), long long otherwise.
+template <typename Acc>
+void rowMoments(const std::uint8_t* row, int w, long long* sum, long long* moment) {
+  Acc s = 0, m = 0;
+  for (int u = -w; u <= w; ++u) {
+    const Acc value = row[u];
+    m += static_cast<Acc>(u) * value;
+    s += value;
+  }
+  *sum = s;
+  *moment = m;
+}
+
+}  // namespace
 
 float intensityCentroidAngle(const cv::Mat& image, cv::Point2f pt, int radius) {
   if (image.type() != CV_8UC1) {
@@ -27,14 +44,22 @@ float intensityCentroidAngle(const cv::Mat& image, cv::Point2f pt, int radius) {
   long long m10 = 0;
   long long m01 = 0;
   for (int v = -radius; v <= radius; ++v) {
-    const std::uint8_t* row = image.ptr<std::uint8_t>(cy + v);
+    // The row's half-width in the disc: the largest u with u^2 <= r2 - v^2
+    // (integer exact), so that the row is one run without a test per pixel.
+    const int limit = r2 - v * v;
+    int w = static_cast<int>(std::sqrt(static_cast<double>(limit)));
+    while ((w + 1) * (w + 1) <= limit) ++w;
+    while (w * w > limit) --w;
+    const std::uint8_t* row = image.ptr<std::uint8_t>(cy + v) + cx;
     long long row_sum = 0;
-    for (int u = -radius; u <= radius; ++u) {
-      if (u * u + v * v > r2) continue;
-      const int value = row[cx + u];
-      m10 += static_cast<long long>(u) * value;
-      row_sum += value;
+    long long row_moment = 0;
+    // With |u| <= 1000 a row's moment is below 255 * 1000 * 1001 < 2^31.
+    if (w <= 1000) {
+      rowMoments<int>(row, w, &row_sum, &row_moment);
+    } else {
+      rowMoments<long long>(row, w, &row_sum, &row_moment);
     }
+    m10 += row_moment;
     m01 += static_cast<long long>(v) * row_sum;
   }
   if (m10 == 0 && m01 == 0) return 0.f;
