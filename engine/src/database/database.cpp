@@ -290,12 +290,6 @@ EntryId Database::add(DatabaseEntry e, const GroupVector& raw_groups,
                        : odometers_.empty()     ? -std::numeric_limits<double>::infinity()
                                                 : odometers_.back());
   group_sums_.push_back(group_sum);
-  // The entry array grows by an eighth, not by doubling: an entry is 200
-  // bytes, and a doubled array is a quarter empty on average (~50 bytes per
-  // keyframe). Moving entries moves their vectors' pointers only.
-  if (entries_.size() == entries_.capacity()) {
-    entries_.reserve(entries_.size() + entries_.size() / 8 + 16);
-  }
   entries_.push_back(std::move(e));
   const EntryId id = entries_.back().id;
   overflow_begin_.push_back(group_overflow_.size());
@@ -470,7 +464,7 @@ std::vector<double> Database::distribution(EntryId id) const {
 }
 
 std::size_t Database::memoryBytes() const {
-  std::size_t bytes = vectorHeapBytes(entries_);
+  std::size_t bytes = dequeHeapBytes(entries_);
   for (const auto& e : entries_) {
     bytes += e.points.heapBytes() + vectorHeapBytes(e.descriptors) + e.words.heapBytes();
   }

@@ -40,7 +40,7 @@ const char* toString(MetricTranslationStatus s) {
   return "unknown";
 }
 
-std::vector<EntryId> chooseScaleNeighbours(const std::vector<DatabaseEntry>& entries, EntryId match,
+std::vector<EntryId> chooseScaleNeighbours(const std::deque<DatabaseEntry>& entries, EntryId match,
                                            const MetricTranslationOptions& options) {
   std::vector<EntryId> out;
   if (match >= entries.size() || !std::isfinite(entries[match].odometer)) return out;

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdint>
+#include <deque>
 #include <vector>
 
 namespace bowg {
@@ -31,6 +32,28 @@ TEST(HeapBytes, AVectorCountsItsCapacity) {
   v.reserve(10);  // 40 bytes -> 48
   v.push_back(1);
   EXPECT_EQ(vectorHeapBytes(v), 48u);
+}
+
+TEST(HeapBytes, ADequeCountsItsNodesAndItsMap) {
+  // 200-byte elements: 512 / 200 = 2 per node, a node of 400 bytes -> 416.
+  struct Element {
+    char bytes[200];
+  };
+  std::deque<Element> d;
+  // Empty: one node and the initial map of 8 pointers (64 bytes -> 80).
+  EXPECT_EQ(dequeHeapBytes(d), 416u + 80u);
+  // 5 elements: 5 / 2 + 1 = 3 nodes, the map still 8 pointers.
+  for (int i = 0; i < 5; ++i) d.push_back(Element());
+  EXPECT_EQ(dequeHeapBytes(d), 3u * 416u + 80u);
+  // 40 elements: 21 nodes, a map of at least 23 pointers (184 -> 192).
+  for (int i = 0; i < 35; ++i) d.push_back(Element());
+  EXPECT_EQ(dequeHeapBytes(d), 21u * 416u + 192u);
+  // Elements of 512 bytes or more: one per node.
+  struct Big {
+    char bytes[600];
+  };
+  std::deque<Big> b(3);
+  EXPECT_EQ(dequeHeapBytes(b), 4u * 608u + 80u);
 }
 
 }  // namespace

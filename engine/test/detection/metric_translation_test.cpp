@@ -247,8 +247,8 @@ TEST(MetricTranslation, SaysWhyWhenItCannotEstimate) {
   EXPECT_STREQ(toString(MetricTranslationStatus::kOutsideOdometry), "outside_odometry");
 }
 
-std::vector<DatabaseEntry> entriesAt(const std::vector<double>& odometers) {
-  std::vector<DatabaseEntry> e(odometers.size());
+std::deque<DatabaseEntry> entriesAt(const std::vector<double>& odometers) {
+  std::deque<DatabaseEntry> e(odometers.size());
   for (std::size_t i = 0; i < e.size(); ++i) {
     e[i].id = static_cast<EntryId>(i);
     e[i].odometer = odometers[i];

@@ -31,6 +31,7 @@
 #pragma once
 
 #include <cstdint>
+#include <deque>
 #include <limits>
 #include <memory>
 #include <string>
@@ -137,7 +138,7 @@ class Database {
   std::size_t size() const { return entries_.size(); }
   bool empty() const { return entries_.empty(); }
   const DatabaseEntry& entry(EntryId id) const { return entries_.at(id); }
-  const std::vector<DatabaseEntry>& entries() const { return entries_; }
+  const std::deque<DatabaseEntry>& entries() const { return entries_; }
   /// Odometer per entry, non-decreasing: an entry without one (NaN) takes
   /// the last known value before it (-inf before the first), so that an
   /// entry id range of a metre interval is two binary searches
@@ -257,7 +258,12 @@ class Database {
   ScoringType scoring_;
   int direct_level_;
   int fan_bins_;
-  std::vector<DatabaseEntry> entries_;
+  /// A deque, not a vector: adding never moves the entries. A vector
+  /// grown by an eighth moved them all every ~2,000 keyframes at 17,000,
+  /// and the fresh 3.5 MB block's page faults made those keyframes take
+  /// 5-15 ms instead of ~1 (the long run's slowest keyframes, one at each
+  /// growth). Same memory per entry (~212 bytes either way).
+  std::deque<DatabaseEntry> entries_;
   std::vector<double> odometers_;  ///< see odometers()
   WordGroupTable group_table_;
   /// word (= group id) -> postings, entries ascending.

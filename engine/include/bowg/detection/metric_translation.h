@@ -28,6 +28,7 @@
 // a near neighbour (a few centimetres to decimetres).
 #pragma once
 
+#include <deque>
 #include <vector>
 
 #include "bowg/core/types.h"
@@ -94,7 +95,7 @@ MetricTranslation estimateMetricTranslation(const std::vector<Correspondence>& l
 /// nearest entry after it and the nearest before it whose odometer differs
 /// from the match's by at least min_baseline_m and at most max_baseline_m
 /// (after first; none when the match's odometer is unknown).
-std::vector<EntryId> chooseScaleNeighbours(const std::vector<DatabaseEntry>& entries, EntryId match,
+std::vector<EntryId> chooseScaleNeighbours(const std::deque<DatabaseEntry>& entries, EntryId match,
                                            const MetricTranslationOptions& options);
 
 }  // namespace bowg
