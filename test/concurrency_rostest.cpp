@@ -4,6 +4,8 @@
 // interleaving; scripts/check_thread_sanitizer.sh runs it (with the live
 // tuning and persistence tests) in a ThreadSanitizer build, which checks the
 // rest. main() is loop_detector_rostest.cpp's (one test executable).
+#include <nodelet/NodeletList.h>
+
 #include <atomic>
 #include <string>
 #include <thread>
@@ -116,6 +118,48 @@ TEST(LoopDetectorNodelet, TuningSavingLoadingAndResettingWhileProcessingKeepItCo
   EXPECT_EQ(d.statuses().back().id, size);
   EXPECT_EQ(d.statuses().back().database_size, size + 1);
   EXPECT_GT(debug_images.load(), 0) << "no debug image rendered during the storm";
+}
+
+// Unloading the nodelet while images arrive and a client calls its services:
+// callbacks are still running at the unload (the manager then destroys the
+// nodelet from the callback's thread, after its queues). The manager must
+// survive every round and load the nodelet again. Under ThreadSanitizer
+// (scripts/check_thread_sanitizer.sh) a handle shut down on a destroyed
+// queue is reported.
+TEST(LoopDetectorNodelet, UnloadingWhileProcessingAndServingLeavesTheManagerWorking) {
+  const cv::Mat world = test::makeWorld(kForward * kStep + kViewWidth + kOffset, kViewHeight, 9);
+  const std::string dir = BOWG_TEST_OUTPUT_DIR;
+  for (int round = 0; round < 4; ++round) {
+    Detector d("/unload" + std::to_string(round), {});
+    ASSERT_TRUE(d.loaded()) << "round " << round;
+    std::atomic<bool> running{true};
+    std::thread client([&] {
+      // Fails once the nodelet is gone: only the calls' overlap matters.
+      for (int i = 0; running; ++i) {
+        SaveDatabase save;
+        save.request.path = dir + "/bowg_unload.bin";
+        ros::service::call(d.name() + "/save_database", save);
+        std_srvs::Trigger reset;
+        if (i % 2) ros::service::call(d.name() + "/reset", reset);
+      }
+    });
+    for (int i = 0; i < 8 + 3 * round; ++i)
+      d.publish(test::viewAt(world, i * kStep, kViewWidth), 1000.0 + 0.1 * i);
+    EXPECT_TRUE(d.unload()) << "round " << round;
+    running = false;
+    client.join();
+
+    nodelet::NodeletList list;
+    ASSERT_TRUE(ros::service::call("/bowg_manager/list", list))
+        << "the manager died in round " << round;
+    EXPECT_EQ(std::count(list.response.nodelets.begin(), list.response.nodelets.end(), d.name()), 0)
+        << "round " << round;
+  }
+  // The manager loads and runs the nodelet once more.
+  Detector d("/unload_after", {});
+  ASSERT_TRUE(d.loaded());
+  d.publish(test::viewAt(world, 0, kViewWidth), 2000.0);
+  EXPECT_TRUE(d.waitForStatuses(1, 60.0));
 }
 
 }  // namespace

@@ -93,10 +93,17 @@ class Detector {
   }
 
   ~Detector() {
+    if (loaded_) unload();
+    ros::param::del(name_);
+  }
+
+  /// Unloads the nodelet from the manager (also done on destruction); true
+  /// when the manager unloaded it.
+  bool unload() {
     nodelet::NodeletUnload unload;
     unload.request.name = name_;
-    ros::service::call("/bowg_manager/unload_nodelet", unload);
-    ros::param::del(name_);
+    loaded_ = false;
+    return ros::service::call("/bowg_manager/unload_nodelet", unload) && unload.response.success;
   }
 
   bool loaded() const { return loaded_; }

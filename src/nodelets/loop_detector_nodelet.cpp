@@ -10,7 +10,12 @@
 namespace bowg_ros {
 
 LoopDetectorNodelet::~LoopDetectorNodelet() {
-  // Stop the inputs and the timer first, then the worker, then save.
+  // Stop the services (waiting for one that runs), the inputs and the timer
+  // first, then the worker, then save.
+  if (service_spinner_) service_spinner_->stop();
+  save_srv_.shutdown();
+  load_srv_.shutdown();
+  reset_srv_.shutdown();
   image_sub_.shutdown();
   compressed_sub_.shutdown();
   features_sub_.shutdown();
@@ -95,11 +100,16 @@ void LoopDetectorNodelet::advertiseInterfaces(ros::NodeHandle& nh, ros::NodeHand
   private_it_.reset(new image_transport::ImageTransport(pnh));
   debug_pub_ = private_it_->advertise("debug_image", 1);
 
-  // Services on the multi-threaded handle: a save does not hold up images.
-  ros::NodeHandle& mt_pnh = getMTPrivateNodeHandle();
-  save_srv_ = mt_pnh.advertiseService("save_database", &LoopDetectorNodelet::saveDatabase, this);
-  load_srv_ = mt_pnh.advertiseService("load_database", &LoopDetectorNodelet::loadDatabase, this);
-  reset_srv_ = mt_pnh.advertiseService("reset", &LoopDetectorNodelet::resetDatabase, this);
+  // Services on the nodelet's own queue and thread (see service_queue_).
+  ros::NodeHandle service_pnh(pnh);
+  service_pnh.setCallbackQueue(&service_queue_);
+  save_srv_ =
+      service_pnh.advertiseService("save_database", &LoopDetectorNodelet::saveDatabase, this);
+  load_srv_ =
+      service_pnh.advertiseService("load_database", &LoopDetectorNodelet::loadDatabase, this);
+  reset_srv_ = service_pnh.advertiseService("reset", &LoopDetectorNodelet::resetDatabase, this);
+  service_spinner_.reset(new ros::AsyncSpinner(1, &service_queue_));
+  service_spinner_->start();
 
   // Diagnostics: updated from a wall timer (update() rate-limits itself).
   updater_.reset(new diagnostic_updater::Updater(nh, pnh, getName()));

@@ -27,6 +27,7 @@
 #include <image_transport/image_transport.h>
 #include <nav_msgs/Odometry.h>
 #include <nodelet/nodelet.h>
+#include <ros/callback_queue.h>
 #include <ros/ros.h>
 #include <sensor_msgs/CameraInfo.h>
 #include <sensor_msgs/CompressedImage.h>
@@ -211,6 +212,15 @@ class LoopDetectorNodelet : public nodelet::Nodelet {
   ros::Subscriber compressed_sub_, features_sub_, info_sub_, odom_sub_;
   ros::Publisher loop_pub_, status_pub_;
   image_transport::Publisher debug_pub_;
+  // The services run on a queue and a thread of the nodelet's own, so a long
+  // save does not hold up images, and the nodelet's ROS handles use one
+  // manager queue only. The manager destroys its two queues of a nodelet
+  // before the nodelet when a callback of one of them is still running at
+  // unload (the callback holds the nodelet); handles on the other queue would
+  // then be shut down on a destroyed queue. Declared before the servers: the
+  // queue outlives them.
+  ros::CallbackQueue service_queue_;
+  std::unique_ptr<ros::AsyncSpinner> service_spinner_;
   ros::ServiceServer save_srv_, load_srv_, reset_srv_;
   boost::recursive_mutex config_mutex_;
   std::unique_ptr<dynamic_reconfigure::Server<BoWGConfig>> reconfigure_server_;
