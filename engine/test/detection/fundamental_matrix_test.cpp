@@ -174,6 +174,26 @@ TEST(FundamentalMatrix, PairsThatDoNotMoveFitASkewSymmetricMatrix) {
   }
 }
 
+TEST(FundamentalMatrix, ARepeatedPairAmongPairsThatDoNotMoveIsSetAside) {
+  // Row 2 repeats row 0: the elimination finds no pivot in it (after row 0
+  // it is zero), moves it last and goes on with rows 3-6; the six distinct
+  // pairs that do not move leave the skew-symmetric null space of rank 6.
+  const PointPair pairs[7] = {{-1.0, 0.3, -1.0, 0.3}, {0.5, -0.7, 0.5, -0.7},
+                              {-1.0, 0.3, -1.0, 0.3}, {-0.4, -1.3, -0.4, -1.3},
+                              {0.9, 0.6, 0.9, 0.6},   {-1.5, -0.2, -1.5, -0.2},
+                              {0.2, 1.6, 0.2, 1.6}};
+  double solutions[3][9];
+  const int n = sevenPointFundamental(pairs, solutions);
+  ASSERT_GE(n, 1);
+  for (int s = 0; s < n; ++s) {
+    const double* f = solutions[s];
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) EXPECT_NEAR(f[3 * i + j], -f[3 * j + i], 1e-12);
+    for (const PointPair& p : pairs) EXPECT_LT(epipolarErrorSquared(f, p), 1e-20);
+    EXPECT_LT(epipolarErrorSquared(f, {1.2, 1.1, 1.2, 1.1}), 1e-20);
+  }
+}
+
 TEST(FundamentalMatrix, ADegenerateSampleHasNoSolution) {
   // Seven copies of one pair: the system has rank 1.
   PointPair pairs[7];
