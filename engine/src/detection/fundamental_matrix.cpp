@@ -5,6 +5,8 @@
 #include <limits>
 #include <opencv2/core.hpp>
 
+#include "bowg/detection/smallest_eigenvector.h"
+
 namespace bowg {
 namespace {
 
@@ -195,12 +197,18 @@ bool eightPointFundamental(const PointPair* pairs, int n, double f[9]) {
     for (int c = 0; c < r; ++c) ata(r, c) = ata(c, r);
   for (int r = 0; r < 9; ++r)
     if (!std::isfinite(ata(r, r))) return false;
-  cv::Matx<double, 9, 1> values;
-  cv::Matx<double, 9, 9> vectors;
-  if (!cv::eigen(ata, values, vectors)) return false;
-  // Eigenvalues in descending order: the last row is the smallest's vector.
+  // The smallest eigenvalue's vector: by inverse iteration, or by the full
+  // decomposition when that does not settle (smallestEigenvector9).
+  double smallest[9];
+  if (!smallestEigenvector9(ata.val, smallest)) {
+    cv::Matx<double, 9, 1> values;
+    cv::Matx<double, 9, 9> vectors;
+    if (!cv::eigen(ata, values, vectors)) return false;
+    // Eigenvalues in descending order: the last row is the smallest's vector.
+    for (int j = 0; j < 9; ++j) smallest[j] = vectors(8, j);
+  }
   cv::Matx33d fm;
-  for (int j = 0; j < 9; ++j) fm(j / 3, j % 3) = vectors(8, j);
+  for (int j = 0; j < 9; ++j) fm(j / 3, j % 3) = smallest[j];
   cv::Matx31d w;
   cv::Matx33d u, vt;
   cv::SVD::compute(fm, w, u, vt);
