@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <limits>
+#include <random>
 #include <stdexcept>
 
 namespace bowg {
@@ -30,6 +31,54 @@ TEST(FanBin, OneBinHoldsEverything) {
   EXPECT_EQ(fanBin(10.f, 10.f, 0, 0, 1), 0);
   EXPECT_EQ(fanBin(-10.f, 3.f, 0, 0, 1), 0);
   EXPECT_EQ(fanBin(0.f, -7.f, 0, 0, 1), 0);
+}
+
+// The bin by its definition: atan2's angle in [0, 2 pi) over the bin width.
+int definitionBin(float x, float y, double cx, double cy, int m) {
+  const double dx = static_cast<double>(x) - cx, dy = static_cast<double>(y) - cy;
+  if (dx == 0.0 && dy == 0.0) return 0;
+  double angle = std::atan2(dy, dx);
+  if (angle < 0.0) angle += 2.0 * kPi;
+  const int k = static_cast<int>(std::floor(angle / (2.0 * kPi / m)));
+  return k >= m ? m - 1 : k;
+}
+
+TEST(FanBin, IsAtan2sBinEverywhereAndAtTheEdges) {
+  // fanBin takes the bin from an approximate angle away from the bins'
+  // edges; it must give atan2's bin for every point: random points, and
+  // points at each edge and at 0-100 urad on either side of it (the
+  // approximation's margin is 10 urad).
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-400.0, 400.0);
+  const double cx = 320.25, cy = 239.75;
+  const double offsets[] = {0.0,   1e-9,   -1e-9,   1e-7, -1e-7, 2e-6, -2e-6, 9e-6,
+                            -9e-6, 1.1e-5, -1.1e-5, 2e-5, -2e-5, 1e-4, -1e-4};
+  for (const int m : {1, 2, 3, 5, 7, 8, 12, 36, 360}) {
+    for (int i = 0; i < 20000; ++i) {
+      const float x = static_cast<float>(cx + u(rng)), y = static_cast<float>(cy + u(rng));
+      ASSERT_EQ(fanBin(x, y, cx, cy, m), definitionBin(x, y, cx, cy, m))
+          << "m " << m << " at (" << x << ", " << y << ")";
+    }
+    for (int k = 0; k < m; ++k) {
+      for (const double offset : offsets) {
+        for (const double r : {3.0, 150.0, 390.0}) {
+          const double a = 2.0 * kPi * k / m + offset;
+          const float x = static_cast<float>(cx + r * std::cos(a));
+          const float y = static_cast<float>(cy + r * std::sin(a));
+          ASSERT_EQ(fanBin(x, y, cx, cy, m), definitionBin(x, y, cx, cy, m))
+              << "m " << m << " edge " << k << " offset " << offset << " radius " << r;
+        }
+      }
+    }
+  }
+  // On the axes and diagonals exactly (float coordinates, integer centre).
+  for (const int m : {4, 8}) {
+    for (int dx = -2; dx <= 2; ++dx)
+      for (int dy = -2; dy <= 2; ++dy)
+        EXPECT_EQ(fanBin(100.f + dx, 50.f + dy, 100, 50, m),
+                  definitionBin(100.f + dx, 50.f + dy, 100, 50, m))
+            << dx << ", " << dy;
+  }
 }
 
 TEST(FanBin, FourBinsInImageCoordinates) {
