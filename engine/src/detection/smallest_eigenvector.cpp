@@ -95,7 +95,8 @@ bool smallestEigenvector9(const double m[81], double v[9]) {
     double change = 0.0;
     for (int i = 0; i < kN; ++i) {
       const double next = sign * x[i] / norm;
-      change = std::fmax(change, std::fabs(next - v[i]));
+      const double d = std::fabs(next - v[i]);
+      if (d > change) change = d;
       v[i] = next;
     }
     settled = change < kSettled;

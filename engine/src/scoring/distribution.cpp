@@ -74,11 +74,10 @@ int fanBin(float x, float y, double cx, double cy, int m) {
   // approximate angle unless that lies within the margin of a bin's edge,
   // where atan2 decides. Either way the bin is atan2's.
   const double width = kTwoPi / m;
-  const double u = approximateAngle(dx, dy) / width;
-  const double k = std::floor(u);
-  if (std::fmin(u - k, k + 1.0 - u) * width > kApproximateAngleMargin && k < m) {
-    return static_cast<int>(k);
-  }
+  const double u = approximateAngle(dx, dy) / width;  // >= 0
+  const int k = static_cast<int>(u);                  // floor
+  const double below = u - k, above = k + 1.0 - u;
+  if ((below < above ? below : above) * width > kApproximateAngleMargin && k < m) return k;
   return exactFanBin(dx, dy, m);
 }
 
