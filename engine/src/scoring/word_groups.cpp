@@ -26,9 +26,20 @@ void checkWeight(const char* function, const GroupEntry& e) {
   }
 }
 
+// Relative error bound of a squared distance computed in float from float
+// coordinates (two subtractions, two squares and a sum, each rounded by at
+// most 2^-24: < 4e-7), with room to spare: a float distance farther than
+// this from the radius decides as the double one does.
+const double kFloatBand = 2e-6;
+// The float test applies to coordinates and radii in these ranges (no
+// overflow, no underflow that the band does not cover).
+const double kFloatMaxCoordinate = 1e6;
+const double kFloatMinRadius = 1e-3;
+
 // Uniform grid over the keypoints in compressed-row form: the coordinates of
 // the points of cell c are xs_, ys_[start_[c] .. start_[c+1]), so that a
-// neighbour scan reads contiguous memory.
+// neighbour scan reads contiguous memory. The coordinates are the
+// keypoints' floats: the scan runs four to a vector instruction.
 class PointGrid {
  public:
   /// `cell` must be > 0; the points lie in [min_x, min_x + nx*cell) x ...
@@ -38,10 +49,14 @@ class PointGrid {
     const std::size_t n = kps.size();
     std::vector<std::int64_t> cell_of(n);
     start_.assign(static_cast<std::size_t>(nx * ny + 1), 0);
+    bool small = true;
     for (std::size_t i = 0; i < n; ++i) {
       cell_of[i] = index(coord(kps[i].x, min_x_, nx_), coord(kps[i].y, min_y_, ny_));
       ++start_[cell_of[i] + 1];
+      small = small && std::fabs(kps[i].x) <= kFloatMaxCoordinate &&
+              std::fabs(kps[i].y) <= kFloatMaxCoordinate;
     }
+    float_coordinates_ = small;
     for (std::size_t c = 1; c < start_.size(); ++c) start_[c] += start_[c - 1];
     std::vector<std::uint32_t> fill(start_.begin(), start_.end() - 1);
     xs_.resize(n);
@@ -57,7 +72,7 @@ class PointGrid {
   /// grid's points) at distance < radius. Scans the cells that the disc's
   /// bounding box touches: the 3x3 block around the point when radius ==
   /// cell, often fewer for smaller radii.
-  int countNeighbours(double x, double y, double radius) const {
+  int countNeighbours(float x, float y, double radius) const {
     const double r2 = radius * radius;
     // Nothing is strictly closer than 0 (radius^2 can underflow to 0).
     if (!(r2 > 0.0)) return 0;
@@ -65,22 +80,16 @@ class PointGrid {
     const double reach = radius * (1.0 + 1e-9);
     const std::int64_t x0 = coord(x - reach, min_x_, nx_), x1 = coord(x + reach, min_x_, nx_);
     const std::int64_t y0 = coord(y - reach, min_y_, ny_), y1 = coord(y + reach, min_y_, ny_);
-    // A double count: x86-64's baseline vector unit compares doubles into
-    // masks it can add as doubles but not as integers (exact below 2^53).
+    const bool in_float =
+        float_coordinates_ && radius >= kFloatMinRadius && radius <= kFloatMaxCoordinate;
+    // Counts as doubles: x86-64's baseline vector unit compares into masks
+    // it can add as floating point but not as integers (exact below 2^24).
     double n = 0;
     for (std::int64_t gy = y0; gy <= y1; ++gy) {
       // Cells x0..x1 of one row are contiguous in the compressed rows.
       const std::uint32_t begin = start_[index(x0, gy)];
       const std::uint32_t end = start_[index(x1, gy) + 1];
-      // Strictly closer than the radius, counted without a branch so that
-      // the loop vectorises: this scan is the stage's cost.
-      const double* xs = xs_.data();
-      const double* ys = ys_.data();
-      for (std::size_t s = begin; s < end; ++s) {
-        const double dx = xs[s] - x;
-        const double dy = ys[s] - y;
-        n += dx * dx + dy * dy < r2 ? 1.0 : 0.0;
-      }
+      n += in_float ? countInFloat(x, y, r2, begin, end) : countInDouble(x, y, r2, begin, end);
     }
     // The point itself was counted (distance 0 < r2, and its cell lies in
     // the scanned block); a coincident *other* point is a neighbour.
@@ -88,6 +97,43 @@ class PointGrid {
   }
 
  private:
+  // Points s in [begin, end) strictly closer than sqrt(r2), in double:
+  // the definition.
+  double countInDouble(float x, float y, double r2, std::uint32_t begin, std::uint32_t end) const {
+    const float* xs = xs_.data();
+    const float* ys = ys_.data();
+    double n = 0;
+    // Without a branch so that the loop vectorises: this scan is the
+    // stage's cost.
+    for (std::size_t s = begin; s < end; ++s) {
+      const double dx = static_cast<double>(xs[s]) - x;
+      const double dy = static_cast<double>(ys[s]) - y;
+      n += dx * dx + dy * dy < r2 ? 1.0 : 0.0;
+    }
+    return n;
+  }
+
+  // The same count by the float distances: those below r2 (1 - band) are
+  // closer, those above r2 (1 + band) are not; when one lies between, the
+  // run is counted again in double.
+  double countInFloat(float x, float y, double r2, std::uint32_t begin, std::uint32_t end) const {
+    const float* xs = xs_.data();
+    const float* ys = ys_.data();
+    const float below = static_cast<float>(r2 * (1.0 - kFloatBand));
+    const float above = static_cast<float>(r2 * (1.0 + kFloatBand));
+    // 32-bit counts of 32-bit compares: the loop vectorises as integer sums
+    // (a floating-point sum would not, without reassociation).
+    std::int32_t sure = 0, maybe = 0;
+    for (std::uint32_t s = begin; s < end; ++s) {
+      const float dx = xs[s] - x;
+      const float dy = ys[s] - y;
+      const float d2 = dx * dx + dy * dy;
+      sure += d2 < below;
+      maybe += d2 <= above;
+    }
+    return maybe == sure ? static_cast<double>(sure) : countInDouble(x, y, r2, begin, end);
+  }
+
   std::int64_t coord(double v, double origin, std::int64_t count) const {
     const std::int64_t c = static_cast<std::int64_t>(std::floor((v - origin) / cell_));
     return std::min(std::max<std::int64_t>(c, 0), count - 1);  // clamp to the grid
@@ -97,7 +143,8 @@ class PointGrid {
   double min_x_, min_y_, cell_;
   std::int64_t nx_, ny_;
   std::vector<std::uint32_t> start_;
-  std::vector<double> xs_, ys_;
+  std::vector<float> xs_, ys_;
+  bool float_coordinates_ = true;
 };
 
 // The median of the positive radii radius_scale * size (there is one:

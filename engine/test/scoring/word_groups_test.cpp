@@ -163,6 +163,93 @@ TEST(WordGroups, GridSearchMatchesAllPairsOnClustersWithMixedScales) {
   EXPECT_EQ(g, bruteForceGroups(kps, words, 1.0));
 }
 
+TEST(WordGroups, PointsAtTheRadiusDecideAsTheDoubleDistanceDoes) {
+  // The scan compares float distances and counts a run again in double when
+  // one lies within 2e-6 (relative) of the radius. Around centres of
+  // several sizes: points at the radius and up to 3e-6 of it inside and
+  // outside, among them points where the float distance alone decides
+  // otherwise than the double one. The groups must be the definition's
+  // (brute force in double).
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<double> angle(0.0, 6.283), offset(-3e-6, 3e-6);
+  std::vector<Keypoint> kps;
+  std::vector<WordId> words;
+  const float centres[3][3] = {
+      {321.37f, 211.93f, 31.f}, {77.1f, 400.2f, 44.64f}, {600.9f, 30.3f, 7.3f}};
+  int float_disagrees = 0;
+  WordId word = 0;
+  for (const auto& c : centres) {
+    kps.push_back(kp(c[0], c[1], c[2]));
+    words.push_back(word++);
+    const double r2 = static_cast<double>(c[2]) * c[2];
+    // 300 points off the ring by up to 3e-6 of the radius, and those of
+    // 20,000 on it where float and double disagree (a few per cent).
+    for (int k = 0; k < 20300; ++k) {
+      const double a = angle(rng), r = c[2] * (1.0 + (k < 300 ? offset(rng) : 0.0));
+      const float x = static_cast<float>(c[0] + r * std::cos(a));
+      const float y = static_cast<float>(c[1] + r * std::sin(a));
+      const float fx = x - c[0], fy = y - c[1];
+      const double dx = static_cast<double>(x) - c[0], dy = static_cast<double>(y) - c[1];
+      const bool disagree =
+          (fx * fx + fy * fy < static_cast<float>(r2)) != (dx * dx + dy * dy < r2);
+      if (k >= 300 && !disagree) continue;
+      float_disagrees += disagree;
+      // Size 0: the ring's points have no group of their own.
+      kps.push_back(kp(x, y, 0.f));
+      words.push_back(1000);
+    }
+  }
+  EXPECT_GE(float_disagrees, 100) << "the rings should hold points where float decides otherwise";
+  const GroupVector g = buildWordGroups(kps, words, WordGroupOptions());
+  EXPECT_EQ(g, bruteForceGroups(kps, words, 1.0));
+  EXPECT_EQ(g.size(), 3u);
+
+  // Only the points where the float distance is strictly on the other side
+  // of the float radius (no ties, which send a run to double anyway): the
+  // band alone must catch them.
+  std::vector<Keypoint> strict;
+  std::vector<WordId> strict_words;
+  int strict_disagrees = 0;
+  for (int ci = 0; ci < 3; ++ci) {
+    const auto& c = centres[ci];
+    strict.push_back(kp(c[0], c[1], c[2]));
+    strict_words.push_back(static_cast<WordId>(ci));
+    const double r2 = static_cast<double>(c[2]) * c[2];
+    for (int k = 0; k < 20000; ++k) {
+      const double a = angle(rng);
+      const float x = static_cast<float>(c[0] + c[2] * std::cos(a));
+      const float y = static_cast<float>(c[1] + c[2] * std::sin(a));
+      const float fx = x - c[0], fy = y - c[1];
+      const float d2f = fx * fx + fy * fy;
+      const double dx = static_cast<double>(x) - c[0], dy = static_cast<double>(y) - c[1];
+      if (d2f == static_cast<float>(r2) ||
+          (d2f < static_cast<float>(r2)) == (dx * dx + dy * dy < r2))
+        continue;
+      ++strict_disagrees;
+      strict.push_back(kp(x, y, 0.f));
+      strict_words.push_back(1000);
+    }
+  }
+  EXPECT_GE(strict_disagrees, 20);
+  EXPECT_EQ(buildWordGroups(strict, strict_words, WordGroupOptions()),
+            bruteForceGroups(strict, strict_words, 1.0));
+}
+
+TEST(WordGroups, FarCoordinatesAndTinyRadiiAreCountedInDouble) {
+  // Beyond 1e6 pixels or below 1e-3 the float test does not apply.
+  // Far: k0's radius 40 holds k1 at 32; k1's radius 1 does not hold k0.
+  const std::vector<Keypoint> far{kp(2e6f, 3e6f, 40.f), kp(2e6f + 32.f, 3e6f, 1.f)};
+  const GroupVector g_far = buildWordGroups(far, {1, 2}, WordGroupOptions());
+  EXPECT_EQ(g_far, bruteForceGroups(far, {1, 2}, 1.0));
+  EXPECT_EQ(g_far, (GroupVector{{1, 1.0}}));
+  // Tiny: k0's radius 5e-4 holds k1 at 3e-4, k1's radius 2e-4 does not
+  // hold k0.
+  const std::vector<Keypoint> tiny{kp(5.f, 5.f, 5e-4f), kp(5.f + 3e-4f, 5.f, 2e-4f)};
+  const GroupVector g_tiny = buildWordGroups(tiny, {3, 4}, WordGroupOptions());
+  EXPECT_EQ(g_tiny, bruteForceGroups(tiny, {3, 4}, 1.0));
+  EXPECT_EQ(g_tiny, (GroupVector{{3, 1.0}}));
+}
+
 TEST(WordGroups, TinyRadiiOverAHugeExtentStayCorrect) {
   // Cell size would be 0.01 over an extent of 1e9: the grid must widen its
   // cells instead of overflowing the cell coordinates.
