@@ -53,8 +53,8 @@ double approximateAngle(double dx, double dy) {
 int exactFanBin(double dx, double dy, int m) {
   double angle = std::atan2(dy, dx);
   if (angle < 0.0) angle += kTwoPi;
-  // Bin k covers [2*pi*k/m, 2*pi*(k+1)/m). Rounding can put an angle a hair
-  // below 2*pi at exactly m: that point belongs to the last bin.
+  // Rounding can put an angle a hair below 2*pi at exactly m: that point
+  // belongs to the last bin.
   const int k = static_cast<int>(std::floor(angle / (kTwoPi / m)));
   return k >= m ? m - 1 : k;
 }

@@ -82,8 +82,7 @@ class PointGrid {
     const std::int64_t y0 = coord(y - reach, min_y_, ny_), y1 = coord(y + reach, min_y_, ny_);
     const bool in_float =
         float_coordinates_ && radius >= kFloatMinRadius && radius <= kFloatMaxCoordinate;
-    // Counts as doubles: x86-64's baseline vector unit compares into masks
-    // it can add as floating point but not as integers (exact below 2^24).
+    // The rows' counts (exact as doubles below 2^53).
     double n = 0;
     for (std::int64_t gy = y0; gy <= y1; ++gy) {
       // Cells x0..x1 of one row are contiguous in the compressed rows.
@@ -102,9 +101,10 @@ class PointGrid {
   double countInDouble(float x, float y, double r2, std::uint32_t begin, std::uint32_t end) const {
     const float* xs = xs_.data();
     const float* ys = ys_.data();
+    // A double count, without a branch, so that the loop vectorises:
+    // x86-64's baseline vector unit compares doubles into 64-bit masks it
+    // can add as doubles but not as 32-bit integers.
     double n = 0;
-    // Without a branch so that the loop vectorises: this scan is the
-    // stage's cost.
     for (std::size_t s = begin; s < end; ++s) {
       const double dx = static_cast<double>(xs[s]) - x;
       const double dy = static_cast<double>(ys[s]) - y;
