@@ -110,7 +110,8 @@ if(BOWG_ENGINE_BENCHMARKS)
       add_executable(bowg_${bench_name} ${bench_source})
       target_link_libraries(bowg_${bench_name} bowg_engine benchmark::benchmark)
       target_compile_definitions(bowg_${bench_name} PRIVATE
-        BOWG_SHARED_DATA_DIR="${BOWG_SHARED_DATA_DIR}")
+        BOWG_SHARED_DATA_DIR="${BOWG_SHARED_DATA_DIR}"
+        BOWG_CONFIG_DIR="${BOWG_REPO_DIR}/config")
       target_include_directories(bowg_${bench_name} PRIVATE ${BOWG_ENGINE_DIR}/test)
     endforeach()
   else()

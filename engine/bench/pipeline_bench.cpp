@@ -1,14 +1,24 @@
 // Per-keyframe cost of the BoWG pipeline after feature extraction
 // (LoopDetector::process: transform, word groups, query, islands,
-// verification) on 640x480-like synthetic keyframes of ~400 features with a
-// k=10 L=6 synthetic vocabulary, for databases of 1,000, 5,000 and 20,000
-// keyframes. The keyframes come from a 500 m corridor of landmarks driven
-// round and round (synthetic_corridor.h), so later laps revisit earlier ones
-// and share words the way real revisits do (2 flipped bits per descriptor,
-// 0.5 px noise). Targets: < 5 ms mean, < 15 ms max at 20,000 keyframes.
-// BM_PipelinePlaceIndex: the same with at most 1 or 3 keyframes of a place
-// in the inverse index (IslandOptions::indexed_per_place; 3 is the pipe
-// preset's).
+// verification) on 640x480-like synthetic keyframes of ~400 features,
+// for databases of 1,000, 5,000 and 20,000 keyframes. The keyframes come
+// from a corridor of landmarks driven round and round (synthetic_corridor.h),
+// so later laps revisit earlier ones and share words the way real revisits
+// do (2 flipped bits per descriptor, 0.5 px noise).
+//
+// BM_PipelineTrained: a 200 m corridor (760 keyframes a lap, so every size
+// times revisits) with a k=10 L=6 vocabulary trained on it (k-medians,
+// vocabulary_trainer.h), as a vocabulary trained on real images puts the
+// views of one patch in one word, and the pipe preset's options
+// (config/pipe.yaml); at most 3 keyframes of a place in the inverse index
+// (IslandOptions::indexed_per_place, the preset's), or every keyframe (0).
+// The scale targets: < 5 ms mean, < 15 ms max at 20,000
+// keyframes, growth from 1,000 to 20,000 <= 1.5x.
+// BM_Pipeline and BM_PipelinePlaceIndex: the stress case, a 500 m corridor
+// (1,960 keyframes a lap: 1,000 keyframes hold no revisit) and a random
+// k=10 L=6 vocabulary, in which noisy descriptors spread over many words and
+// a query shares words with about a quarter of the database; every keyframe
+// indexed, or at most 1 or 3 of a place.
 //
 // Counters (per keyframe, in ms unless named otherwise): transform,
 // word_groups, query, islands, verification, total_mean, total_max,
@@ -32,15 +42,17 @@
 #include "bowg/core/resident_memory.h"
 #include "bowg/database/database.h"
 #include "bowg/detection/loop_detector.h"
+#include "bowg/parameters/parameter_table.h"
 #include "bowg/vocabulary/vocabulary.h"
+#include "bowg/vocabulary/vocabulary_trainer.h"
 #include "synthetic_corridor.h"
 #include "synthetic_vocabulary.h"
 
 namespace bowg {
 namespace {
 
-const double kCorridorLength = 500.0;
 const double kStep = 0.25;  // metres between keyframes
+const int kLandmarksPerMetre = 50;  // keyframes of ~400 features
 
 struct Pipeline {
   std::shared_ptr<const Vocabulary> vocabulary;
@@ -49,27 +61,15 @@ struct Pipeline {
   std::mt19937_64 rng{17};
   std::size_t next = 0;
 
-  /// `landmarks_per_metre`: 50 gives keyframes of ~400 features, 63 of ~500.
-  /// `indexed_per_place`: IslandOptions'.
-  explicit Pipeline(int landmarks_per_metre = 50, int indexed_per_place = 0)
-      : vocabulary(std::make_shared<Vocabulary>(testing::makeSyntheticVocabulary(10, 6, 1))),
-        corridor(testing::makeCorridor(kCorridorLength, landmarks_per_metre, 5)) {
-    LoopDetectorOptions o;
-    o.distribution.enabled = true;  // the full pipe configuration
-    o.similarity.lambda_1 = 0.4;
-    o.similarity.lambda_2 = 0.4;
-    // 100 keyframes = 25 m: views (8 m of wall) of keyframes just outside a
-    // 20-keyframe window still overlap the query; those trivial "loops" would
-    // make every query run the verification.
-    o.islands.recent_exclusion = 100;
-    o.islands.indexed_per_place = indexed_per_place;
+  Pipeline(std::shared_ptr<const Vocabulary> v, testing::Corridor c, const LoopDetectorOptions& o)
+      : vocabulary(std::move(v)), corridor(std::move(c)) {
     detector.reset(new LoopDetector(vocabulary, o));
   }
 
   KeyframeInput nextKeyframe() {
     // Laps of the corridor, leaving the last 10 m (one view) unvisited so
     // that every view is full.
-    const double x = std::fmod(next * kStep, kCorridorLength - 10.0) + 5.0;
+    const double x = std::fmod(next * kStep, corridor.length - 10.0) + 5.0;
     KeyframeInput kf = testing::observeCorridor(corridor, x, 1.0 + next * 0.1, rng, 2, 0.5);
     // Positions as ORB reports them (what the database packs).
     testing::placeOnOrbPyramid(&kf);
@@ -100,13 +100,76 @@ double trimmedResidentBytes() {
   return residentBytes();
 }
 
-// One database per indexed_per_place, grown from size to size (each made
-// on first use: the others' memory stays out of a run that filters them
+// 100 keyframes = 25 m: views (8 m of wall) of keyframes just outside a
+// shorter window still overlap the query; those trivial "loops" would make
+// every query run the verification.
+const int kRecentExclusion = 100;
+
+// The stress case's options: the defaults with the distribution score on,
+// and the corridor's recent-exclusion window.
+LoopDetectorOptions stressOptions(int indexed_per_place) {
+  LoopDetectorOptions o;
+  o.distribution.enabled = true;
+  o.similarity.lambda_1 = 0.4;
+  o.similarity.lambda_2 = 0.4;
+  o.islands.recent_exclusion = kRecentExclusion;
+  o.islands.indexed_per_place = indexed_per_place;
+  return o;
+}
+
+// The stress case's corridor and random vocabulary. `landmarks_per_metre`:
+// 50 gives keyframes of ~400 features, 63 of ~500.
+std::unique_ptr<Pipeline> stressPipeline(int indexed_per_place, int landmarks_per_metre) {
+  return std::unique_ptr<Pipeline>(new Pipeline(
+      std::make_shared<Vocabulary>(testing::makeSyntheticVocabulary(10, 6, 1)),
+      testing::makeCorridor(500.0, landmarks_per_metre, 5), stressOptions(indexed_per_place)));
+}
+
+// The trained case's options: the pipe preset (config/pipe.yaml, its
+// verification, scores and temporal chain) with the corridor's window and
+// threshold. No odometry: the preset's windows in keyframes apply.
+LoopDetectorOptions presetOptions(int indexed_per_place) {
+  LoopDetectorOptions o = loadParameterFile(std::string(BOWG_CONFIG_DIR) + "/pipe.yaml").detector;
+  o.islands.recent_exclusion = kRecentExclusion;
+  o.islands.indexed_per_place = indexed_per_place;
+  // The corridor's keyframes see 8 m of wall 25 cm apart, so a revisit
+  // scores about what the previous keyframe does (eta ~1): the preset's
+  // min_score, chosen on pipe sequences, would let none through.
+  o.islands.min_score = 1.0;
+  return o;
+}
+
+// The trained case: a 200 m corridor and a k=10 L=6 vocabulary trained on
+// its views one metre apart (190 images, ~76,000 descriptors with the
+// keyframes' noise), made once and shared.
+std::unique_ptr<Pipeline> trainedPipeline(int indexed_per_place) {
+  static std::shared_ptr<const Vocabulary> vocabulary;
+  const testing::Corridor corridor = testing::makeCorridor(200.0, kLandmarksPerMetre, 5);
+  if (!vocabulary) {
+    std::mt19937_64 rng(23);
+    std::vector<std::vector<Descriptor>> images;
+    for (double x = 5.0; x < corridor.length - 5.0; x += 1.0) {
+      images.push_back(
+          testing::observeCorridor(corridor, x, 0.0, rng, 2, 0.5).features.descriptors);
+    }
+    TrainingOptions t;  // k = 10, L = 6, TF-IDF, L1
+    t.threads = 2;
+    vocabulary = std::make_shared<Vocabulary>(trainVocabulary(images, t));
+  }
+  return std::unique_ptr<Pipeline>(
+      new Pipeline(vocabulary, corridor, presetOptions(indexed_per_place)));
+}
+
+// One database per case and indexed_per_place, grown from size to size (each
+// made on first use: the others' memory stays out of a run that filters them
 // away).
-Pipeline& pipeline(int indexed_per_place) {
-  static std::map<int, std::unique_ptr<Pipeline>> pipelines;
-  std::unique_ptr<Pipeline>& p = pipelines[indexed_per_place];
-  if (!p) p.reset(new Pipeline(50, indexed_per_place));
+Pipeline& pipeline(bool trained, int indexed_per_place) {
+  static std::map<std::pair<bool, int>, std::unique_ptr<Pipeline>> pipelines;
+  std::unique_ptr<Pipeline>& p = pipelines[std::make_pair(trained, indexed_per_place)];
+  if (!p) {
+    p = trained ? trainedPipeline(indexed_per_place)
+                : stressPipeline(indexed_per_place, kLandmarksPerMetre);
+  }
   return *p;
 }
 
@@ -187,7 +250,7 @@ void runPipeline(benchmark::State& state, Pipeline& p) {
 
 // Every keyframe indexed (IslandOptions::indexed_per_place 0, the default
 // and DBoW2's way).
-void BM_Pipeline(benchmark::State& state) { runPipeline(state, pipeline(0)); }
+void BM_Pipeline(benchmark::State& state) { runPipeline(state, pipeline(false, 0)); }
 
 BENCHMARK(BM_Pipeline)
     ->Arg(1000)
@@ -200,8 +263,23 @@ BENCHMARK(BM_Pipeline)
 // index (arguments: keyframes, indexed_per_place n): the postings a query
 // walks grow with the places, not the laps.
 void BM_PipelinePlaceIndex(benchmark::State& state) {
-  runPipeline(state, pipeline(static_cast<int>(state.range(1))));
+  runPipeline(state, pipeline(false, static_cast<int>(state.range(1))));
 }
+
+// The trained case (arguments: keyframes, indexed_per_place n).
+void BM_PipelineTrained(benchmark::State& state) {
+  runPipeline(state, pipeline(true, static_cast<int>(state.range(1))));
+}
+
+BENCHMARK(BM_PipelineTrained)
+    ->Args({1000, 3})
+    ->Args({5000, 3})
+    ->Args({20000, 3})
+    ->Args({1000, 0})
+    ->Args({5000, 0})
+    ->Args({20000, 0})
+    ->Iterations(500)
+    ->Unit(benchmark::kMillisecond);
 
 BENCHMARK(BM_PipelinePlaceIndex)
     ->Args({1000, 3})
@@ -219,7 +297,8 @@ BENCHMARK(BM_PipelinePlaceIndex)
 // Counters: features, rss_growth_per_keyframe, estimate_growth_per_keyframe
 // (bytes), estimate_error (estimate / resident growth - 1).
 void BM_Memory500Features(benchmark::State& state) {
-  static Pipeline p(63);
+  static std::unique_ptr<Pipeline> pipeline = stressPipeline(0, 63);
+  Pipeline& p = *pipeline;
   for (auto _ : state) {
     p.growTo(3000);
     const Growth g = growMeasured(p, 6000);

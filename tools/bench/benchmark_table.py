@@ -57,7 +57,8 @@ def cpu_ms(benchmarks, path, name):
 
 def row(figure, target, measured, ratio, met):
     return {"figure": figure, "target": target, "measured": measured,
-            "ratio": "" if ratio is None else "%.2f" % ratio, "met": "yes" if met else "no"}
+            "ratio": "" if ratio is None else "%.2f" % ratio,
+            "met": "-" if met is None else "yes" if met else "no"}
 
 
 def main(argv):
@@ -81,15 +82,26 @@ def main(argv):
                     ratio, ratio <= 1.0))
 
     p = read_benchmarks(args.pipeline)
-    mean_1k = field(p, args.pipeline, "BM_Pipeline/1000", "total_mean")
-    mean_20k = field(p, args.pipeline, "BM_Pipeline/20000", "total_mean")
-    max_20k = field(p, args.pipeline, "BM_Pipeline/20000", "total_max")
-    rows.append(row("per-keyframe pipeline after features, 20,000 keyframes, mean", "< 5 ms",
-                    "%.2f ms" % mean_20k, None, mean_20k < 5.0))
+    # The scale targets on the trained case with the pipe preset's place
+    # index: both sizes time revisits (engine/bench/pipeline_bench.cpp).
+    trained = "BM_PipelineTrained/%d/3"
+    mean_1k = field(p, args.pipeline, trained % 1000, "total_mean")
+    mean_20k = field(p, args.pipeline, trained % 20000, "total_mean")
+    max_20k = field(p, args.pipeline, trained % 20000, "total_max")
+    case = "trained vocabulary, 3 keyframes a place indexed"
+    rows.append(row("per-keyframe pipeline after features, 20,000 keyframes (%s), mean" % case,
+                    "< 5 ms", "%.2f ms" % mean_20k, None, mean_20k < 5.0))
     rows.append(row("same, max", "< 15 ms", "%.2f ms" % max_20k, None, max_20k < 15.0))
     growth = mean_20k / mean_1k
-    rows.append(row("time per keyframe, 20,000 / 1,000 keyframes", "<= 1.5",
+    rows.append(row("time per keyframe, 20,000 / 1,000 keyframes (%s)" % case, "<= 1.5",
                     "%.2f / %.2f ms" % (mean_20k, mean_1k), growth, growth <= 1.5))
+    # The stress case, without a target: a random vocabulary, every keyframe
+    # indexed, and no revisit among the first 1,000 keyframes.
+    stress_1k = field(p, args.pipeline, "BM_Pipeline/1000", "total_mean")
+    stress_20k = field(p, args.pipeline, "BM_Pipeline/20000", "total_mean")
+    rows.append(row("stress case: time per keyframe, 20,000 / 1,000 keyframes (random "
+                    "vocabulary, every keyframe indexed, no revisit at 1,000)", "-",
+                    "%.2f / %.2f ms" % (stress_20k, stress_1k), stress_20k / stress_1k, None))
     m = "BM_Memory500Features"
     rss = field(p, args.pipeline, m, "rss_growth_per_keyframe")
     estimate = field(p, args.pipeline, m, "estimate_growth_per_keyframe")

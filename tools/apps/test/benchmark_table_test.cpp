@@ -23,14 +23,18 @@ const char* kFeatures =
     "{\"name\": \"BM_OrbMultiScaleOriented\", \"run_name\": \"BM_OrbMultiScaleOriented\","
     " \"cpu_time\": 8000.0, \"real_time\": 8100.0, \"time_unit\": \"us\", \"features\": 500}]}";
 
+// A pipeline benchmark record: name, total_mean, total_max (ms).
+std::string pipelineRecord(const std::string& name, double mean, double max) {
+  return "{\"name\": \"" + name + "/iterations:500\", \"run_name\": \"" + name +
+         "/iterations:500\", \"cpu_time\": 1, \"time_unit\": \"ms\", \"total_mean\": " +
+         std::to_string(mean) + ", \"total_max\": " + std::to_string(max) + "},";
+}
+
 std::string pipeline(double rss) {
-  return "{\"benchmarks\": ["
-         "{\"name\": \"BM_Pipeline/1000/iterations:500\", \"run_name\": "
-         "\"BM_Pipeline/1000/iterations:500\", \"cpu_time\": 1, \"time_unit\": \"ms\","
-         " \"total_mean\": 0.8, \"total_max\": 3.0},"
-         "{\"name\": \"BM_Pipeline/20000/iterations:500\", \"run_name\": "
-         "\"BM_Pipeline/20000/iterations:500\", \"cpu_time\": 2, \"time_unit\": \"ms\","
-         " \"total_mean\": 1.6, \"total_max\": 16.0},"
+  return "{\"benchmarks\": [" + pipelineRecord("BM_PipelineTrained/1000/3", 0.8, 3.0) +
+         pipelineRecord("BM_PipelineTrained/20000/3", 1.6, 16.0) +
+         pipelineRecord("BM_Pipeline/1000", 0.5, 2.0) +
+         pipelineRecord("BM_Pipeline/20000", 2.0, 9.0) +
          "{\"name\": \"BM_Memory500Features/iterations:1\", \"run_name\": "
          "\"BM_Memory500Features/iterations:1\", \"cpu_time\": 9, \"time_unit\": \"s\","
          " \"features\": 503.6, \"rss_growth_per_keyframe\": " +
@@ -61,11 +65,18 @@ TEST(BenchmarkTable, EveryFigureAgainstItsTarget) {
   EXPECT_NE(out.find("| <= 1 (goal 0.5) | 4.00 / 8.00 ms (480 / 500 features) | 0.50 | yes |"),
             std::string::npos)
       << out;
-  EXPECT_NE(out.find("20,000 keyframes, mean | < 5 ms | 1.60 ms |  | yes |"), std::string::npos)
+  EXPECT_NE(out.find("3 keyframes a place indexed), mean | < 5 ms | 1.60 ms |  | yes |"),
+            std::string::npos)
       << out;
   EXPECT_NE(out.find("| same, max | < 15 ms | 16.00 ms |  | no |"), std::string::npos) << out;
-  // 1.6 / 0.8 = 2.00 > 1.5.
-  EXPECT_NE(out.find("| <= 1.5 | 1.60 / 0.80 ms | 2.00 | no |"), std::string::npos) << out;
+  // 1.6 / 0.8 = 2.00 > 1.5, on the trained case.
+  EXPECT_NE(out.find("(trained vocabulary, 3 keyframes a place indexed) | <= 1.5 | 1.60 / 0.80 "
+                     "ms | 2.00 | no |"),
+            std::string::npos)
+      << out;
+  // The stress case without a target: 2.0 / 0.5 = 4.00.
+  EXPECT_NE(out.find("no revisit at 1,000) | - | 2.00 / 0.50 ms | 4.00 | - |"), std::string::npos)
+      << out;
   // 24,000 / 25,000 = 0.96; the estimate 25,000 / 24,000 - 1 = +4.2 %.
   EXPECT_NE(out.find("| <= 25,000 bytes | 24000 bytes (503.6 features) | 0.96 | yes |"),
             std::string::npos)
@@ -99,16 +110,17 @@ TEST(BenchmarkTable, EveryFigureAgainstItsTarget) {
 
 TEST(BenchmarkTable, MissingFiguresAreNamed) {
   ASSERT_EQ(tool_test::run("mkdir -p " + kDir), 0);
-  tool_test::writeAll(
-      kDir + "/partial.json",
-      "{\"benchmarks\": [{\"name\": \"BM_Pipeline/1000/iterations:500\", \"total_mean\": 1}]}");
+  tool_test::writeAll(kDir + "/partial.json",
+                      "{\"benchmarks\": [{\"name\": \"BM_PipelineTrained/1000/3/iterations:500\", "
+                      "\"total_mean\": 1}]}");
   tool_test::writeAll(kDir + "/loads.txt", "49.0\n");
   tool_test::writeAll(kDir + "/features.json", kFeatures);
   const std::string out = run("--features " + kDir + "/features.json --pipeline " + kDir +
                                   "/partial.json --loads " + kDir + "/loads.txt",
                               kDir + "/partial.log");
   EXPECT_NE(out.substr(0, 2), "0\n") << out;
-  EXPECT_NE(out.find("partial.json: no benchmark BM_Pipeline/20000"), std::string::npos) << out;
+  EXPECT_NE(out.find("partial.json: no benchmark BM_PipelineTrained/20000/3"), std::string::npos)
+      << out;
 
   tool_test::writeAll(kDir + "/empty.txt", "");
   const std::string empty = run("--features " + kDir + "/features.json --pipeline " + kDir +
