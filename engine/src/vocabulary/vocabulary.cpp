@@ -256,6 +256,18 @@ Vocabulary::Vocabulary(int branching, int depth, WeightingType weighting, Scorin
   index();
 }
 
+Vocabulary::Vocabulary(int branching, int depth, WeightingType weighting, ScoringType scoring,
+                       NodeArray nodes, std::uint64_t fingerprint, std::vector<NodeId> word_to_node)
+    : k_(branching),
+      L_(depth),
+      weighting_(weighting),
+      scoring_(scoring),
+      nodes_(std::move(nodes)),
+      word_to_node_(std::move(word_to_node)),
+      fingerprint_(fingerprint) {
+  checkHeader(k_, L_, weighting_, scoring_, nodes_);
+}
+
 void Vocabulary::index() {
   checkHeader(k_, L_, weighting_, scoring_, nodes_);
   const std::size_t leaves = checkTree(k_, L_, nodes_);
@@ -277,6 +289,14 @@ Checksum64 VocabularyRecords::fingerprintStart(int k, int L, WeightingType weigh
 Vocabulary VocabularyRecords::build(int k, int L, WeightingType weighting, ScoringType scoring,
                                     Vocabulary::NodeArray nodes, std::uint64_t fingerprint) {
   return Vocabulary(k, L, weighting, scoring, std::move(nodes), fingerprint);
+}
+
+Vocabulary VocabularyRecords::buildChecked(int k, int L, WeightingType weighting,
+                                           ScoringType scoring, Vocabulary::NodeArray nodes,
+                                           std::uint64_t fingerprint, TreeStreamCheck* check) {
+  if (!check->passed()) return build(k, L, weighting, scoring, std::move(nodes), fingerprint);
+  return Vocabulary(k, L, weighting, scoring, std::move(nodes), fingerprint,
+                    check->takeWordToNode());
 }
 
 WordId Vocabulary::transform(const Descriptor& d, NodeId* node_at_level, int level) const {

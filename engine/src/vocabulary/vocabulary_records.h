@@ -11,6 +11,7 @@
 
 #include "bowg/core/checksum.h"
 #include "bowg/vocabulary/vocabulary.h"
+#include "vocabulary/tree_stream_check.h"
 
 namespace bowg {
 
@@ -23,6 +24,13 @@ struct VocabularyRecords {
   /// `fingerprint` = fingerprintStart(...) fed the records of `nodes`.
   static Vocabulary build(int k, int L, WeightingType weighting, ScoringType scoring,
                           Vocabulary::NodeArray nodes, std::uint64_t fingerprint);
+
+  /// The same for a tree `check` has seen whole: when it passed, without
+  /// checking the tree again; otherwise build(), whose checks name the
+  /// fault.
+  static Vocabulary buildChecked(int k, int L, WeightingType weighting, ScoringType scoring,
+                                 Vocabulary::NodeArray nodes, std::uint64_t fingerprint,
+                                 TreeStreamCheck* check);
 };
 
 }  // namespace bowg

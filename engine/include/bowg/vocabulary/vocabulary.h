@@ -94,10 +94,14 @@ class Vocabulary {
   void weighSortedWords(const std::vector<std::pair<WordId, std::uint32_t>>& word_of,
                         BowVector* bow) const;
   // The .bowgvoc loader hashes its node block once for its file checksum
-  // and the fingerprint together (engine/src/vocabulary/vocabulary_records.h).
+  // and the fingerprint together, and checks the tree chunk by chunk
+  // (engine/src/vocabulary/vocabulary_records.h).
   friend struct VocabularyRecords;
   Vocabulary(int branching, int depth, WeightingType weighting, ScoringType scoring,
              NodeArray nodes, std::uint64_t fingerprint);
+  /// A tree that passed TreeStreamCheck, with its word -> leaf table.
+  Vocabulary(int branching, int depth, WeightingType weighting, ScoringType scoring,
+             NodeArray nodes, std::uint64_t fingerprint, std::vector<NodeId> word_to_node);
 
   void index();  // validates, builds word_to_node_
 

@@ -205,6 +205,8 @@ Vocabulary loadBowg(const std::string& path) {
   Vocabulary::NodeArray nodes;
   nodes.reserve(count);
   std::size_t first_bad_reserved = count;
+  // The tree checked chunk by chunk while the chunk is in the cache.
+  TreeStreamCheck tree(static_cast<int>(k), static_cast<int>(L), count);
   {
     ChunkHasher hasher(&sum, &fingerprint, std::min<std::size_t>(count, kChunkRecords));
     for (std::size_t done = 0, c = 0; done < count; ++c) {
@@ -219,6 +221,7 @@ Vocabulary loadBowg(const std::string& path) {
         if (reserved != 0) first_bad_reserved = done + i;
       }
       nodes.insert(nodes.end(), chunk.begin(), chunk.begin() + static_cast<std::ptrdiff_t>(n));
+      tree.consume(nodes, done, done + n);
       done += n;
     }
     hasher.finish();
@@ -232,9 +235,9 @@ Vocabulary loadBowg(const std::string& path) {
     fail(path, "node " + std::to_string(first_bad_reserved) + ": reserved field is not zero");
   }
   try {
-    Vocabulary v = VocabularyRecords::build(
+    Vocabulary v = VocabularyRecords::buildChecked(
         static_cast<int>(k), static_cast<int>(L), static_cast<WeightingType>(weighting),
-        static_cast<ScoringType>(scoring), std::move(nodes), fingerprint.value());
+        static_cast<ScoringType>(scoring), std::move(nodes), fingerprint.value(), &tree);
     if (v.wordCount() != word_count) {
       fail(path, "header says " + std::to_string(word_count) + " words, the tree has " +
                      std::to_string(v.wordCount()));
