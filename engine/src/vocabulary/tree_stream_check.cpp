@@ -28,11 +28,8 @@ void TreeStreamCheck::consume(const Vocabulary::NodeArray& nodes, std::size_t be
 bool TreeStreamCheck::check(const Vocabulary::NodeArray& nodes, std::size_t i) {
   const Vocabulary::Node& node = nodes[i];
   if (!std::isfinite(node.weight) || node.weight < 0.0 || node.level > L_) return false;
-  if (i == 0) {
-    if (node.level != 0 || node.word != Vocabulary::kNoWord || node.num_children == 0) {
-      return false;
-    }
-  } else {
+  // The root's own fields are checkHeader's, which both constructors run.
+  if (i != 0) {
     // The parent was checked before: its range lies after it and inside
     // the tree.
     const NodeId p = node.parent;
