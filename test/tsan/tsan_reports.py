@@ -18,9 +18,11 @@ project's when
     frame above the mutex wrappers is hand-written code of the project);
   - any other kind of report has a frame of the project's code.
 
-Code of the project: the repository's files (hand-written) and the message
-headers generated in the workspace; frames in the project's libraries that
-the runtime could not name are named with addr2line first.
+Code of the project: the repository's files (hand-written), the message
+headers generated in the workspace, and functions of the bowg and bowg_ros
+namespaces by name (not a ROS template whose arguments name one of the
+project's types); frames in the project's libraries that the runtime could
+not name are named with addr2line first.
 
   tsan_reports.py REPO LIBDIR OURS_OUT ROS_OUT REPORT_FILE...
 
@@ -97,8 +99,25 @@ class Project:
                                             and "/devel/" not in part)
 
     def any_code(self, part):
+        # By name only where the function itself is the project's: a ROS
+        # template instantiated for one of the project's messages
+        # (ros::serialization::serializeServiceResponse<bowg_ros::...>) is
+        # ROS's code.
         return (self.hand_written(part) or "/devel/include/bowg_ros/" in part
-                or re.search(r"\bbowg(_ros)?::", part) is not None)
+                or re.search(r"\bbowg(_ros)?::", without_arguments(part)) is not None)
+
+
+def without_arguments(part):
+    """A frame's text without its template argument and parameter lists."""
+    out, depth = [], 0
+    for ch in part:
+        if ch in "<(":
+            depth += 1
+        elif ch in ">)" and depth > 0:
+            depth -= 1
+        elif depth == 0:
+            out.append(ch)
+    return "".join(out)
 
 
 def outside_runtime(frames):
