@@ -73,7 +73,9 @@ int realCubicRoots(const double c[4], double roots[3]) {
 
 int sevenPointFundamental(const PointPair pairs[7], double solutions[3][9]) {
   // Row i of A: x2^T F x1 = 0 as a linear equation in F's nine elements.
-  double a[7][9];
+  // Rows padded to ten so that the elimination below runs on whole rows as
+  // pairs of doubles.
+  alignas(16) double a[7][10];
   for (int i = 0; i < 7; ++i) {
     const PointPair& p = pairs[i];
     if (!std::isfinite(p.x1) || !std::isfinite(p.y1) || !std::isfinite(p.x2) ||
@@ -83,6 +85,7 @@ int sevenPointFundamental(const PointPair pairs[7], double solutions[3][9]) {
     const double row[9] = {p.x2 * p.x1, p.x2 * p.y1, p.x2, p.y2 * p.x1, p.y2 * p.y1,
                            p.y2,        p.x1,        p.y1, 1.0};
     std::copy(row, row + 9, a[i]);
+    a[i][9] = 0.0;
   }
   // Gauss-Jordan with column pivoting: row by row, the pivot is the row's
   // largest entry among the columns not yet chosen (the columns are swapped,
@@ -94,9 +97,16 @@ int sevenPointFundamental(const PointPair pairs[7], double solutions[3][9]) {
   // by the data either way, which is what keeps an ill-conditioned choice
   // of free columns away.
   int col[9] = {0, 1, 2, 3, 4, 5, 6, 7, 8};
+  // The largest entry, one running maximum per row: a single one chains 63
+  // dependent comparisons. The maximum does not depend on the order.
+  double row_largest[7];
+  for (int i = 0; i < 7; ++i) {
+    double m = 0.0;
+    for (int j = 0; j < 9; ++j) m = std::max(m, std::fabs(a[i][j]));
+    row_largest[i] = m;
+  }
   double largest = 0.0;
-  for (int i = 0; i < 7; ++i)
-    for (int j = 0; j < 9; ++j) largest = std::max(largest, std::fabs(a[i][j]));
+  for (int i = 0; i < 7; ++i) largest = std::max(largest, row_largest[i]);
   if (!(largest > 0.0)) return 0;
   int rows = 7, rank = 0;
   while (rank < rows) {
@@ -120,12 +130,15 @@ int sevenPointFundamental(const PointPair pairs[7], double solutions[3][9]) {
       for (int i = 0; i < 7; ++i) std::swap(a[i][k], a[i][pc]);
       std::swap(col[k], col[pc]);
     }
+    // Whole rows: columns before k (pivot columns already done) are not
+    // read again, so what the full width does to them is immaterial, and
+    // every column from k on sees the same operations as a loop from k.
     const double inv = 1.0 / a[k][k];
-    for (int j = k; j < 9; ++j) a[k][j] *= inv;
+    for (int j = 0; j < 10; ++j) a[k][j] *= inv;
     for (int i = 0; i < 7; ++i) {
       if (i == k || a[i][k] == 0.0) continue;
       const double f = a[i][k];
-      for (int j = k; j < 9; ++j) a[i][j] -= f * a[k][j];
+      for (int j = 0; j < 10; ++j) a[i][j] -= f * a[k][j];
     }
     ++rank;
   }
