@@ -331,7 +331,8 @@ DatabaseQuery Database::makeQuery(BowVector bow, const GroupVector& raw_groups,
   DatabaseQuery q;
   q.bow = std::move(bow);
   normaliseBowVector(scoring_, &q.bow);
-  q.refined_groups = refineGroupWeights(raw_groups, group_table_);
+  q.refined_groups = refineGroupWeights(raw_groups, group_table_, &q.group_idf);
+  q.group_table_version = group_table_.version();
   if (with_distribution) q.distribution = distributionVector(points, centre_x, centre_y, fan_bins_);
   return q;
 }
@@ -362,11 +363,16 @@ std::vector<EntryScores> Database::query(const DatabaseQuery& q, EntryId limit,
   const double base = bowScoreBase(scoring_, q.bow);
   const GroupVector& groups = q.refined_groups;
   static const GroupVector kNoGroups;
+  const bool idf_read = queryIdfCurrent(q);
   query_words_.clear();
   forEachId(q.bow, with_groups ? groups : kNoGroups,
             [&](WordId w, const BowEntry* word, const GroupEntry* group) {
               const double qw = word ? word->second : 0.0;
-              const double qg = group ? group->second * group_table_.idf(w) : 0.0;
+              const double idf = !group ? 0.0
+                                 : idf_read
+                                     ? q.group_idf[static_cast<std::size_t>(group - groups.data())]
+                                     : group_table_.idf(w);
+              const double qg = group ? group->second * idf : 0.0;
               if (qw != 0.0 || qg != 0.0) query_words_.push_back(QueryWord{w, qw, qg});
             });
   auto accumulate = [&](auto term) {
@@ -445,7 +451,9 @@ EntryScores Database::score(const DatabaseQuery& q, EntryId id) const {
   EntryScores s;
   s.entry = id;
   s.s_w = scoreBowVectors(scoring_, q.bow, bow(id));
-  s.s_g = groupScore(q.refined_groups, refineGroupWeights(rawGroups(id), group_table_));
+  s.s_g = queryIdfCurrent(q)
+              ? groupScoreWithIdf(q.refined_groups, q.group_idf, rawGroups(id))
+              : groupScore(q.refined_groups, refineGroupWeights(rawGroups(id), group_table_));
   if (!q.distribution.empty()) s.s_d = distributionScore(q.distribution, cachedDistribution(id));
   return s;
 }

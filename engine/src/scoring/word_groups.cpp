@@ -3,6 +3,7 @@
 #include "bowg/scoring/word_groups.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -13,6 +14,12 @@
 
 namespace bowg {
 namespace {
+
+// WordGroupTable::version(): a fresh value per table state, process-wide.
+std::uint64_t nextTableVersion() {
+  static std::atomic<std::uint64_t> last{0};
+  return ++last;
+}
 
 // The grid has at most about 3 * (kCellsPerPoint * n + kMinCells) cells.
 const double kCellsPerPoint = 4.0;
@@ -235,8 +242,11 @@ GroupVector buildWordGroups(const std::vector<Keypoint>& keypoints,
   return groups;
 }
 
+WordGroupTable::WordGroupTable() : version_(nextTableVersion()) {}
+
 void WordGroupTable::add(const GroupVector& raw) {
   for (const GroupEntry& e : raw) checkWeight("WordGroupTable::add", e);
+  version_ = nextTableVersion();
   for (const GroupEntry& e : raw) {
     if (e.first >= cumulative_.size())
       cumulative_.resize(static_cast<std::size_t>(e.first) + 1, 0.0);
@@ -247,6 +257,7 @@ void WordGroupTable::add(const GroupVector& raw) {
 }
 
 void WordGroupTable::clear() {
+  version_ = nextTableVersion();
   cumulative_.clear();
   seen_ = 0;
   total_ = 0.0;
@@ -279,13 +290,26 @@ GroupVector groupTermFrequencies(const GroupVector& raw) {
 }
 
 GroupVector refineGroupWeights(const GroupVector& raw, const WordGroupTable& table) {
+  return refineGroupWeights(raw, table, nullptr);
+}
+
+GroupVector refineGroupWeights(const GroupVector& raw, const WordGroupTable& table,
+                               std::vector<double>* idf) {
   GroupVector refined;
   refined.reserve(raw.size());
+  if (idf != nullptr) {
+    idf->clear();
+    idf->reserve(raw.size());
+  }
   for (const GroupEntry& e : groupTermFrequencies(raw)) {
     // Eq. 1. A group present in every database weight (idf 0) or unknown to
     // the table carries no information: dropped (GroupVector holds no zeros).
-    const double w = e.second * table.idf(e.first);
-    if (w > 0.0) refined.emplace_back(e.first, w);
+    const double group_idf = table.idf(e.first);
+    const double w = e.second * group_idf;
+    if (w > 0.0) {
+      refined.emplace_back(e.first, w);
+      if (idf != nullptr) idf->push_back(group_idf);
+    }
   }
   return refined;
 }
@@ -310,6 +334,36 @@ double groupScore(const GroupVector& a_refined, const GroupVector& b_refined) {
       ++ib;
     } else {
       dot += ia->second * ib->second;
+      ++ia;
+      ++ib;
+    }
+  }
+  return groupScoreFromDot(dot);
+}
+
+double groupScoreWithIdf(const GroupVector& a_refined, const std::vector<double>& a_idf,
+                         const GroupVector& b_raw) {
+  if (a_idf.size() != a_refined.size()) {
+    throw std::invalid_argument("groupScoreWithIdf: " + std::to_string(a_refined.size()) +
+                                " groups but " + std::to_string(a_idf.size()) + " IDFs");
+  }
+  // b's TF denominator over all its groups, as groupTermFrequencies sums it.
+  double sum = 0.0;
+  for (const GroupEntry& e : b_raw) {
+    checkWeight("groupScoreWithIdf", e);
+    sum += e.second;
+  }
+  double dot = 0.0;
+  std::size_t ia = 0, ib = 0;
+  while (ia < a_refined.size() && ib < b_raw.size()) {
+    if (a_refined[ia].first < b_raw[ib].first) {
+      ++ia;
+    } else if (b_raw[ib].first < a_refined[ia].first) {
+      ++ib;
+    } else {
+      // b's refined weight (eq. 1) with a's IDF of the group; a shared group
+      // has IDF > 0 (a kept it), so b keeps it too.
+      dot += a_refined[ia].second * ((b_raw[ib].second / sum) * a_idf[ia]);
       ++ia;
       ++ib;
     }

@@ -133,6 +133,45 @@ TEST(Database, InverseIndexGroupScoreEqualsDirectEq3WithCurrentIdf) {
   EXPECT_GT(with_groups, 3);
 }
 
+// makeQuery keeps the IDFs it read; query() and score() reuse them while
+// the table stands, bit for bit what the table gives, and read the table
+// again once it has changed (the query then scores with the CURRENT IDF).
+TEST(Database, QueryIdfsAreReusedOnlyWhileTheTableStands) {
+  Database db(vocabulary(), ScoringType::kL1, 2, 8);
+  BowVector qbow;
+  std::vector<GroupVector> added;
+  const BuiltEntry qe = fill(&db, &qbow, &added);
+  DatabaseQuery q = db.makeQuery(qbow, qe.raw_groups, qe.entry.points.unpack(), 320, 240, false);
+  ASSERT_EQ(q.group_idf.size(), q.refined_groups.size());
+  ASSERT_FALSE(q.group_idf.empty());
+  for (std::size_t i = 0; i < q.group_idf.size(); ++i)
+    EXPECT_EQ(q.group_idf[i], db.groupTable().idf(q.refined_groups[i].first));
+  DatabaseQuery unread = q;  // no IDFs: the table is read for each group
+  unread.group_idf.clear();
+  const auto expectSameScores = [&](const char* when) {
+    const std::vector<EntryScores> a = db.query(q, 30, true), b = db.query(unread, 30, true);
+    ASSERT_EQ(a.size(), b.size()) << when;
+    int with_groups = 0;
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      EXPECT_EQ(a[i].entry, b[i].entry) << when;
+      EXPECT_EQ(a[i].s_g, b[i].s_g) << when << " entry " << a[i].entry;
+      EXPECT_EQ(db.score(q, a[i].entry).s_g, db.score(unread, a[i].entry).s_g) << when;
+      EXPECT_EQ(
+          db.score(q, a[i].entry).s_g,
+          groupScore(q.refined_groups, refineGroupWeights(added[a[i].entry], db.groupTable())))
+          << when;
+      if (a[i].s_g > 0) ++with_groups;
+    }
+    EXPECT_GT(with_groups, 3) << when;
+  };
+  expectSameScores("table unchanged");
+  // The table moves on (another keyframe's groups): q's IDFs are stale and
+  // must not be used. Every query group's IDF changes, so reusing them
+  // would change the scores.
+  db.addToGroupTable(added[0]);
+  expectSameScores("table changed");
+}
+
 // The entries keep no raw groups: the database reads them back from its
 // inverse index, exactly as add() received them.
 TEST(Database, RawGroupsAreReadBackAsAdded) {

@@ -304,6 +304,23 @@ TEST(WordGroupTable, RejectsNonPositiveWeights) {
   EXPECT_EQ(t.size(), 0u);  // nothing half-added
 }
 
+TEST(WordGroupTable, VersionChangesWithTheContentsAndTravelsWithACopy) {
+  WordGroupTable t;
+  const WordGroupTable empty_copy = t;
+  EXPECT_NE(WordGroupTable().version(), t.version());  // no two tables share one
+  const std::uint64_t before = t.version();
+  t.add({{1, 2.0}});
+  const std::uint64_t after_add = t.version();
+  EXPECT_NE(after_add, before);
+  const WordGroupTable copy = t;
+  EXPECT_EQ(copy.version(), after_add);
+  t.clear();
+  EXPECT_NE(t.version(), after_add);
+  EXPECT_NE(t.version(), before);  // cleared is not the empty table it was
+  EXPECT_EQ(empty_copy.version(), before);
+  EXPECT_THROW(t.add({{1, 0.0}}), std::invalid_argument);
+}
+
 TEST(Eq1, TermFrequenciesSumToOne) {
   // {1: 2, 3: 3}: sum 5 -> 0.4, 0.6.
   const GroupVector tf = groupTermFrequencies({{1, 2.0}, {3, 3.0}});
@@ -325,6 +342,21 @@ TEST(Eq1, RefinedWeightIsTfTimesIdf) {
   EXPECT_NEAR(r[0].second, 0.3389191, 1e-6);
   EXPECT_EQ(r[1].first, 3u);
   EXPECT_NEAR(r[1].second, 0.5083787, 1e-6);
+}
+
+TEST(Eq1, RefinedWeightsReportTheIdfOfEachKeptGroup) {
+  // {1: 2, 2: 1, 9: 4} against the two-image table: idf 1 = log(7/3),
+  // idf 2 = log 7; group 9 unknown (idf 0) is dropped with its IDF.
+  std::vector<double> idf{42.0};  // replaced, not appended to
+  const GroupVector r = refineGroupWeights({{1, 2.0}, {2, 1.0}, {9, 4.0}}, twoImageTable(), &idf);
+  ASSERT_EQ(r.size(), 2u);
+  ASSERT_EQ(idf.size(), 2u);
+  EXPECT_NEAR(idf[0], 0.8472979, 1e-6);
+  EXPECT_NEAR(idf[1], 1.9459101, 1e-6);
+  // w~ = tf * idf: 2/7 * 0.8472979 = 0.2420851, 1/7 * 1.9459101 = 0.2779872.
+  EXPECT_NEAR(r[0].second, 0.2420851, 1e-6);
+  EXPECT_NEAR(r[1].second, 0.2779872, 1e-6);
+  EXPECT_EQ(r, refineGroupWeights({{1, 2.0}, {2, 1.0}, {9, 4.0}}, twoImageTable()));
 }
 
 TEST(Eq1, GroupsWithZeroIdfAreDropped) {
@@ -367,6 +399,54 @@ TEST(Eq3, EndToEndOnTwoImages) {
   const GroupVector a = refineGroupWeights({{1, 2.0}, {2, 1.0}}, t);
   const GroupVector b = refineGroupWeights({{1, 1.0}, {3, 3.0}}, t);
   EXPECT_NEAR(groupScore(a, b), 0.0617315, 1e-6);
+}
+
+TEST(Eq3, ScoreWithTheQuerysIdfByHand) {
+  // As EndToEndOnTwoImages, B given raw: only group 1 is shared, B's tf 1/4
+  // times A's idf of it, log(7/3): s_g = 0.0617315 again.
+  const WordGroupTable t = twoImageTable();
+  std::vector<double> a_idf;
+  const GroupVector a = refineGroupWeights({{1, 2.0}, {2, 1.0}}, t, &a_idf);
+  EXPECT_NEAR(groupScoreWithIdf(a, a_idf, {{1, 1.0}, {3, 3.0}}), 0.0617315, 1e-6);
+  EXPECT_DOUBLE_EQ(groupScoreWithIdf(a, a_idf, {{3, 3.0}}), 0.0);  // nothing shared
+  EXPECT_DOUBLE_EQ(groupScoreWithIdf(a, a_idf, {}), 0.0);
+}
+
+TEST(Eq3, ScoreWithTheQuerysIdfIsTheRefinedScoreExactly) {
+  // Random tables and images: bit for bit the score of the two refined
+  // vectors, also where the second image has groups of IDF 0 or unknown
+  // to the table (they change its TF denominator, not the dot product).
+  std::mt19937 rng(5);
+  std::uniform_int_distribution<int> id(0, 60), count(1, 9), size(0, 40);
+  const auto image = [&] {
+    std::map<WordId, double> m;
+    const int n = size(rng);
+    for (int i = 0; i < n; ++i) m[static_cast<WordId>(id(rng))] += count(rng);
+    return GroupVector(m.begin(), m.end());
+  };
+  for (int trial = 0; trial < 300; ++trial) {
+    WordGroupTable t;
+    for (int i = 0; i < 1 + trial % 7; ++i) {
+      const GroupVector g = image();
+      if (!g.empty()) t.add(g);
+    }
+    if (trial % 5 == 0) t.add({{61, 3.0}});  // a group only the table has
+    std::vector<double> a_idf;
+    const GroupVector a = refineGroupWeights(image(), t, &a_idf);
+    GroupVector b = image();
+    if (trial % 3 == 0) b.emplace_back(70, 2.0);  // unknown to the table
+    EXPECT_EQ(groupScoreWithIdf(a, a_idf, b), groupScore(a, refineGroupWeights(b, t)))
+        << "trial " << trial;
+  }
+}
+
+TEST(Eq3, ScoreWithTheQuerysIdfRejectsBadInput) {
+  const WordGroupTable t = twoImageTable();
+  std::vector<double> a_idf;
+  const GroupVector a = refineGroupWeights({{1, 2.0}, {2, 1.0}}, t, &a_idf);
+  EXPECT_THROW(groupScoreWithIdf(a, {0.5}, {{1, 1.0}}), std::invalid_argument);
+  EXPECT_THROW(groupScoreWithIdf(a, a_idf, {{1, 0.0}}), std::invalid_argument);
+  EXPECT_THROW(groupScoreWithIdf(a, a_idf, {{1, -1.0}}), std::invalid_argument);
 }
 
 }  // namespace

@@ -128,6 +128,11 @@ struct DatabaseQuery {
   BowVector bow;                     ///< normalised for the database's scoring
   GroupVector refined_groups;        ///< eq. 1 with the current table
   std::vector<double> distribution;  ///< for the current m (may be empty)
+  /// The IDF of each refined group (index-aligned) and the version of the
+  /// table it was read from (makeQuery): query() and score() need the same
+  /// IDFs again and reuse these while the table's version is this one.
+  std::vector<double> group_idf;
+  std::uint64_t group_table_version = 0;
 };
 
 class Database {
@@ -222,6 +227,11 @@ class Database {
   void clear();
 
  private:
+  // Whether q's group IDFs were read from the table as it stands.
+  bool queryIdfCurrent(const DatabaseQuery& q) const {
+    return q.group_table_version == group_table_.version() &&
+           q.group_idf.size() == q.refined_groups.size();
+  }
   /// The BoW vectors and raw groups of the newest kRecentEntries entries,
   /// as bow() and rawGroups() return them, in a ring by id: every query
   /// scores I_{t-1}, one of them (score()), and rebuilding its vectors from

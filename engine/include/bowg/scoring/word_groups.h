@@ -2,6 +2,7 @@
 // word-group table (Sec. III-A "Word Group Table").
 #pragma once
 
+#include <cstdint>
 #include <utility>
 #include <vector>
 
@@ -31,6 +32,7 @@ GroupVector buildWordGroups(const std::vector<Keypoint>& keypoints,
 /// w_{g,t}^(i), and the grand total sum_t sum_i w_{g,t}^(i).
 class WordGroupTable {
  public:
+  WordGroupTable();
   void add(const GroupVector& raw);
   void clear();
   double cumulative(WordId group) const;  ///< 0 when never seen
@@ -41,6 +43,10 @@ class WordGroupTable {
   /// IDF part of eq. 1: log(total / cumulative(group)); 0 when the group
   /// was never seen (it cannot be shared with any database image then).
   double idf(WordId group) const;
+  /// Changes with every add() and clear(), to a value no table had before;
+  /// a copy keeps it with the contents. Equal versions: equal IDFs, so that
+  /// IDFs read once can be reused while the version stands.
+  std::uint64_t version() const { return version_; }
 
  private:
   // Dense by group id (grown to the largest id seen): a query reads the IDF
@@ -49,6 +55,7 @@ class WordGroupTable {
   std::vector<double> cumulative_;
   std::size_t seen_ = 0;
   double total_ = 0.0;
+  std::uint64_t version_;
 };
 
 /// TF part of eq. 1: w / sum_i w over the image (sums to 1).
@@ -58,11 +65,22 @@ GroupVector groupTermFrequencies(const GroupVector& raw);
 /// The BoWG pipeline adds the query's raw weights to the table first, so the
 /// IDF is finite for every group of the query.
 GroupVector refineGroupWeights(const GroupVector& raw, const WordGroupTable& table);
+/// The same, with the IDF of each kept group in `idf` (index-aligned with
+/// the result; not touched when null).
+GroupVector refineGroupWeights(const GroupVector& raw, const WordGroupTable& table,
+                               std::vector<double>* idf);
 
 /// Eq. 3 on the inner product of refined weights: 1 if dot > 1, else
 /// 1 - sqrt(1 - dot).
 double groupScoreFromDot(double dot);
 /// Eq. 3 for two refined vectors.
 double groupScore(const GroupVector& a_refined, const GroupVector& b_refined);
+/// groupScore(a_refined, refineGroupWeights(b_raw, table)), where `a_idf`
+/// holds the table's IDF of each group of a_refined (index-aligned): only
+/// the shared groups enter eq. 3's dot product, and a has their IDFs. The
+/// same operations in the same order, so the same score, without a
+/// logarithm or a vector for b.
+double groupScoreWithIdf(const GroupVector& a_refined, const std::vector<double>& a_idf,
+                         const GroupVector& b_raw);
 
 }  // namespace bowg
