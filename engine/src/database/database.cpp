@@ -220,6 +220,21 @@ GroupVector Database::rawGroups(EntryId id) const {
 
 EntryId Database::add(DatabaseEntry e, const GroupVector& raw_groups,
                       const std::vector<double>& distribution) {
+  return addEntry(std::move(e), raw_groups, distribution, nullptr);
+}
+
+EntryId Database::add(DatabaseEntry e, const GroupVector& raw_groups,
+                      const DatabaseQuery& queried) {
+  if (queried.scoring != scoring_) {
+    throw std::invalid_argument("Database::add: the query's BoW vector is normalised for " +
+                                toString(queried.scoring) + ", the database scores " +
+                                toString(scoring_));
+  }
+  return addEntry(std::move(e), raw_groups, queried.distribution, &queried.bow);
+}
+
+EntryId Database::addEntry(DatabaseEntry e, const GroupVector& raw_groups,
+                           const std::vector<double>& distribution, const BowVector* bow) {
   const std::size_t n = e.points.size();
   if (!distribution.empty() && distribution.size() != static_cast<std::size_t>(fan_bins_)) {
     throw std::invalid_argument("Database::add: distribution vector of " +
@@ -256,6 +271,17 @@ EntryId Database::add(DatabaseEntry e, const GroupVector& raw_groups,
         throw std::invalid_argument("Database::add: word group " + std::to_string(g.first) +
                                     " has weight " + std::to_string(g.second) +
                                     ", not a whole count in [1, 2^24)");
+      }
+    }
+    if (bow != nullptr) {
+      // Both sorted: the BoW's words must be among the entry's.
+      std::size_t j = 0;
+      for (const BowEntry& b : *bow) {
+        while (j < sorted.size() && sorted[j] < b.first) ++j;
+        if (j == sorted.size() || sorted[j] != b.first) {
+          throw std::invalid_argument("Database::add: the query's BoW vector holds word " +
+                                      std::to_string(b.first) + ", not one of the entry's");
+        }
       }
     }
   }
@@ -302,13 +328,13 @@ EntryId Database::add(DatabaseEntry e, const GroupVector& raw_groups,
     for (const auto& g : raw_groups) {
       kept.push_back(GroupCount{g.first, static_cast<std::uint32_t>(g.second)});
     }
-    remember(id, bowOfWords(words), raw_groups);
+    remember(id, bow != nullptr ? *bow : bowOfWords(words), raw_groups);
     return id;
   }
   ++searchable_count_;
   // One posting per word of the BoW vector or group (both sorted by id).
-  const BowVector& bow = remember(id, bowOfWords(words), raw_groups);
-  forEachId(bow, raw_groups,
+  const BowVector& kept = remember(id, bow != nullptr ? *bow : bowOfWords(words), raw_groups);
+  forEachId(kept, raw_groups,
             [&](WordId w, const BowEntry* word, const GroupEntry* group) {
               std::uint32_t code = 0;
               if (group) {
@@ -331,6 +357,7 @@ DatabaseQuery Database::makeQuery(BowVector bow, const GroupVector& raw_groups,
   DatabaseQuery q;
   q.bow = std::move(bow);
   normaliseBowVector(scoring_, &q.bow);
+  q.scoring = scoring_;
   q.refined_groups = refineGroupWeights(raw_groups, group_table_, &q.group_idf);
   q.group_table_version = group_table_.version();
   if (with_distribution) q.distribution = distributionVector(points, centre_x, centre_y, fan_bins_);

@@ -208,7 +208,7 @@ LoopResult LoopDetector::process(const KeyframeInput& keyframe) {
   } catch (...) {
     // The raw groups are already in the table: add the entry anyway so that
     // the table, the indexes and the keyframe ids stay consistent.
-    database_->add(std::move(entry), raw_groups, q.distribution);
+    database_->add(std::move(entry), raw_groups, q);
     throw;
   }
   // A keyframe whose loop made its place larger than indexed_per_place
@@ -218,8 +218,9 @@ LoopResult LoopDetector::process(const KeyframeInput& keyframe) {
   entry.searchable =
       per_place == 0 || r.status != LoopStatus::kLoopDetected ||
       state_->place_links.placeSize(r.query_id) <= static_cast<std::size_t>(per_place);
-  // The query's distribution vector is the entry's: not computed twice.
-  database_->add(std::move(entry), raw_groups, q.distribution);
+  // The query's BoW and distribution vectors are the entry's: not computed
+  // twice.
+  database_->add(std::move(entry), raw_groups, q);
   r.timings.total_ms = msBetween(t0, Clock::now());
   return r;
 }

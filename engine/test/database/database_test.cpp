@@ -172,6 +172,71 @@ TEST(Database, QueryIdfsAreReusedOnlyWhileTheTableStands) {
   expectSameScores("table changed");
 }
 
+// The keyframe just queried joins with the query's BoW and distribution
+// vectors: the same entry, postings and scores as one built from its words,
+// for every scoring, searchable or not.
+TEST(Database, AddingTheQueriedKeyframeTakesItsVectorsAsBuiltFromTheWords) {
+  for (const ScoringType s :
+       {ScoringType::kL1, ScoringType::kL2, ScoringType::kChiSquare, ScoringType::kKl,
+        ScoringType::kBhattacharyya, ScoringType::kDotProduct}) {
+    for (const bool searchable : {true, false}) {
+      Database a(vocabulary(), s, 2, 8), b(vocabulary(), s, 2, 8);
+      BowVector qbow;
+      const BuiltEntry qe = fill(&a, &qbow);
+      BowVector unused;
+      fill(&b, &unused);
+      const DatabaseQuery q =
+          a.makeQuery(qbow, qe.raw_groups, qe.entry.points.unpack(), 320, 240, true);
+      DatabaseEntry ea = qe.entry, eb = qe.entry;
+      ea.searchable = eb.searchable = searchable;
+      const EntryId ia = a.add(std::move(ea), qe.raw_groups, q);
+      const EntryId ib = b.add(std::move(eb), qe.raw_groups);
+      ASSERT_EQ(ia, ib);
+      EXPECT_EQ(a.bow(ia), b.bow(ib)) << toString(s);
+      EXPECT_EQ(a.bow(ia), q.bow) << toString(s);
+      EXPECT_EQ(a.rawGroups(ia), b.rawGroups(ib));
+      EXPECT_LE(a.memoryBytes(), b.memoryBytes());  // the copy kept is no larger
+      // A later query scores the new entry the same in both.
+      const DatabaseQuery later =
+          a.makeQuery(qbow, qe.raw_groups, qe.entry.points.unpack(), 320, 240, true);
+      const std::vector<EntryScores> sa = a.query(later, ia + 1, true);
+      const std::vector<EntryScores> sb = b.query(later, ib + 1, true);
+      ASSERT_EQ(sa.size(), sb.size());
+      for (std::size_t i = 0; i < sa.size(); ++i) {
+        EXPECT_EQ(sa[i].entry, sb[i].entry);
+        EXPECT_EQ(sa[i].s_w, sb[i].s_w) << toString(s);
+        EXPECT_EQ(sa[i].s_g, sb[i].s_g);
+        EXPECT_EQ(sa[i].s_d, sb[i].s_d);
+      }
+      EXPECT_EQ(searchable, !sa.empty() && sa.back().entry == ia);
+    }
+  }
+}
+
+TEST(Database, AddingTheQueriedKeyframeRefusesAForeignQuery) {
+  Database db(vocabulary(), ScoringType::kL1, 2, 8);
+  BowVector qbow;
+  const BuiltEntry qe = fill(&db, &qbow);
+  const DatabaseQuery q =
+      db.makeQuery(qbow, qe.raw_groups, qe.entry.points.unpack(), 320, 240, true);
+  DatabaseQuery other_scoring = q;
+  other_scoring.scoring = ScoringType::kL2;
+  EXPECT_THROW(db.add(qe.entry, qe.raw_groups, other_scoring), std::invalid_argument);
+  DatabaseQuery foreign_word = q;
+  const std::vector<WordId> words = qe.entry.words.unpack();
+  WordId absent = 0;
+  while (std::find(words.begin(), words.end(), absent) != words.end()) ++absent;
+  foreign_word.bow.insert(
+      std::lower_bound(foreign_word.bow.begin(), foreign_word.bow.end(), BowEntry{absent, 0.0}),
+      BowEntry{absent, 0.1});
+  EXPECT_THROW(db.add(qe.entry, qe.raw_groups, foreign_word), std::invalid_argument);
+  DatabaseQuery wrong_bins = q;
+  wrong_bins.distribution.pop_back();
+  EXPECT_THROW(db.add(qe.entry, qe.raw_groups, wrong_bins), std::invalid_argument);
+  EXPECT_EQ(db.size(), 30u);  // nothing half-added
+  EXPECT_EQ(db.add(qe.entry, qe.raw_groups, q), 30u);
+}
+
 // The entries keep no raw groups: the database reads them back from its
 // inverse index, exactly as add() received them.
 TEST(Database, RawGroupsAreReadBackAsAdded) {

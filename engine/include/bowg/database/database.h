@@ -133,6 +133,8 @@ struct DatabaseQuery {
   /// IDFs again and reuse these while the table's version is this one.
   std::vector<double> group_idf;
   std::uint64_t group_table_version = 0;
+  /// The scoring `bow` was normalised for.
+  ScoringType scoring = ScoringType::kL1;
 };
 
 class Database {
@@ -188,6 +190,13 @@ class Database {
   /// size is refused (std::invalid_argument).
   EntryId add(DatabaseEntry entry, const GroupVector& raw_groups,
               const std::vector<double>& distribution = std::vector<double>());
+  /// add() for the keyframe just queried with `queried`: makeQuery's query
+  /// for this entry, from the BoW vector of the entry's words (the one
+  /// Vocabulary::transform gave with them) and its positions. Its BoW and
+  /// distribution vectors are the ones add() would build again, so they are
+  /// taken from it. std::invalid_argument also when `queried` was normalised
+  /// for another scoring or its BoW holds a word the entry does not have.
+  EntryId add(DatabaseEntry entry, const GroupVector& raw_groups, const DatabaseQuery& queried);
 
   /// Entry `id`'s BoW vector normalised for scoring(): the vocabulary's
   /// transform of its words (Vocabulary::bowFromWords), normalised; the
@@ -227,6 +236,10 @@ class Database {
   void clear();
 
  private:
+  // add(); `bow`: the entry's BoW vector when the caller has it (null: built
+  // from the words).
+  EntryId addEntry(DatabaseEntry entry, const GroupVector& raw_groups,
+                   const std::vector<double>& distribution, const BowVector* bow);
   // Whether q's group IDFs were read from the table as it stands.
   bool queryIdfCurrent(const DatabaseQuery& q) const {
     return q.group_table_version == group_table_.version() &&
