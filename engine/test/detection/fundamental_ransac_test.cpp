@@ -86,6 +86,30 @@ TEST(FundamentalRansac, SeparatesASceneFromScatteredPairs) {
   EXPECT_EQ(again.samples, r.samples);
 }
 
+TEST(FundamentalRansac, TheCountedInliersAreThePairsTheModelAccepts) {
+  // The inlier count that picks the best model runs two pairs at a time
+  // (and the odd one alone); the mask tests each pair by itself. Over odd
+  // and even numbers of pairs, thresholds and scenes they must agree.
+  for (int n = 7; n <= 41; ++n) {
+    for (const double threshold : {0.5, 2.0, 6.0}) {
+      const std::vector<PointPair> pairs =
+          scene(n - n / 3, n / 3, 0.4, static_cast<unsigned>(100 + n));
+      FundamentalRansacOptions o;
+      o.threshold_px = threshold;
+      o.refits = n % 2;
+      const FundamentalRansacResult r = fundamentalRansac(pairs, o);
+      ASSERT_TRUE(r.found) << n;
+      int accepted = 0;
+      for (const PointPair& p : pairs)
+        accepted += epipolarErrorSquared(r.f, p) <= threshold * threshold ? 1 : 0;
+      int masked = 0;
+      for (const unsigned char m : r.inlier_mask) masked += m;
+      EXPECT_EQ(r.inliers, masked) << n << " pairs, " << threshold << " px";
+      EXPECT_EQ(r.inliers, accepted) << n << " pairs, " << threshold << " px";
+    }
+  }
+}
+
 TEST(FundamentalRansac, TheSampleLimitStopsTheRun) {
   // 20 consistent of 100: the adaptive stop would be ~360,000 samples.
   const std::vector<PointPair> pairs = scene(20, 80, 0.3, 3);
