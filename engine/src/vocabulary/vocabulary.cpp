@@ -13,6 +13,7 @@
 #include "bowg/core/checksum.h"
 #include "bowg/core/errors.h"
 #include "bowg/vocabulary/id_index_sort.h"
+#include "vocabulary/tree_descent.h"
 #include "vocabulary/vocabulary_records.h"
 
 namespace bowg {
@@ -42,46 +43,6 @@ void encodeRecord(const Vocabulary::Node& n, unsigned char out[64]) {
   std::memcpy(&weight_bits, &n.weight, sizeof(weight_bits));
   putLe(out + 24, weight_bits, 8);
   for (int b = 0; b < 4; ++b) putLe(out + 32 + 8 * b, n.descriptor.bits[b], 8);
-}
-
-// Descends `count` (<= kBatch) descriptors in lockstep, prefetching the
-// child block of each before it is needed: the deep levels of a k=10 L=6
-// tree (70 MB) miss the cache, and interleaving several descents overlaps
-// those misses instead of paying them one after another.
-const std::size_t kBatch = 8;
-
-void descendBatch(const Vocabulary::Node* nodes, const Descriptor* d, std::size_t count, int level,
-                  WordId* words, NodeId* at_level) {
-  std::uint32_t current[kBatch];
-  for (std::size_t g = 0; g < count; ++g) {
-    current[g] = 0;
-    at_level[g] = 0;
-  }
-  for (bool moved = true; moved;) {
-    moved = false;
-    for (std::size_t g = 0; g < count; ++g) {
-      const Vocabulary::Node& node = nodes[current[g]];
-      if (node.num_children == 0) continue;
-      const Vocabulary::Node* child = nodes + node.first_child;
-      std::uint32_t best = node.first_child;
-      int best_distance = hammingDistance(d[g], child->descriptor);
-      for (std::uint32_t c = 1; c < node.num_children; ++c) {
-        const int distance = hammingDistance(d[g], child[c].descriptor);
-        if (distance < best_distance) {
-          best_distance = distance;
-          best = node.first_child + c;
-        }
-      }
-      current[g] = best;
-      if (static_cast<int>(nodes[best].level) <= level) at_level[g] = best;
-      const Vocabulary::Node& next = nodes[best];
-      for (std::uint32_t c = 0; c < next.num_children; ++c) {
-        __builtin_prefetch(nodes + next.first_child + c);
-      }
-      moved = true;
-    }
-  }
-  for (std::size_t g = 0; g < count; ++g) words[g] = nodes[current[g]].word;
 }
 
 // k, L, the weighting and scoring types, the node count and the root.
@@ -350,12 +311,14 @@ void Vocabulary::transform(const std::vector<Descriptor>& descriptors, BowVector
   std::vector<std::pair<NodeId, std::uint32_t>> node_of;
   if (direct != nullptr) node_of.resize(n);
   if (nodes_.size() < 2) throw std::logic_error("Vocabulary::transform: the vocabulary is empty");
+  const std::size_t kBatch = tree_descent::kBatch;
+  const tree_descent::DescendBatch descend = tree_descent::bestDescendBatch();
   for (std::size_t i = 0; i < n; i += kBatch) {
     const std::size_t count = std::min(kBatch, n - i);
     WordId w[kBatch];
     NodeId node[kBatch];
-    descendBatch(nodes_.data(), descriptors.data() + i, count, direct != nullptr ? direct_level : 0,
-                 w, node);
+    descend(nodes_.data(), descriptors.data() + i, count, direct != nullptr ? direct_level : 0, w,
+            node);
     for (std::size_t g = 0; g < count; ++g) {
       word_of[i + g] = {w[g], static_cast<std::uint32_t>(i + g)};
       if (direct != nullptr) node_of[i + g] = {node[g], static_cast<std::uint32_t>(i + g)};

@@ -1,0 +1,48 @@
+// The portable tree descent and the choice between it and the AVX2 one
+// (tree_descent.h).
+#include "vocabulary/tree_descent.h"
+
+namespace bowg {
+namespace tree_descent {
+
+void descendBatchPortable(const Vocabulary::Node* nodes, const Descriptor* d, std::size_t count,
+                          int level, WordId* words, NodeId* at_level) {
+  std::uint32_t current[kBatch];
+  for (std::size_t g = 0; g < count; ++g) {
+    current[g] = 0;
+    at_level[g] = 0;
+  }
+  for (bool moved = true; moved;) {
+    moved = false;
+    for (std::size_t g = 0; g < count; ++g) {
+      const Vocabulary::Node& node = nodes[current[g]];
+      if (node.num_children == 0) continue;
+      const Vocabulary::Node* child = nodes + node.first_child;
+      std::uint32_t best = node.first_child;
+      int best_distance = hammingDistance(d[g], child->descriptor);
+      for (std::uint32_t c = 1; c < node.num_children; ++c) {
+        const int distance = hammingDistance(d[g], child[c].descriptor);
+        if (distance < best_distance) {
+          best_distance = distance;
+          best = node.first_child + c;
+        }
+      }
+      current[g] = best;
+      if (static_cast<int>(nodes[best].level) <= level) at_level[g] = best;
+      const Vocabulary::Node& next = nodes[best];
+      for (std::uint32_t c = 0; c < next.num_children; ++c) {
+        __builtin_prefetch(nodes + next.first_child + c);
+      }
+      moved = true;
+    }
+  }
+  for (std::size_t g = 0; g < count; ++g) words[g] = nodes[current[g]].word;
+}
+
+DescendBatch bestDescendBatch() {
+  static const DescendBatch best = avx2Available() ? descendBatchAvx2 : descendBatchPortable;
+  return best;
+}
+
+}  // namespace tree_descent
+}  // namespace bowg
