@@ -253,16 +253,25 @@ EntryId Database::addEntry(DatabaseEntry e, const GroupVector& raw_groups,
     if (w >= W) throw std::invalid_argument("Database::add: word id out of range");
   }
   {
-    std::vector<WordId> sorted = words;
-    std::sort(sorted.begin(), sorted.end());
+    // The entry's words in order (a radix sort), walked along the groups
+    // and the BoW vector, both sorted by id.
+    std::vector<IdIndexPair> sorted(words.size());
+    for (std::size_t i = 0; i < words.size(); ++i)
+      sorted[i] = {words[i], static_cast<std::uint32_t>(i)};
+    sortIdIndexPairs(&sorted);
+    const auto hasWord = [&sorted](std::size_t* j, WordId w) {
+      while (*j < sorted.size() && sorted[*j].first < w) ++*j;
+      return *j < sorted.size() && sorted[*j].first == w;
+    };
     WordId previous = 0;
+    std::size_t walked = 0;
     for (std::size_t i = 0; i < raw_groups.size(); ++i) {
       const GroupEntry& g = raw_groups[i];
       if (i > 0 && g.first <= previous) {
         throw std::invalid_argument("Database::add: raw groups not sorted by id without repeats");
       }
       previous = g.first;
-      if (!std::binary_search(sorted.begin(), sorted.end(), g.first)) {
+      if (!hasWord(&walked, g.first)) {
         throw std::invalid_argument("Database::add: word group " + std::to_string(g.first) +
                                     " is not one of the entry's words");
       }
@@ -274,11 +283,9 @@ EntryId Database::addEntry(DatabaseEntry e, const GroupVector& raw_groups,
       }
     }
     if (bow != nullptr) {
-      // Both sorted: the BoW's words must be among the entry's.
       std::size_t j = 0;
       for (const BowEntry& b : *bow) {
-        while (j < sorted.size() && sorted[j] < b.first) ++j;
-        if (j == sorted.size() || sorted[j] != b.first) {
+        if (!hasWord(&j, b.first)) {
           throw std::invalid_argument("Database::add: the query's BoW vector holds word " +
                                       std::to_string(b.first) + ", not one of the entry's");
         }

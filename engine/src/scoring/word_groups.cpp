@@ -11,6 +11,7 @@
 #include <string>
 
 #include "bowg/core/heap_bytes.h"
+#include "bowg/vocabulary/id_index_sort.h"
 
 namespace bowg {
 namespace {
@@ -219,24 +220,30 @@ GroupVector buildWordGroups(const std::vector<Keypoint>& keypoints,
   const std::int64_t ny = static_cast<std::int64_t>(std::floor(ey / cell)) + 1;
   const PointGrid grid(keypoints, min_x, min_y, cell, nx, ny);
 
-  GroupVector found;
+  // (word, feature) of each feature with neighbours, its count apart.
+  std::vector<IdIndexPair> found;
+  std::vector<int> neighbours(keypoints.size(), 0);
   found.reserve(keypoints.size());
   for (std::size_t i = 0; i < keypoints.size(); ++i) {
     const double radius = options.radius_scale * keypoints[i].size;
     if (!(radius > 0.0)) continue;
     const int n = grid.countNeighbours(keypoints[i].x, keypoints[i].y, radius);
-    if (n > 0) found.emplace_back(words[i], n);  // weight = words in the group - 1
+    if (n > 0) {
+      neighbours[i] = n;  // weight = words in the group - 1
+      found.emplace_back(words[i], static_cast<std::uint32_t>(i));
+    }
   }
-  // Several features with the same word add into the one group i.
-  std::sort(found.begin(), found.end(),
-            [](const GroupEntry& a, const GroupEntry& b) { return a.first < b.first; });
+  // Several features with the same word add into the one group i (whole
+  // counts: the sum does not depend on the order).
+  sortIdIndexPairs(&found);
   GroupVector groups;
   groups.reserve(found.size());
-  for (const GroupEntry& e : found) {
+  for (const IdIndexPair& e : found) {
+    const double n = static_cast<double>(neighbours[e.second]);
     if (!groups.empty() && groups.back().first == e.first) {
-      groups.back().second += e.second;
+      groups.back().second += n;
     } else {
-      groups.push_back(e);
+      groups.emplace_back(e.first, n);
     }
   }
   return groups;
