@@ -3,9 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#if defined(__SSE2__) && defined(__x86_64__)
-#include <emmintrin.h>
-#endif
+
+#include "detection/epipolar_inliers.h"
 
 namespace bowg {
 namespace {
@@ -70,16 +69,16 @@ inline bool isInlier(const double f[9], const PointPair& p, double t2) {
   return e.normal > 0.0 && e.residual * e.residual <= t2 * e.normal;
 }
 
-// Pairs tested per early-abandon check of the inlier count.
-const std::uint32_t kCountBlock = 8;
-
-// The pairs' coordinates one array each, so that the inlier test of a block
-// of pairs runs as vector instructions: counting inliers is most of
-// RANSAC's time.
+// The pairs' coordinates one array each, for the vector inlier count
+// (epipolar_inliers.h): counting inliers is most of RANSAC's time.
 class PairColumns {
  public:
   explicit PairColumns(const std::vector<PointPair>& pairs)
-      : x1_(pairs.size()), y1_(pairs.size()), x2_(pairs.size()), y2_(pairs.size()) {
+      : x1_(pairs.size()),
+        y1_(pairs.size()),
+        x2_(pairs.size()),
+        y2_(pairs.size()),
+        count_(epipolar_inliers::bestCountInliers()) {
     for (std::size_t i = 0; i < pairs.size(); ++i) {
       x1_[i] = pairs[i].x1;
       y1_[i] = pairs[i].y1;
@@ -88,66 +87,16 @@ class PairColumns {
     }
   }
 
-  /// How many of pairs [begin, end) isInlier(f, pair, t2) accepts: the same
-  /// operations in the same order as epipolarResidual (without contraction
-  /// into fused multiply-adds, which this build does not enable), so the
-  /// same answer.
-  int inliers(const double f[9], double t2, std::uint32_t begin, std::uint32_t end) const {
-    const double* x1 = x1_.data();
-    const double* y1 = y1_.data();
-    const double* x2 = x2_.data();
-    const double* y2 = y2_.data();
-    std::uint32_t i = begin;
-    int count = 0;
-#if defined(__SSE2__) && defined(__x86_64__)
-    // Two pairs an instruction, the compare masks (all ones: -1) subtracted
-    // from 64-bit counts: left to the compiler, the count is a chain of
-    // scalar additions, one per pair.
-    const __m128d f0 = _mm_set1_pd(f[0]), f1 = _mm_set1_pd(f[1]), f2 = _mm_set1_pd(f[2]);
-    const __m128d f3 = _mm_set1_pd(f[3]), f4 = _mm_set1_pd(f[4]), f5 = _mm_set1_pd(f[5]);
-    const __m128d f6 = _mm_set1_pd(f[6]), f7 = _mm_set1_pd(f[7]), f8 = _mm_set1_pd(f[8]);
-    const __m128d tt = _mm_set1_pd(t2), zero = _mm_setzero_pd();
-    __m128i counts = _mm_setzero_si128();
-    for (; i + 2 <= end; i += 2) {
-      const __m128d px1 = _mm_loadu_pd(x1 + i), py1 = _mm_loadu_pd(y1 + i);
-      const __m128d px2 = _mm_loadu_pd(x2 + i), py2 = _mm_loadu_pd(y2 + i);
-      const __m128d l2a = _mm_add_pd(_mm_add_pd(_mm_mul_pd(f0, px1), _mm_mul_pd(f1, py1)), f2);
-      const __m128d l2b = _mm_add_pd(_mm_add_pd(_mm_mul_pd(f3, px1), _mm_mul_pd(f4, py1)), f5);
-      const __m128d l2c = _mm_add_pd(_mm_add_pd(_mm_mul_pd(f6, px1), _mm_mul_pd(f7, py1)), f8);
-      const __m128d l1a = _mm_add_pd(_mm_add_pd(_mm_mul_pd(f0, px2), _mm_mul_pd(f3, py2)), f6);
-      const __m128d l1b = _mm_add_pd(_mm_add_pd(_mm_mul_pd(f1, px2), _mm_mul_pd(f4, py2)), f7);
-      const __m128d n2 = _mm_add_pd(_mm_mul_pd(l2a, l2a), _mm_mul_pd(l2b, l2b));
-      const __m128d n1 = _mm_add_pd(_mm_mul_pd(l1a, l1a), _mm_mul_pd(l1b, l1b));
-      const __m128d normal = _mm_min_pd(n1, n2);  // n1 < n2 ? n1 : n2
-      const __m128d residual =
-          _mm_add_pd(_mm_add_pd(_mm_mul_pd(px2, l2a), _mm_mul_pd(py2, l2b)), l2c);
-      const __m128d inlier =
-          _mm_and_pd(_mm_cmpgt_pd(normal, zero),
-                     _mm_cmple_pd(_mm_mul_pd(residual, residual), _mm_mul_pd(tt, normal)));
-      counts = _mm_sub_epi64(counts, _mm_castpd_si128(inlier));
-    }
-    count = static_cast<int>(_mm_cvtsi128_si64(counts) +
-                             _mm_cvtsi128_si64(_mm_unpackhi_epi64(counts, counts)));
-#endif
-    // The rest (all of it without SSE2): a double count of 0/1 factors,
-    // which the compiler vectorises where it can (exact below 2^53).
-    double rest = 0;
-    for (; i < end; ++i) {
-      const double l2a = f[0] * x1[i] + f[1] * y1[i] + f[2];
-      const double l2b = f[3] * x1[i] + f[4] * y1[i] + f[5];
-      const double l2c = f[6] * x1[i] + f[7] * y1[i] + f[8];
-      const double l1a = f[0] * x2[i] + f[3] * y2[i] + f[6];
-      const double l1b = f[1] * x2[i] + f[4] * y2[i] + f[7];
-      const double n2 = l2a * l2a + l2b * l2b, n1 = l1a * l1a + l1b * l1b;
-      const double normal = n1 < n2 ? n1 : n2;
-      const double residual = x2[i] * l2a + y2[i] * l2b + l2c;
-      rest += (normal > 0.0 ? 1.0 : 0.0) * (residual * residual <= t2 * normal ? 1.0 : 0.0);
-    }
-    return count + static_cast<int>(rest);
+  /// How many pairs isInlier(f, pair, t2) accepts, or at most `best` once
+  /// that is all that can be (epipolar_inliers.h).
+  int inliers(const double f[9], double t2, int best) const {
+    const epipolar_inliers::PairArrays arrays{x1_.data(), y1_.data(), x2_.data(), y2_.data()};
+    return count_(arrays, static_cast<std::uint32_t>(x1_.size()), f, t2, best);
   }
 
  private:
   std::vector<double> x1_, y1_, x2_, y2_;
+  epipolar_inliers::CountInliers count_;
 };
 
 }  // namespace
@@ -179,17 +128,8 @@ FundamentalRansacResult fundamentalRansac(const std::vector<PointPair>& pairs,
   const double t2 = options.threshold_px * options.threshold_px;
   const PairColumns columns(pairs);
   // The inliers of model f, giving up (returning at most `best`) once it
-  // cannot have more than `best`: checked after each block, whose pairs are
-  // tested without a branch so that the loop vectorises.
-  auto countInliers = [&](const double f[9], int best) {
-    int count = 0;
-    for (std::uint32_t begin = 0; begin < n; begin += kCountBlock) {
-      const std::uint32_t end = std::min(n, begin + kCountBlock);
-      count += columns.inliers(f, t2, begin, end);
-      if (count + static_cast<int>(n - end) <= best) break;
-    }
-    return count;
-  };
+  // cannot have more than `best`.
+  auto countInliers = [&](const double f[9], int best) { return columns.inliers(f, t2, best); };
   SampleGenerator rng{options.seed};
   int best = 6;  // a model needs 7 inliers: at least its own sample
   int limit = options.max_samples;

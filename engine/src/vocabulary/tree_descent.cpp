@@ -2,6 +2,8 @@
 // (tree_descent.h).
 #include "vocabulary/tree_descent.h"
 
+#include "core/cpu_features.h"
+
 namespace bowg {
 namespace tree_descent {
 
@@ -40,7 +42,7 @@ void descendBatchPortable(const Vocabulary::Node* nodes, const Descriptor* d, st
 }
 
 DescendBatch bestDescendBatch() {
-  static const DescendBatch best = avx2Available() ? descendBatchAvx2 : descendBatchPortable;
+  static const DescendBatch best = cpuHasAvx2() ? descendBatchAvx2 : descendBatchPortable;
   return best;
 }
 

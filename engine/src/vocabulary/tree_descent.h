@@ -29,11 +29,8 @@ using DescendBatch = void (*)(const Vocabulary::Node* nodes, const Descriptor* d
 void descendBatchPortable(const Vocabulary::Node* nodes, const Descriptor* d, std::size_t count,
                           int level, WordId* words, NodeId* at_level);
 
-/// Whether this CPU (and its operating system) runs descendBatchAvx2.
-bool avx2Available();
-
-/// descendBatchPortable's results with AVX2. Call only where
-/// avx2Available(); std::logic_error where this build has no AVX2 version
+/// descendBatchPortable's results with AVX2. Call only where cpuHasAvx2()
+/// (core/cpu_features.h); std::logic_error where this build has no AVX2 version
 /// (other architectures).
 void descendBatchAvx2(const Vocabulary::Node* nodes, const Descriptor* d, std::size_t count,
                       int level, WordId* words, NodeId* at_level);

@@ -59,13 +59,6 @@ __attribute__((target("avx2"))) inline std::uint64_t fourDistances(__m256i q, co
 
 }  // namespace
 
-bool avx2Available() {
-  // GCC's and Clang's CPU check also asks whether the operating system
-  // saves the AVX registers.
-  __builtin_cpu_init();
-  return __builtin_cpu_supports("avx2") != 0;
-}
-
 __attribute__((target("avx2"))) void descendBatchAvx2(const Node* nodes, const Descriptor* d,
                                                       std::size_t count, int level, WordId* words,
                                                       NodeId* at_level) {
@@ -113,8 +106,6 @@ __attribute__((target("avx2"))) void descendBatchAvx2(const Node* nodes, const D
 }
 
 #else
-
-bool avx2Available() { return false; }
 
 void descendBatchAvx2(const Vocabulary::Node*, const Descriptor*, std::size_t, int, WordId*,
                       NodeId*) {

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "core/cpu_features.h"
 #include "synthetic_vocabulary.h"
 
 namespace bowg {
@@ -55,7 +56,7 @@ WordId zeroWord(const Vocabulary& v, tree_descent::DescendBatch descend) {
 
 std::vector<tree_descent::DescendBatch> descents() {
   std::vector<tree_descent::DescendBatch> d{tree_descent::descendBatchPortable};
-  if (tree_descent::avx2Available()) d.push_back(tree_descent::descendBatchAvx2);
+  if (cpuHasAvx2()) d.push_back(tree_descent::descendBatchAvx2);
   return d;
 }
 
@@ -80,7 +81,7 @@ TEST(TreeDescent, NearestChildAndFirstOfEquals) {
 }
 
 TEST(TreeDescent, TheAvx2DescentReachesThePortableOnesNodes) {
-  if (!tree_descent::avx2Available()) {
+  if (!cpuHasAvx2()) {
     GTEST_SKIP() << "this CPU has no AVX2: only the portable descent runs here";
   }
   std::mt19937_64 rng(12);
@@ -119,8 +120,7 @@ TEST(TreeDescent, TheAvx2DescentReachesThePortableOnesNodes) {
 
 TEST(TreeDescent, TheBestDescentIsTheFastestTheCpuRuns) {
   EXPECT_EQ(tree_descent::bestDescendBatch(),
-            tree_descent::avx2Available() ? tree_descent::descendBatchAvx2
-                                          : tree_descent::descendBatchPortable);
+            cpuHasAvx2() ? tree_descent::descendBatchAvx2 : tree_descent::descendBatchPortable);
 }
 
 }  // namespace
