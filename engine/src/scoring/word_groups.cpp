@@ -12,6 +12,7 @@
 
 #include "bowg/core/heap_bytes.h"
 #include "bowg/vocabulary/id_index_sort.h"
+#include "scoring/neighbour_count.h"
 
 namespace bowg {
 namespace {
@@ -129,17 +130,8 @@ class PointGrid {
     const float* ys = ys_.data();
     const float below = static_cast<float>(r2 * (1.0 - kFloatBand));
     const float above = static_cast<float>(r2 * (1.0 + kFloatBand));
-    // 32-bit counts of 32-bit compares: the loop vectorises as integer sums
-    // (a floating-point sum would not, without reassociation).
-    std::int32_t sure = 0, maybe = 0;
-    for (std::uint32_t s = begin; s < end; ++s) {
-      const float dx = xs[s] - x;
-      const float dy = ys[s] - y;
-      const float d2 = dx * dx + dy * dy;
-      sure += d2 < below;
-      maybe += d2 <= above;
-    }
-    return maybe == sure ? static_cast<double>(sure) : countInDouble(x, y, r2, begin, end);
+    const neighbour_count::Counts c = count_within_(xs, ys, begin, end, x, y, below, above);
+    return c.maybe == c.sure ? static_cast<double>(c.sure) : countInDouble(x, y, r2, begin, end);
   }
 
   std::int64_t coord(double v, double origin, std::int64_t count) const {
@@ -153,6 +145,7 @@ class PointGrid {
   std::vector<std::uint32_t> start_;
   std::vector<float> xs_, ys_;
   bool float_coordinates_ = true;
+  neighbour_count::CountWithin count_within_ = neighbour_count::bestCountWithin();
 };
 
 // The median of the positive radii radius_scale * size (there is one:
