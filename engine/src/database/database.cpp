@@ -456,8 +456,11 @@ std::vector<EntryScores> Database::query(const DatabaseQuery& q, EntryId limit,
         if (e >= n) break;  // lists are in ascending entry order
         const std::uint32_t code = p.groupCode();
         word_acc_[e] += term(qw, static_cast<double>(p.word));
-        group_acc_[e] +=
-            qg * (code < Posting::kGroupOverflow ? static_cast<double>(code) : overflowCount(w, e));
+        // A count in the overflow table is looked up only when it counts.
+        const double count = code < Posting::kGroupOverflow ? static_cast<double>(code)
+                             : with_group                   ? overflowCount(w, e)
+                                                            : 0.0;
+        group_acc_[e] += qg * count;
         const std::uint8_t active =
             static_cast<std::uint8_t>((with_word & (p.word != 0.f)) | (with_group & (code != 0)));
         touched_[touched] = e;
