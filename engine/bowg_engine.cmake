@@ -112,7 +112,10 @@ if(BOWG_ENGINE_BENCHMARKS)
       target_compile_definitions(bowg_${bench_name} PRIVATE
         BOWG_SHARED_DATA_DIR="${BOWG_SHARED_DATA_DIR}"
         BOWG_CONFIG_DIR="${BOWG_REPO_DIR}/config")
-      target_include_directories(bowg_${bench_name} PRIVATE ${BOWG_ENGINE_DIR}/test)
+      # test/ for the synthetic data, src/ for the stage-internal units
+      # timed on their own (the AVX2 and portable versions side by side).
+      target_include_directories(bowg_${bench_name} PRIVATE ${BOWG_ENGINE_DIR}/test
+                                 ${BOWG_ENGINE_DIR}/src)
     endforeach()
   else()
     message(STATUS "bowg_engine: Google Benchmark not found, benchmarks not built")

@@ -10,7 +10,9 @@
 #include "bowg/vocabulary/id_index_sort.h"
 #include "bowg/vocabulary/vocabulary_io.h"
 #include "bowg/vocabulary/vocabulary_trainer.h"
+#include "core/cpu_features.h"
 #include "synthetic_vocabulary.h"
+#include "vocabulary/tree_descent.h"
 
 namespace bowg {
 namespace {
@@ -57,6 +59,37 @@ void BM_TransformImage500WithDirectIndex(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_TransformImage500WithDirectIndex)->Unit(benchmark::kMicrosecond);
+
+// The descent alone (tree_descent.h), 500 random descriptors through the
+// k=10 L=6 tree: the portable loop and, where the CPU has AVX2, the vector
+// one that Vocabulary::transform then uses.
+void descend(benchmark::State& state, tree_descent::DescendBatch descend_batch) {
+  const Vocabulary& v = k10L6();
+  const auto descriptors = testing::randomDescriptors(500, 2);
+  WordId words[tree_descent::kBatch];
+  NodeId nodes[tree_descent::kBatch];
+  for (auto _ : state) {
+    for (std::size_t i = 0; i < descriptors.size(); i += tree_descent::kBatch) {
+      descend_batch(v.nodes().data(), descriptors.data() + i,
+                    std::min(tree_descent::kBatch, descriptors.size() - i), 0, words, nodes);
+      benchmark::DoNotOptimize(words[0]);
+    }
+  }
+}
+
+void BM_DescendPortable(benchmark::State& state) {
+  descend(state, tree_descent::descendBatchPortable);
+}
+BENCHMARK(BM_DescendPortable)->Unit(benchmark::kMicrosecond);
+
+void BM_DescendAvx2(benchmark::State& state) {
+  if (!cpuHasAvx2()) {
+    state.SkipWithError("this CPU has no AVX2");
+    return;
+  }
+  descend(state, tree_descent::descendBatchAvx2);
+}
+BENCHMARK(BM_DescendAvx2)->Unit(benchmark::kMicrosecond);
 
 // An image's (word, feature) pairs as the transform makes them: 500
 // features' words of a k=10 L=6 tree, feature index = position.

@@ -96,6 +96,9 @@ std::vector<double> distributionVector(const std::vector<ImagePoint>& points, do
   return v;
 }
 
+// Fan bins whose scratch arrays fit on the stack (the presets use 8).
+const std::size_t kMaxStackBins = 64;
+
 double distributionScore(const std::vector<double>& query, const std::vector<double>& db) {
   if (query.size() != db.size()) {
     throw std::invalid_argument("distributionScore: vector sizes differ (" +
@@ -104,19 +107,34 @@ double distributionScore(const std::vector<double>& query, const std::vector<dou
                                 "number of fan bins?");
   }
   const std::size_t m = query.size();
+  if (m == 0) return 0.0;
   // A roll of the camera by 2*pi*i/m shifts the bins cyclically by i: the
   // score is the best alignment over the m columns M_i of the distribution
-  // matrix, m_ij = v_((i+j) mod m).
-  // The index (i + j) mod m is split into its two runs so the inner loops
-  // carry no division (this runs once per candidate per keyframe).
-  double best = 0.0;
-  for (std::size_t i = 0; i < m; ++i) {
-    double dot = 0.0;
-    const std::size_t wrap = m - i;  // j < wrap: i + j < m
-    for (std::size_t j = 0; j < wrap; ++j) dot += query[i + j] * db[j];
-    for (std::size_t j = wrap; j < m; ++j) dot += query[i + j - m] * db[j];
-    if (dot > best) best = dot;
+  // matrix, m_ij = v_((i+j) mod m). All m dot products at once, term j
+  // added to each in turn (the order of each sum is j = 0..m-1, as one
+  // dot product at a time would add them): the inner loop runs over the
+  // alignments, contiguous in the query read twice over, and vectorises.
+  double twice[2 * kMaxStackBins];
+  double dots[kMaxStackBins];
+  std::vector<double> heap_twice, heap_dots;
+  double* q2 = twice;
+  double* dot = dots;
+  if (m > kMaxStackBins) {
+    heap_twice.resize(2 * m);
+    heap_dots.resize(m);
+    q2 = heap_twice.data();
+    dot = heap_dots.data();
   }
+  for (std::size_t i = 0; i < m; ++i) q2[i] = q2[i + m] = query[i];
+  for (std::size_t i = 0; i < m; ++i) dot[i] = 0.0;
+  for (std::size_t j = 0; j < m; ++j) {
+    const double d = db[j];
+    const double* q = q2 + j;
+    for (std::size_t i = 0; i < m; ++i) dot[i] += q[i] * d;
+  }
+  double best = 0.0;
+  for (std::size_t i = 0; i < m; ++i)
+    if (dot[i] > best) best = dot[i];
   // Rounding can exceed 1 by an ulp for identical unit vectors.
   return best > 1.0 ? 1.0 : best;
 }

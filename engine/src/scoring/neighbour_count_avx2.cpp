@@ -45,10 +45,21 @@ __attribute__((target("avx2"))) Counts countWithinAvx2(const float* xs, const fl
     sure = _mm256_sub_epi32(sure, _mm256_castps_si256(_mm256_cmp_ps(d2, vbelow, _CMP_LT_OQ)));
     maybe = _mm256_sub_epi32(maybe, _mm256_castps_si256(_mm256_cmp_ps(d2, vabove, _CMP_LE_OQ)));
   }
-  Counts rest = countWithinPortable(xs, ys, s, end, x, y, below, above);
-  rest.sure += total(sure);
-  rest.maybe += total(maybe);
-  return rest;
+  if (s < end) {
+    // The last 1-7 points by a masked load (lanes past the end read nothing
+    // and count nothing): most runs of a grid row are that short.
+    static const std::int32_t kLanes[16] = {-1, -1, -1, -1, -1, -1, -1, -1, 0, 0, 0, 0, 0, 0, 0, 0};
+    const __m256i lanes =
+        _mm256_loadu_si256(reinterpret_cast<const __m256i*>(kLanes + 8 - (end - s)));
+    const __m256 dx = _mm256_sub_ps(_mm256_maskload_ps(xs + s, lanes), vx);
+    const __m256 dy = _mm256_sub_ps(_mm256_maskload_ps(ys + s, lanes), vy);
+    const __m256 d2 = _mm256_add_ps(_mm256_mul_ps(dx, dx), _mm256_mul_ps(dy, dy));
+    sure = _mm256_sub_epi32(
+        sure, _mm256_and_si256(lanes, _mm256_castps_si256(_mm256_cmp_ps(d2, vbelow, _CMP_LT_OQ))));
+    maybe = _mm256_sub_epi32(
+        maybe, _mm256_and_si256(lanes, _mm256_castps_si256(_mm256_cmp_ps(d2, vabove, _CMP_LE_OQ))));
+  }
+  return Counts{total(sure), total(maybe)};
 }
 
 #else

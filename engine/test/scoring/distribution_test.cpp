@@ -8,6 +8,7 @@
 #include <limits>
 #include <random>
 #include <stdexcept>
+#include <vector>
 
 namespace bowg {
 namespace {
@@ -199,6 +200,31 @@ TEST(DistributionScore, ZeroVectorScoresZero) {
 
 TEST(DistributionScore, SizeMismatchThrows) {
   EXPECT_THROW(distributionScore({1.0, 0.0}, {1.0, 0.0, 0.0}), std::invalid_argument);
+}
+
+TEST(DistributionScore, EveryAlignmentSummedInTheOrderOfTheDefinition) {
+  // The definition, one alignment at a time: max_i sum_j v_((i+j) mod m) w_j,
+  // j ascending. The score must be that, bit for bit, for any m (the stack
+  // scratch holds 64 bins, more go to the heap) and any vectors.
+  std::mt19937_64 rng(17);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (std::size_t m = 1; m <= 70; ++m) {
+    for (int trial = 0; trial < 20; ++trial) {
+      std::vector<double> q(m), w(m);
+      for (std::size_t i = 0; i < m; ++i) {
+        q[i] = trial % 4 == 0 && i % 3 == 0 ? 0.0 : u(rng);
+        w[i] = u(rng) / static_cast<double>(m);
+      }
+      double best = 0.0;
+      for (std::size_t i = 0; i < m; ++i) {
+        double dot = 0.0;
+        for (std::size_t j = 0; j < m; ++j) dot += q[(i + j) % m] * w[j];
+        if (dot > best) best = dot;
+      }
+      ASSERT_EQ(distributionScore(q, w), best > 1.0 ? 1.0 : best) << "m " << m;
+    }
+  }
+  EXPECT_DOUBLE_EQ(distributionScore({}, {}), 0.0);
 }
 
 }  // namespace
