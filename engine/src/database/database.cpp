@@ -411,7 +411,8 @@ std::vector<EntryScores> Database::query(const DatabaseQuery& q, EntryId limit,
               const double qg = group ? group->second * idf : 0.0;
               if (qw != 0.0 || qg != 0.0) query_words_.push_back(QueryWord{w, qw, qg});
             });
-  auto accumulate = [&](auto term) {
+  // visit(w, qw, qg) for each query word, in order.
+  auto forEachQueryWord = [&](auto visit) {
     const std::size_t m = query_words_.size();
     for (std::size_t i = 0; i < m; ++i) {
       // The lists lie scattered over the index: the walk waited on the first
@@ -419,8 +420,11 @@ std::vector<EntryScores> Database::query(const DatabaseQuery& q, EntryId limit,
       // postings 4 ahead.
       if (i + 8 < m) prefetchRead(&index_[query_words_[i + 8].w]);
       if (i + 4 < m) prefetchRead(index_[query_words_[i + 4].w].data());
-      const WordId w = query_words_[i].w;
-      const double qw = query_words_[i].qw, qg = query_words_[i].qg;
+      visit(query_words_[i].w, query_words_[i].qw, query_words_[i].qg);
+    }
+  };
+  auto accumulate = [&](auto term) {
+    forEachQueryWord([&](WordId w, double qw, double qg) {
       for (const Posting& p : index_[w]) {
         const EntryId e = p.entry();
         if (e >= n) break;  // lists are in ascending entry order
@@ -434,7 +438,7 @@ std::vector<EntryScores> Database::query(const DatabaseQuery& q, EntryId limit,
           touch(e);
         }
       }
-    }
+    });
   };
   // The same for a metric whose term is +0 when either weight is 0 (L1:
   // |x| + 0 - |x|; L2 and the dot product: x * 0), so that the word term
@@ -444,12 +448,7 @@ std::vector<EntryScores> Database::query(const DatabaseQuery& q, EntryId limit,
   // end moved when it is new. In an aliased pipe most postings' tests go
   // either way and were mispredicted.
   auto accumulateZeroSafe = [&](auto term) {
-    const std::size_t m = query_words_.size();
-    for (std::size_t i = 0; i < m; ++i) {
-      if (i + 8 < m) prefetchRead(&index_[query_words_[i + 8].w]);
-      if (i + 4 < m) prefetchRead(index_[query_words_[i + 4].w].data());
-      const WordId w = query_words_[i].w;
-      const double qw = query_words_[i].qw, qg = query_words_[i].qg;
+    forEachQueryWord([&](WordId w, double qw, double qg) {
       const bool with_word = qw != 0.0, with_group = qg != 0.0;
       for (const Posting& p : index_[w]) {
         const EntryId e = p.entry();
@@ -467,7 +466,7 @@ std::vector<EntryScores> Database::query(const DatabaseQuery& q, EntryId limit,
         touched += active & (touched_flag_[e] ^ 1u);
         touched_flag_[e] |= active;
       }
-    }
+    });
   };
   // The metric is chosen once per query, not once per posting.
   switch (scoring_) {

@@ -29,12 +29,7 @@ void descendBatchPortable(const Vocabulary::Node* nodes, const Descriptor* d, st
           best = node.first_child + c;
         }
       }
-      current[g] = best;
-      if (static_cast<int>(nodes[best].level) <= level) at_level[g] = best;
-      const Vocabulary::Node& next = nodes[best];
-      for (std::uint32_t c = 0; c < next.num_children; ++c) {
-        __builtin_prefetch(nodes + next.first_child + c);
-      }
+      moveTo(nodes, best, level, &current[g], &at_level[g]);
       moved = true;
     }
   }

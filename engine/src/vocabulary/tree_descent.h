@@ -8,6 +8,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 
 #include "bowg/vocabulary/vocabulary.h"
 
@@ -34,6 +35,18 @@ void descendBatchPortable(const Vocabulary::Node* nodes, const Descriptor* d, st
 /// (other architectures).
 void descendBatchAvx2(const Vocabulary::Node* nodes, const Descriptor* d, std::size_t count,
                       int level, WordId* words, NodeId* at_level);
+
+/// Descriptor g's step to child `chosen` (both descents): its node, its
+/// node at `level`, and the chosen node's child block prefetched.
+inline void moveTo(const Vocabulary::Node* nodes, std::uint32_t chosen, int level,
+                   std::uint32_t* current, NodeId* at_level) {
+  *current = chosen;
+  if (static_cast<int>(nodes[chosen].level) <= level) *at_level = chosen;
+  const Vocabulary::Node& next = nodes[chosen];
+  for (std::uint32_t c = 0; c < next.num_children; ++c) {
+    __builtin_prefetch(nodes + next.first_child + c);
+  }
+}
 
 /// The fastest descent this CPU runs, chosen once.
 DescendBatch bestDescendBatch();

@@ -92,13 +92,8 @@ __attribute__((target("avx2"))) void descendBatchAvx2(const Node* nodes, const D
           best = base + _mm_extract_epi16(found, 1);
         }
       }
-      const std::uint32_t chosen = node.first_child + static_cast<std::uint32_t>(best);
-      current[g] = chosen;
-      if (static_cast<int>(nodes[chosen].level) <= level) at_level[g] = chosen;
-      const Node& next = nodes[chosen];
-      for (std::uint32_t c = 0; c < next.num_children; ++c) {
-        __builtin_prefetch(nodes + next.first_child + c);
-      }
+      moveTo(nodes, node.first_child + static_cast<std::uint32_t>(best), level, &current[g],
+             &at_level[g]);
       moved = true;
     }
   }
