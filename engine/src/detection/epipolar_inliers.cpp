@@ -2,6 +2,7 @@
 // (epipolar_inliers.h).
 #include "detection/epipolar_inliers.h"
 
+#include "bowg/detection/fundamental_matrix.h"
 #include "core/cpu_features.h"
 
 #if defined(__SSE2__) && defined(__x86_64__)
@@ -14,25 +15,15 @@
 namespace bowg {
 namespace epipolar_inliers {
 
-// A double count of 0/1 factors, which the compiler vectorises where it can
-// (exact below 2^53).
+// epipolarResidual's test pair by pair: a double count of 0/1 factors,
+// which the compiler vectorises where it can (exact below 2^53).
 int countInliersScalar(const PairArrays& pairs, const double f[9], double t2, std::uint32_t i,
                        std::uint32_t end) {
-  const double* x1 = pairs.x1;
-  const double* y1 = pairs.y1;
-  const double* x2 = pairs.x2;
-  const double* y2 = pairs.y2;
   double count = 0;
   for (; i < end; ++i) {
-    const double l2a = f[0] * x1[i] + f[1] * y1[i] + f[2];
-    const double l2b = f[3] * x1[i] + f[4] * y1[i] + f[5];
-    const double l2c = f[6] * x1[i] + f[7] * y1[i] + f[8];
-    const double l1a = f[0] * x2[i] + f[3] * y2[i] + f[6];
-    const double l1b = f[1] * x2[i] + f[4] * y2[i] + f[7];
-    const double n2 = l2a * l2a + l2b * l2b, n1 = l1a * l1a + l1b * l1b;
-    const double normal = n1 < n2 ? n1 : n2;
-    const double residual = x2[i] * l2a + y2[i] * l2b + l2c;
-    count += (normal > 0.0 ? 1.0 : 0.0) * (residual * residual <= t2 * normal ? 1.0 : 0.0);
+    const EpipolarResidual e =
+        epipolarResidual(f, PointPair{pairs.x1[i], pairs.y1[i], pairs.x2[i], pairs.y2[i]});
+    count += (e.normal > 0.0 ? 1.0 : 0.0) * (e.residual * e.residual <= t2 * e.normal ? 1.0 : 0.0);
   }
   return static_cast<int>(count);
 }

@@ -127,9 +127,6 @@ FundamentalRansacResult fundamentalRansac(const std::vector<PointPair>& pairs,
   }
   const double t2 = options.threshold_px * options.threshold_px;
   const PairColumns columns(pairs);
-  // The inliers of model f, giving up (returning at most `best`) once it
-  // cannot have more than `best`.
-  auto countInliers = [&](const double f[9], int best) { return columns.inliers(f, t2, best); };
   SampleGenerator rng{options.seed};
   int best = 6;  // a model needs 7 inliers: at least its own sample
   int limit = options.max_samples;
@@ -152,7 +149,7 @@ FundamentalRansacResult fundamentalRansac(const std::vector<PointPair>& pairs,
     const int before = best;
     for (int m = 0; m < models; ++m) {
       unconditionModel(solutions[m], c1, c2, f);
-      const int count = countInliers(f, best);
+      const int count = columns.inliers(f, t2, best);
       if (count > best) {
         best = count;
         std::copy(f, f + 9, result.f);
@@ -170,7 +167,7 @@ FundamentalRansacResult fundamentalRansac(const std::vector<PointPair>& pairs,
       }
       if (!eightPointFundamental(support.data(), static_cast<int>(support.size()), fn)) break;
       unconditionModel(fn, c1, c2, f);
-      const int count = countInliers(f, best);
+      const int count = columns.inliers(f, t2, best);
       if (count <= best) break;
       best = count;
       std::copy(f, f + 9, result.f);
