@@ -28,12 +28,27 @@ using Pair = std::pair<std::uint32_t, std::uint32_t>;
 // The per-group best matches of matchGroup, kept across the groups of one
 // image pair so that a node of the direct index costs no allocation.
 struct MatchScratch {
-  std::vector<int> best_q_dist;       // per match feature of the group
-  std::vector<std::uint32_t> best_q;  // per match feature
-  std::vector<int> best_m_dist;       // per query feature of the group
-  std::vector<int> second_m_dist;     // per query feature
-  std::vector<std::size_t> best_m;    // per query feature
+  // Per match feature of the group: the key (below) of its nearest query
+  // feature of the group.
+  std::vector<std::uint64_t> nearest_query;
+  // Per query feature of the group: the key of its nearest match feature and
+  // the second smallest distance, counting a tie with the nearest.
+  struct Row {
+    std::uint64_t nearest;
+    int second;
+  };
+  std::vector<Row> rows;
 };
+
+// Distance and position in the group as one number: the smallest key is
+// the nearest feature, the first of equals, so that min() alone keeps it.
+// Selects instead of branches: which distance is smallest is a coin toss the
+// branch predictor loses.
+inline std::uint64_t matchKey(int distance, std::size_t position) {
+  return static_cast<std::uint64_t>(distance) << 32 | position;
+}
+inline int keyDistance(std::uint64_t key) { return static_cast<int>(key >> 32); }
+inline std::uint32_t keyPosition(std::uint64_t key) { return static_cast<std::uint32_t>(key); }
 
 // The features of one node: a run of a DirectIndex's (node, feature) pairs.
 struct Run {
@@ -52,42 +67,31 @@ void matchGroup(const std::vector<Descriptor>& qd, Run qs, const std::vector<Des
                 std::vector<Pair>* out) {
   if (qs.empty() || ms.empty()) return;
   const int kInf = std::numeric_limits<int>::max();
-  // Best query feature (and its distance) for every match feature of the group.
-  std::vector<int>& best_q_dist = scratch->best_q_dist;
-  std::vector<std::uint32_t>& best_q = scratch->best_q;
-  std::vector<int>& best_m_dist = scratch->best_m_dist;
-  std::vector<int>& second_m_dist = scratch->second_m_dist;
-  std::vector<std::size_t>& best_m = scratch->best_m;
-  best_q_dist.assign(ms.size(), kInf);
-  best_q.assign(ms.size(), 0);
-  best_m_dist.assign(qs.size(), kInf);
-  second_m_dist.assign(qs.size(), kInf);
-  best_m.assign(qs.size(), 0);
+  const std::uint64_t kNone = matchKey(kInf, 0);
+  std::vector<std::uint64_t>& nearest_query = scratch->nearest_query;
+  std::vector<MatchScratch::Row>& rows = scratch->rows;
+  nearest_query.assign(ms.size(), kNone);
+  rows.resize(qs.size());
   for (std::size_t a = 0; a < qs.size(); ++a) {
     const Descriptor& d = qd[qs[a]];
+    std::uint64_t nearest = kNone;
+    int second = kInf;
     for (std::size_t b = 0; b < ms.size(); ++b) {
       const int dist = hammingDistance(d, md[ms[b]]);
-      if (dist < best_m_dist[a]) {
-        second_m_dist[a] = best_m_dist[a];
-        best_m_dist[a] = dist;
-        best_m[a] = b;
-      } else if (dist < second_m_dist[a]) {
-        second_m_dist[a] = dist;
-      }
-      if (dist < best_q_dist[b]) {
-        best_q_dist[b] = dist;
-        best_q[b] = qs[a];
-      }
+      // A nearer feature makes the old nearest the second; a farther one
+      // may be the second itself.
+      second = std::min(second, std::max(keyDistance(nearest), dist));
+      nearest = std::min(nearest, matchKey(dist, b));
+      nearest_query[b] = std::min(nearest_query[b], matchKey(dist, a));
     }
+    rows[a] = {nearest, second};
   }
   for (std::size_t a = 0; a < qs.size(); ++a) {
-    if (best_m_dist[a] > options.max_hamming) continue;
-    if (second_m_dist[a] != kInf &&
-        !(best_m_dist[a] < options.max_neighbour_ratio * second_m_dist[a])) {
-      continue;
-    }
-    const std::size_t b = best_m[a];
-    if (best_q[b] != qs[a]) continue;  // not mutual
+    const int best = keyDistance(rows[a].nearest), second = rows[a].second;
+    const std::uint32_t b = keyPosition(rows[a].nearest);
+    if (best > options.max_hamming) continue;
+    if (second != kInf && !(best < options.max_neighbour_ratio * second)) continue;
+    if (keyPosition(nearest_query[b]) != a) continue;  // not mutual
     out->emplace_back(qs[a], ms[b]);
   }
 }

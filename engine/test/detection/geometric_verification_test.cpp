@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <opencv2/core/version.hpp>
 #include <random>
 #include <set>
@@ -365,6 +366,87 @@ TEST(GeometricVerification, CorrespondenceRules) {
   // Incomplete views are rejected.
   m.direct = nullptr;
   EXPECT_THROW(findCorrespondences(q2, m, o), std::invalid_argument);
+}
+
+// The definition, written out: within each node, a query feature's nearest
+// match feature (the first of equals) and the second smallest distance
+// (a tie with the nearest counts); kept when near enough, unambiguous and
+// mutual (the match feature's nearest query feature of the node, the first
+// of equals, is this one).
+std::vector<std::pair<std::uint32_t, std::uint32_t>> correspondencesByDefinition(
+    const std::vector<Descriptor>& qd, const DirectIndex& qdi, const std::vector<Descriptor>& md,
+    const DirectIndex& mdi, const GeometricVerificationOptions& o) {
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> out;
+  for (const auto& q : qdi) {
+    std::vector<std::uint32_t> ms;
+    for (const auto& m : mdi) {
+      if (m.first == q.first) ms.push_back(m.second);
+    }
+    if (ms.empty()) continue;
+    std::vector<int> dists;
+    std::uint32_t nearest = ms[0];
+    int best = hammingDistance(qd[q.second], md[ms[0]]);
+    for (const std::uint32_t m : ms) {
+      const int d = hammingDistance(qd[q.second], md[m]);
+      dists.push_back(d);
+      if (d < best) best = d, nearest = m;
+    }
+    std::sort(dists.begin(), dists.end());
+    if (best > o.max_hamming) continue;
+    if (dists.size() > 1 && !(best < o.max_neighbour_ratio * dists[1])) continue;
+    std::uint32_t back = 0;
+    int back_best = std::numeric_limits<int>::max();
+    for (const auto& other : qdi) {
+      if (other.first != q.first) continue;
+      const int d = hammingDistance(qd[other.second], md[nearest]);
+      if (d < back_best) back_best = d, back = other.second;
+    }
+    if (back == q.second) out.emplace_back(q.second, nearest);
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+TEST(GeometricVerification, CorrespondencesFollowTheDefinitionThroughTies) {
+  // Descriptors a few bits from one of three prototypes: many equal
+  // distances, so first-of-equals and second-counting-ties decide.
+  std::mt19937_64 rng(21);
+  const std::vector<Descriptor> prototypes = testing::randomDescriptors(3, 5);
+  std::uniform_int_distribution<int> bit(0, 255), proto(0, 2), flips(0, 4), node(0, 5);
+  auto near = [&]() {
+    Descriptor d = prototypes[static_cast<std::size_t>(proto(rng))];
+    for (int f = flips(rng); f > 0; --f) {
+      const int i = bit(rng);
+      d.bits[i / 64] ^= 1ull << (i % 64);
+    }
+    return d;
+  };
+  std::size_t kept = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    const std::size_t nq = 1 + trial % 23, nm = 1 + (trial * 7) % 19;
+    std::vector<Descriptor> qd(nq), md(nm);
+    for (auto& d : qd) d = near();
+    for (auto& d : md) d = near();
+    DirectIndex qdi, mdi;
+    for (std::uint32_t i = 0; i < nq; ++i) qdi.emplace_back(static_cast<NodeId>(node(rng)), i);
+    for (std::uint32_t i = 0; i < nm; ++i) mdi.emplace_back(static_cast<NodeId>(node(rng)), i);
+    std::sort(qdi.begin(), qdi.end());
+    std::sort(mdi.begin(), mdi.end());
+    std::vector<ImagePoint> qk(nq), mk(nm);
+    GeometricVerificationOptions o;
+    o.max_hamming = 3 + trial % 5;
+    o.max_neighbour_ratio = trial % 2 ? 0.8 : 1.0;
+    o.exhaustive = trial % 3 == 0;
+    const VerificationView q{&qk, &qd, &qdi}, m{&mk, &md, &mdi};
+    DirectIndex qall, mall;
+    for (std::uint32_t i = 0; i < nq; ++i) qall.emplace_back(0, i);
+    for (std::uint32_t i = 0; i < nm; ++i) mall.emplace_back(0, i);
+    const auto expected = o.exhaustive ? correspondencesByDefinition(qd, qall, md, mall, o)
+                                       : correspondencesByDefinition(qd, qdi, md, mdi, o);
+    ASSERT_EQ(findCorrespondences(q, m, o), expected) << "trial " << trial;
+    kept += expected.size();
+  }
+  EXPECT_GT(kept, 100u);  // the rules were exercised, not only the rejections
 }
 
 }  // namespace
