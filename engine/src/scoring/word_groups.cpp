@@ -27,12 +27,16 @@ std::uint64_t nextTableVersion() {
 const double kCellsPerPoint = 4.0;
 const double kMinCells = 16.0;
 
-void checkWeight(const char* function, const GroupEntry& e) {
-  if (!std::isfinite(e.second) || !(e.second > 0.0)) {
-    throw std::invalid_argument(std::string(function) + ": weight of group " +
-                                std::to_string(e.first) + " must be finite and > 0 (got " +
-                                std::to_string(e.second) + ")");
-  }
+[[noreturn]] void throwBadWeight(const char* function, const GroupEntry& e) {
+  throw std::invalid_argument(std::string(function) + ": weight of group " +
+                              std::to_string(e.first) + " must be finite and > 0 (got " +
+                              std::to_string(e.second) + ")");
+}
+
+// Checked for every group of every scored entry: the test inline, the
+// message out of line.
+inline void checkWeight(const char* function, const GroupEntry& e) {
+  if (!std::isfinite(e.second) || !(e.second > 0.0)) throwBadWeight(function, e);
 }
 
 // Relative error bound of a squared distance computed in float from float
