@@ -16,7 +16,7 @@ cmake -S "$repo/engine" -B "$build" -DCMAKE_BUILD_TYPE=Release -DBOWG_ENGINE_TES
   -DBOWG_ENGINE_BENCHMARKS=ON > "$out/cmake.log"
 make -C "$build" -j"${BOWG_JOBS:-$(nproc)}" bowg_features_bench bowg_vocabulary_bench bowg_normaliser_history_bench \
   bowg_pipeline_bench bowg_verification_bench bowg_word_groups_bench bowg_vocabulary_load_once_bench \
-  > "$out/make.log"
+  bowg_orb_stages_bench > "$out/make.log"
 for b in features vocabulary normaliser_history verification word_groups pipeline; do
   echo "== bowg_${b}_bench"
   "$build/bowg_${b}_bench" --benchmark_out="$out/${b}.json" --benchmark_out_format=json \
@@ -41,6 +41,16 @@ if [ "${BOWG_BENCH_PEER:-1}" != 0 ] && [ -x "$kit/peer.sh" ]; then
 elif [ "${BOWG_BENCH_PEER:-1}" != 0 ]; then
   echo "== no peer kit at $kit: the table has no DLoopDetector rows"
 fi
+
+# Where OpenCV's ORB spends the preset's FAST threshold 10 against the
+# peer's 20, on the peer comparison's rendered circuit where it ran (the
+# features rows above), else on a synthetic texture.
+circuit="$out/peer/suite/sequences/circuit_15cm_roll30"
+echo "== bowg_orb_stages_bench ($( [ -d "$circuit" ] && echo "$circuit" || echo "synthetic texture"))"
+if [ -d "$circuit" ]; then export BOWG_BENCH_IMAGES="$circuit"; fi
+"$build/bowg_orb_stages_bench" --benchmark_out="$out/orb_stages.json" --benchmark_out_format=json \
+  "$@" | tee "$out/orb_stages.txt"
+unset BOWG_BENCH_IMAGES
 
 echo "== every figure against its target"
 /usr/bin/python3 "$repo/tools/bench/benchmark_table.py" --features "$out/features.json" \
