@@ -39,6 +39,25 @@ inline void checkWeight(const char* function, const GroupEntry& e) {
   if (!std::isfinite(e.second) || !(e.second > 0.0)) throwBadWeight(function, e);
 }
 
+// The merge of two id-sorted sparse vectors: shared(ia, ib) for each group
+// id that a[ia] and b[ib] share, in id order (eq. 3's dot product has only
+// shared groups).
+template <typename Shared>
+void forEachSharedGroup(const GroupVector& a, const GroupVector& b, Shared shared) {
+  std::size_t ia = 0, ib = 0;
+  while (ia < a.size() && ib < b.size()) {
+    if (a[ia].first < b[ib].first) {
+      ++ia;
+    } else if (b[ib].first < a[ia].first) {
+      ++ib;
+    } else {
+      shared(ia, ib);
+      ++ia;
+      ++ib;
+    }
+  }
+}
+
 // Relative error bound of a squared distance computed in float from float
 // coordinates (two subtractions, two squares and a sum, each rounded by at
 // most 2^-24: < 4e-7), with room to spare: a float distance farther than
@@ -327,21 +346,10 @@ double groupScoreFromDot(double dot) {
 }
 
 double groupScore(const GroupVector& a_refined, const GroupVector& b_refined) {
-  // Merge of two id-sorted sparse vectors: only shared groups contribute.
   double dot = 0.0;
-  auto ia = a_refined.begin();
-  auto ib = b_refined.begin();
-  while (ia != a_refined.end() && ib != b_refined.end()) {
-    if (ia->first < ib->first) {
-      ++ia;
-    } else if (ib->first < ia->first) {
-      ++ib;
-    } else {
-      dot += ia->second * ib->second;
-      ++ia;
-      ++ib;
-    }
-  }
+  forEachSharedGroup(a_refined, b_refined, [&](std::size_t ia, std::size_t ib) {
+    dot += a_refined[ia].second * b_refined[ib].second;
+  });
   return groupScoreFromDot(dot);
 }
 
@@ -358,20 +366,11 @@ double groupScoreWithIdf(const GroupVector& a_refined, const std::vector<double>
     sum += e.second;
   }
   double dot = 0.0;
-  std::size_t ia = 0, ib = 0;
-  while (ia < a_refined.size() && ib < b_raw.size()) {
-    if (a_refined[ia].first < b_raw[ib].first) {
-      ++ia;
-    } else if (b_raw[ib].first < a_refined[ia].first) {
-      ++ib;
-    } else {
-      // b's refined weight (eq. 1) with a's IDF of the group; a shared group
-      // has IDF > 0 (a kept it), so b keeps it too.
-      dot += a_refined[ia].second * ((b_raw[ib].second / sum) * a_idf[ia]);
-      ++ia;
-      ++ib;
-    }
-  }
+  forEachSharedGroup(a_refined, b_raw, [&](std::size_t ia, std::size_t ib) {
+    // b's refined weight (eq. 1) with a's IDF of the group; a shared group
+    // has IDF > 0 (a kept it), so b keeps it too.
+    dot += a_refined[ia].second * ((b_raw[ib].second / sum) * a_idf[ia]);
+  });
   return groupScoreFromDot(dot);
 }
 
