@@ -10,6 +10,7 @@
 #include "bowg/scoring/distribution.h"
 #include "bowg/vocabulary/id_index_sort.h"
 #include "bowg/vocabulary/vocabulary.h"
+#include "core/prefetch.h"
 
 namespace bowg {
 
@@ -45,15 +46,6 @@ void forEachId(const std::vector<A>& a, const std::vector<B>& b, F f) {
     if (in_a) ++i;
     if (in_b) ++j;
   }
-}
-
-// A hint that `p` will be read soon (no effect where the compiler has none).
-inline void prefetchRead(const void* p) {
-#if defined(__GNUC__)
-  __builtin_prefetch(p);
-#else
-  (void)p;
-#endif
 }
 
 // The capacity a full posting list of `size` postings grows to: by an

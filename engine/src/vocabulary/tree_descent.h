@@ -11,6 +11,7 @@
 #include <cstdint>
 
 #include "bowg/vocabulary/vocabulary.h"
+#include "core/prefetch.h"
 
 namespace bowg {
 namespace tree_descent {
@@ -44,7 +45,7 @@ inline void moveTo(const Vocabulary::Node* nodes, std::uint32_t chosen, int leve
   if (static_cast<int>(nodes[chosen].level) <= level) *at_level = chosen;
   const Vocabulary::Node& next = nodes[chosen];
   for (std::uint32_t c = 0; c < next.num_children; ++c) {
-    __builtin_prefetch(nodes + next.first_child + c);
+    prefetchRead(nodes + next.first_child + c);
   }
 }
 
