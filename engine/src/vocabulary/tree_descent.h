@@ -25,8 +25,8 @@ constexpr std::size_t kBatch = 8;
 /// Prefetches each descriptor's next child block before it is needed: the
 /// deep levels of a k=10 L=6 tree (70 MB) miss the cache, and interleaving
 /// the descents overlaps those misses.
-using DescendBatch = void (*)(const Vocabulary::Node* nodes, const Descriptor* d,
-                              std::size_t count, int level, WordId* words, NodeId* at_level);
+using DescendBatch = void (*)(const Vocabulary::Node* nodes, const Descriptor* d, std::size_t count,
+                              int level, WordId* words, NodeId* at_level);
 
 void descendBatchPortable(const Vocabulary::Node* nodes, const Descriptor* d, std::size_t count,
                           int level, WordId* words, NodeId* at_level);
