@@ -64,7 +64,7 @@ GateDecision KeyframeGate::check(double stamp) {
   last_frame_stamp_ = stamp;
   if (has_keyframe_) {
     if (stamp - last_keyframe_stamp_ < options_.min_interval) return GateDecision::kTooSoon;
-    if (options_.min_distance > 0.0 && has_position_ && travelled_ < options_.min_distance) {
+    if (options_.min_distance > 0.0 && hasOdometry() && travelled_ < options_.min_distance) {
       return GateDecision::kTooClose;
     }
   }
@@ -88,13 +88,26 @@ void KeyframeGate::addPosition(double x, double y, double z) {
   last_z_ = z;
 }
 
+bool KeyframeGate::addOdometerReading(double metres) {
+  if (has_position_ || !std::isfinite(metres)) return false;
+  if (has_reading_) {
+    const double step = std::fabs(metres - last_reading_);
+    travelled_ += step;
+    odometer_ += step;
+  }
+  has_reading_ = true;
+  last_reading_ = metres;
+  return true;
+}
+
 void KeyframeGate::setStampFloor(double stamp) {
   has_floor_ = true;
   floor_ = stamp;
 }
 
 void KeyframeGate::reset() {
-  has_frame_ = has_keyframe_ = has_position_ = has_floor_ = false;
+  has_frame_ = has_keyframe_ = has_position_ = has_floor_ = has_reading_ = false;
+  last_reading_ = 0.0;
   floor_ = 0.0;
   last_frame_stamp_ = last_keyframe_stamp_ = 0.0;
   travelled_ = 0.0;
@@ -102,7 +115,7 @@ void KeyframeGate::reset() {
 }
 
 double KeyframeGate::odometer() const {
-  return has_position_ ? odometer_ : std::numeric_limits<double>::quiet_NaN();
+  return hasOdometry() ? odometer_ : std::numeric_limits<double>::quiet_NaN();
 }
 
 bowg::OdometryPosition KeyframeGate::position() const {

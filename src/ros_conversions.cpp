@@ -177,6 +177,7 @@ KeyframeStatus toKeyframeStatus(const bowg::LoopResult& r, const std_msgs::Heade
   s.id = r.query_id;
   s.status = static_cast<std::uint8_t>(r.status);
   s.status_text = bowg::toString(r.status);
+  s.odometry_input = bowg::toString(r.odometry_input);
   s.num_features = static_cast<std::uint32_t>(num_features);
   s.database_size = static_cast<std::uint32_t>(database_size);
   s.candidates_scored = static_cast<std::uint32_t>(r.candidates_scored);

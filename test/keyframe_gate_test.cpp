@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 namespace bowg_ros {
@@ -123,6 +124,38 @@ TEST(KeyframeGate, OdometerIsThePathLengthSinceTheStartAcrossKeyframes) {
   gate.addPosition(0, 0.5, 0);
   EXPECT_DOUBLE_EQ(gate.odometer(), 120.5);
   EXPECT_THROW(gate.setOdometer(-1.0), std::invalid_argument);
+}
+
+// A robot without positions: a cable counter's readings give the odometer
+// and the distance gate, no position; positions take over once they come.
+TEST(KeyframeGate, OdometerReadingsGiveThePathWithoutAPosition) {
+  KeyframeGateOptions o;
+  o.min_distance = 0.5;
+  KeyframeGate gate(o);
+  EXPECT_TRUE(gate.addOdometerReading(10.0));  // any origin: the first reading is 0 m driven
+  EXPECT_TRUE(gate.hasOdometry());
+  EXPECT_FALSE(gate.hasPositions());
+  EXPECT_DOUBLE_EQ(gate.odometer(), 0.0);
+  EXPECT_TRUE(gate.position().unknown());
+  EXPECT_EQ(gate.check(1.0), GateDecision::kAccept);
+  EXPECT_TRUE(gate.addOdometerReading(10.25));
+  EXPECT_EQ(gate.check(2.0), GateDecision::kTooClose);  // 0.25 m of 0.5
+  EXPECT_TRUE(gate.addOdometerReading(10.0));           // reeled in 0.25 m: driven too
+  EXPECT_DOUBLE_EQ(gate.odometer(), 0.5);
+  EXPECT_EQ(gate.check(3.0), GateDecision::kAccept);
+  EXPECT_FALSE(gate.addOdometerReading(std::numeric_limits<double>::quiet_NaN()));
+  EXPECT_DOUBLE_EQ(gate.odometer(), 0.5);
+  // Positions arrive: they measure the path from now on, readings are ignored.
+  gate.addPosition(0, 0, 0);
+  EXPECT_TRUE(gate.hasPositions());
+  EXPECT_FALSE(gate.addOdometerReading(20.0));
+  gate.addPosition(0, 0.75, 0);
+  EXPECT_DOUBLE_EQ(gate.odometer(), 1.25);
+  // A reset forgets the readings.
+  gate.reset();
+  EXPECT_FALSE(gate.hasOdometry());
+  EXPECT_TRUE(gate.addOdometerReading(3.0));
+  EXPECT_DOUBLE_EQ(gate.odometer(), 0.0);
 }
 
 TEST(KeyframeGate, StampFloorRejectsFramesUpToALoadedDatabasesLastKeyframe) {

@@ -4,14 +4,14 @@
 // arriving, the robot travelled at least `min_distance` metres (path length of
 // the odometry positions) since then. Until the first odometry message
 // arrives, only the time gate applies, so a missing odometry topic never
-// silences the detector. Frames whose stamp does not increase are rejected
-// (the detector's temporal score needs time order), and so are frames not
-// after the last keyframe of a loaded database (the stamp floor). A replay
-// that starts over (a bag restarted, simulated time reset) sends stamps far
-// back: with `time_jump_reset` > 0 a jump back by more than that starts a new
-// run (the gate forgets everything and counts an epoch; the nodelet then
-// resets its database), otherwise such frames are rejected like any other
-// out-of-order frame. ROS-free.
+// silences the detector. The travelled path comes from odometry positions,
+// or, on a robot without them, from an odometer's readings (metres driven,
+// a cable counter); positions win once they arrive. Frames whose stamp does not increase are
+// rejected (the detector's temporal score needs time order), and so are frames not after the last
+// keyframe of a loaded database (the stamp floor). A replay that starts over (a bag restarted,
+// simulated time reset) sends stamps far back: with `time_jump_reset` > 0 a jump back by more than
+// that starts a new run (the gate forgets everything and counts an epoch; the nodelet then resets
+// its database), otherwise such frames are rejected like any other out-of-order frame. ROS-free.
 #pragma once
 
 #include <string>
@@ -26,7 +26,7 @@ struct KeyframeGateOptions {
   /// s, >= 0: a stamp more than this before the previous frame's starts a
   /// new run (kTimeJump); 0 = never (such frames are kOutOfOrder).
   double time_jump_reset = 0.0;
-  void validate() const;      ///< throws std::invalid_argument naming the field
+  void validate() const;  ///< throws std::invalid_argument naming the field
 };
 
 enum class GateDecision {
@@ -69,15 +69,22 @@ class KeyframeGate {
   /// previous position to the travelled path.
   void addPosition(double x, double y, double z);
 
+  /// One odometer reading (m driven, any origin; a decrease, the tether
+  /// reeled in, is driving too): adds |change| to the travelled path. Ignored
+  /// (false) once odometry positions arrived: they measure the same path.
+  bool addOdometerReading(double metres);
+
   double travelledSinceKeyframe() const { return travelled_; }
-  /// Path length of every odometry position so far plus the base of
-  /// setOdometer(): the keyframes' odometer for the detector's windows in
-  /// metres (bowg::KeyframeInput::odometer). NaN before the first position.
+  /// Path length of every odometry position (or odometer reading) so far
+  /// plus the base of setOdometer(): the keyframes' odometer for the
+  /// detector's windows in metres (bowg::KeyframeInput::odometer). NaN before
+  /// the first position or reading.
   double odometer() const;
   /// Continues the odometer from `base` metres (after loading a database
   /// whose keyframes were driven up to `base`). Finite and >= 0.
   void setOdometer(double base);
-  bool hasOdometry() const { return has_position_; }
+  bool hasOdometry() const { return has_position_ || has_reading_; }
+  bool hasPositions() const { return has_position_; }
   /// The last odometry position (the keyframes' position for the odometry
   /// gate, bowg::KeyframeInput::position); unknown before the first one.
   bowg::OdometryPosition position() const;
@@ -91,6 +98,8 @@ class KeyframeGate {
  private:
   KeyframeGateOptions options_;
   bool has_frame_ = false, has_keyframe_ = false, has_position_ = false, has_floor_ = false;
+  bool has_reading_ = false;
+  double last_reading_ = 0;
   double floor_ = 0;
   unsigned epoch_ = 0;
   double last_frame_stamp_ = 0, last_keyframe_stamp_ = 0;

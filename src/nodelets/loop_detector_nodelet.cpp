@@ -20,6 +20,7 @@ LoopDetectorNodelet::~LoopDetectorNodelet() {
   compressed_sub_.shutdown();
   features_sub_.shutdown();
   odom_sub_.shutdown();
+  odometer_sub_.shutdown();
   diagnostics_timer_.stop();
   if (queue_) queue_->shutdown();
   if (worker_.joinable()) worker_.join();
@@ -144,8 +145,8 @@ void LoopDetectorNodelet::subscribeInputs(ros::NodeHandle& nh, ros::NodeHandle& 
     it_.reset(new image_transport::ImageTransport(nh));
     try {
       image_sub_ =
-          it_->subscribe(publicName("image"), input_queue, &LoopDetectorNodelet::imageCallback, this,
-                         image_transport::TransportHints("raw", ros::TransportHints(), pnh));
+          it_->subscribe(publicName("image"), input_queue, &LoopDetectorNodelet::imageCallback,
+                         this, image_transport::TransportHints("raw", ros::TransportHints(), pnh));
     } catch (const std::exception& e) {
       // No input: the diagnostics say so (ERROR) as long as the nodelet lives.
       const std::string problem = "cannot subscribe to " + publicName("image") + ": " + e.what();
@@ -162,6 +163,10 @@ void LoopDetectorNodelet::subscribeInputs(ros::NodeHandle& nh, ros::NodeHandle& 
   // metres: recent_exclusion_m, alignment_window_m, max_island_distance_m);
   // without a publisher those fall back to keyframes.
   odom_sub_ = nh.subscribe(publicName("odom"), 50, &LoopDetectorNodelet::odometryCallback, this);
+  // A robot without positions may still count the metres it drives (a
+  // crawler's cable counter): std_msgs/Float64 on `odometer`.
+  odometer_sub_ =
+      nh.subscribe(publicName("odometer"), 50, &LoopDetectorNodelet::odometerCallback, this);
 }
 
 void LoopDetectorNodelet::onInit() {
@@ -183,10 +188,10 @@ void LoopDetectorNodelet::onInit() {
 
   // Inputs last, once everything they feed exists.
   subscribeInputs(nh, pnh);
-  NODELET_INFO("bowg_ros ready: input %s, keyframe interval %.3f s, distance %.3f m, queue %d",
-               use_features_input_ ? publicName("keyframe_features").c_str()
-                                   : publicName("image").c_str(),
-               gate_options_.min_interval, gate_options_.min_distance, queue_size_);
+  NODELET_INFO(
+      "bowg_ros ready: input %s, keyframe interval %.3f s, distance %.3f m, queue %d",
+      use_features_input_ ? publicName("keyframe_features").c_str() : publicName("image").c_str(),
+      gate_options_.min_interval, gate_options_.min_distance, queue_size_);
 }
 
 }  // namespace bowg_ros

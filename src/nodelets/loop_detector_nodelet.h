@@ -32,6 +32,7 @@
 #include <sensor_msgs/CameraInfo.h>
 #include <sensor_msgs/CompressedImage.h>
 #include <sensor_msgs/Image.h>
+#include <std_msgs/Float64.h>
 #include <std_srvs/Trigger.h>
 
 #include <algorithm>
@@ -146,6 +147,8 @@ class LoopDetectorNodelet : public nodelet::Nodelet {
   void featuresCallback(const KeyframeFeatures::ConstPtr& msg);
   void cameraInfoCallback(const sensor_msgs::CameraInfoConstPtr& msg);
   void odometryCallback(const nav_msgs::OdometryConstPtr& msg);
+  void odometerCallback(const std_msgs::Float64ConstPtr& msg);
+  void reportOdometryInput(bowg::OdometryInput input);
   /// Stamp order + keyframe gate; true when `frame` was queued.
   bool offer(Frame frame);
 
@@ -197,6 +200,9 @@ class LoopDetectorNodelet : public nodelet::Nodelet {
   std::mutex intrinsics_mutex_;
   bowg::CameraIntrinsics intrinsics_;
   std::atomic<bool> intrinsics_warned_{false};
+  // The odometry input of the last keyframe, logged when it changes (worker
+  // thread only; -1 before the first keyframe).
+  int logged_input_ = -1;
 
   std::unique_ptr<BoundedQueue<Frame>> queue_;
   std::thread worker_;
@@ -209,7 +215,7 @@ class LoopDetectorNodelet : public nodelet::Nodelet {
   // ROS interfaces.
   std::unique_ptr<image_transport::ImageTransport> it_, private_it_;
   image_transport::Subscriber image_sub_;
-  ros::Subscriber compressed_sub_, features_sub_, info_sub_, odom_sub_;
+  ros::Subscriber compressed_sub_, features_sub_, info_sub_, odom_sub_, odometer_sub_;
   ros::Publisher loop_pub_, status_pub_;
   image_transport::Publisher debug_pub_;
   // The services run on a queue and a thread of the nodelet's own, so a long

@@ -1,5 +1,6 @@
 // LoopDetectorNodelet: the input callbacks. They only check, gate and enqueue
 // (never block: the bounded queue drops the oldest frame); the worker converts.
+#include <cmath>
 #include <cstdio>
 
 #include "loop_detector_nodelet.h"
@@ -35,9 +36,10 @@ bool LoopDetectorNodelet::offer(Frame frame) {
     return false;
   }
   if (d == GateDecision::kTimeJump) {
-    NODELET_WARN("time jumped back by more than ~reset_on_time_jump (frame at %.6f s): a new run, "
-                 "the database starts empty",
-                 stamp);
+    NODELET_WARN(
+        "time jumped back by more than ~reset_on_time_jump (frame at %.6f s): a new run, "
+        "the database starts empty",
+        stamp);
   }
   if (!isKeyframe(d)) return false;
   queue_->push(std::move(frame));
@@ -106,6 +108,21 @@ void LoopDetectorNodelet::cameraInfoCallback(const sensor_msgs::CameraInfoConstP
   const bowg::CameraIntrinsics k = toIntrinsics(*msg);
   std::lock_guard<std::mutex> lock(intrinsics_mutex_);
   intrinsics_ = k;
+}
+
+void LoopDetectorNodelet::odometerCallback(const std_msgs::Float64ConstPtr& msg) {
+  bool used;
+  {
+    std::lock_guard<std::mutex> lock(gate_mutex_);
+    used = gate_.addOdometerReading(msg->data);
+  }
+  if (!used && std::isfinite(msg->data)) {
+    NODELET_INFO_ONCE("%s is ignored: odometry positions arrive on %s and measure the same path",
+                      publicName("odometer").c_str(), publicName("odom").c_str());
+  } else if (!used) {
+    NODELET_WARN_THROTTLE(5.0, "odometer reading %f on %s is not finite: ignored", msg->data,
+                          publicName("odometer").c_str());
+  }
 }
 
 void LoopDetectorNodelet::odometryCallback(const nav_msgs::OdometryConstPtr& msg) {

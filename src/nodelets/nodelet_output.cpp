@@ -52,11 +52,11 @@ void LoopDetectorNodelet::publishResult(const Frame& frame, const bowg::LoopResu
       std::snprintf(scores, sizeof scores, " (score %.3f, island %u-%u)", result.best.eta,
                     result.island_first, result.island_last);
     }
-    std::string caption = "keyframe " + std::to_string(result.query_id) + ": " +
-                          bowg::toString(result.status);
+    std::string caption =
+        "keyframe " + std::to_string(result.query_id) + ": " + bowg::toString(result.status);
     if (found) {
-      caption += " -> " + std::to_string(result.match_id) + ", " +
-                 std::to_string(result.inliers) + " inliers";
+      caption += " -> " + std::to_string(result.match_id) + ", " + std::to_string(result.inliers) +
+                 " inliers";
     } else if (result.has_candidate) {
       caption += "; best candidate " + std::to_string(result.best.entry);
     }
@@ -94,10 +94,11 @@ void LoopDetectorNodelet::diagnose(diagnostic_updater::DiagnosticStatusWrapper& 
     std::lock_guard<std::mutex> lock(intrinsics_mutex_);
     has_intrinsics = intrinsics_.valid;
   }
-  bool has_odometry;
+  bool has_odometry, has_positions;
   {
     std::lock_guard<std::mutex> lock(gate_mutex_);
     has_odometry = gate_.hasOdometry();
+    has_positions = gate_.hasPositions();
   }
   const std::size_t dropped = queue_ ? queue_->dropped() : 0;
   std::lock_guard<std::mutex> lock(stats_mutex_);
@@ -125,6 +126,9 @@ void LoopDetectorNodelet::diagnose(diagnostic_updater::DiagnosticStatusWrapper& 
   status.add("keyframe errors", s.errors);
   status.add("camera intrinsics known", has_intrinsics);
   status.add("odometry received", has_odometry);
+  status.add("odometry input", !has_odometry   ? "none (images only)"
+                               : has_positions ? "positions and odometer"
+                                               : "odometer only");
   status.add("ms convert", s.window_convert_ms / n);
   status.add("ms features", s.window_feature_ms / n);
   status.add("ms words", s.window_transform_ms / n);
@@ -149,7 +153,8 @@ void LoopDetectorNodelet::diagnose(diagnostic_updater::DiagnosticStatusWrapper& 
   }
   if (gate_options_.min_distance > 0.0 && !has_odometry && s.frames_received > 0) {
     warnings.push_back("~min_keyframe_distance is set but no odometry arrived on " +
-                       publicName("odom") + ": only the time gate applies");
+                       publicName("odom") + " or " + publicName("odometer") +
+                       ": only the time gate applies");
   }
   if (dropped > 0) {
     warnings.push_back("keyframes dropped: the detector is slower than the keyframe rate");

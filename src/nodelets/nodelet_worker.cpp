@@ -21,6 +21,21 @@ void LoopDetectorNodelet::workerLoop() {
   }
 }
 
+// One line when the keyframes' odometry input changes (at the first
+// keyframe, and when odometry starts or stops arriving): which acceptance is
+// in force. Images only is a WARN with what to set.
+void LoopDetectorNodelet::reportOdometryInput(bowg::OdometryInput input) {
+  if (logged_input_ == static_cast<int>(input)) return;
+  logged_input_ = static_cast<int>(input);
+  if (input == bowg::OdometryInput::kNone) {
+    NODELET_WARN("odometry input: %s (nothing on %s or %s; ~min_keyframe_interval is %.3f s)",
+                 bowg::describeAcceptance(input), publicName("odom").c_str(),
+                 publicName("odometer").c_str(), gate_options_.min_interval);
+  } else {
+    NODELET_INFO("odometry input: %s", bowg::describeAcceptance(input));
+  }
+}
+
 void LoopDetectorNodelet::processFrame(const Frame& frame) {
   // 1. Grey image (shared for mono8) or upstream features.
   auto t0 = Clock::now();
@@ -69,6 +84,7 @@ void LoopDetectorNodelet::processFrame(const Frame& frame) {
   const std::size_t num_features = input.features.size();
 
   const bowg::LoopResult result = detector_->process(input);
+  reportOdometryInput(result.odometry_input);
   const std::size_t database_size = detector_->database().size();
   const bool found = result.status == bowg::LoopStatus::kLoopDetected;
 

@@ -12,10 +12,11 @@ loop_detected or too_few_inliers with a true match as the candidate).
 
 Reads a suite output folder (scripts/robustness_suite.sh): for every
 sequence NAME, sequences/NAME/poses.csv and ground_truth.txt (rendered) and
-results/NAME/keyframes_ROW.csv. Sequences without poses (real frames) or
+results/NAME/MODE/keyframes_ROW.csv (MODE: the robot's input mode). Sequences without poses (real frames) or
 without revisits are left out.
 
-usage: revisit_offsets.py --suite DIR [--row configured] [--csv FILE] [NAME ...]
+usage: revisit_offsets.py --suite DIR [--row configured] [--mode positions] [--csv FILE]
+                          [NAME ...]
 """
 import argparse
 import csv
@@ -77,6 +78,7 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--suite", required=True)
     parser.add_argument("--row", default="configured")
+    parser.add_argument("--mode", default="positions")
     parser.add_argument("--csv")
     parser.add_argument("names", nargs="*")
     args = parser.parse_args()
@@ -87,7 +89,8 @@ def main():
     used = []
     for name in names:
         seq = os.path.join(args.suite, "sequences", name)
-        results = os.path.join(args.suite, "results", name, "keyframes_%s.csv" % args.row)
+        results = os.path.join(args.suite, "results", name, args.mode,
+                               "keyframes_%s.csv" % args.row)
         if not os.path.exists(os.path.join(seq, "poses.csv")):
             continue  # real frames: no positions
         positions = read_positions(os.path.join(seq, "poses.csv"))
@@ -117,8 +120,8 @@ def main():
         median = statistics.median(inliers[i]) if inliers[i] else None
         rows.append((bin_label(i), queries[i], closed[i], closed[i] / queries[i], median,
                      len(inliers[i])))
-    print("revisit queries by offset to the nearest true match (%s row; %s)"
-          % (args.row, ", ".join(used)))
+    print("revisit queries by offset to the nearest true match (%s row, %s mode; %s)"
+          % (args.row, args.mode, ", ".join(used)))
     print("%-9s %8s %8s %9s %s" % ("offset", "queries", "closed", "recall",
                                     "inliers of verified true candidates: median (n)"))
     for label, n, c, r, median, m in rows:

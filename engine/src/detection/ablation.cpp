@@ -21,7 +21,8 @@ LoopDetectorOptions LoopDetectorOptions::ablation(const std::string& row,
     // with pure bag-of-words scores (DBoW2 + DLoopDetector's islands and
     // checks): every extension of this implementation off (normaliser floor,
     // aligned temporal score, missed-query tolerance, geometric re-ranking,
-    // the odometry gates, the place index, RANSAC's sample bound;
+    // the odometry gates, the verified chain, the place index, RANSAC's
+    // sample bound;
     // docs/method.md). The configuration's
     // thresholds and its recent-exclusion window (the "immediate past", in
     // metres where odometry is given) are kept: every row is judged on the
@@ -44,6 +45,7 @@ LoopDetectorOptions LoopDetectorOptions::ablation(const std::string& row,
     o.geometric.candidates = 1;
     o.islands.odometry_gate_m = 0.0;
     o.islands.odometry_anchor_m = 0.0;
+    o.chain.length = 0;
     o.islands.indexed_per_place = 0;
     o.geometric.ransac_bound_confidence = 0.0;
     o.geometric.native_ransac = false;
@@ -108,6 +110,10 @@ LoopDetectorOptions LoopDetectorOptions::ablation(const std::string& row,
     o.geometric.native_ransac = false;
     return o;
   }
+  if (row == "without_verified_chain") {  // the temporal verification alone
+    o.chain.length = 0;
+    return o;
+  }
   if (row == "without_reranking") {
     o.geometric.candidates = 1;
     return o;
@@ -136,7 +142,7 @@ LoopDetectorOptions LoopDetectorOptions::ablation(const std::string& row,
                            "without_missed_queries, without_hypotheses, without_min_step, "
                            "without_linked_places, without_odometry_gate, without_loop_anchor, "
                            "without_anchored_chain, without_place_index, without_ransac_bound, "
-                           "without_native_ransac, without_reranking");
+                           "without_native_ransac, without_reranking, without_verified_chain");
   }
   return o;
 }

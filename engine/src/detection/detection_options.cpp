@@ -12,6 +12,7 @@ void IslandOptions::validate() const {
   requireFiniteAtLeast("islands.min_score", min_score, 0.0);
   requireIntAtLeast("islands.recent_exclusion", recent_exclusion, 0);
   requireFiniteAtLeast("islands.recent_exclusion_m", recent_exclusion_m, 0.0);
+  requireFiniteAtLeast("islands.recent_exclusion_odometer_m", recent_exclusion_odometer_m, 0.0);
   requireIntAtLeast("islands.max_intra_island_gap", max_intra_island_gap, 0);
   requireIntAtLeast("islands.min_island_size", min_island_size, 1);
   requireFiniteAtLeast("islands.odometry_gate_m", odometry_gate_m, 0.0);
@@ -55,6 +56,14 @@ void GeometricVerificationOptions::validate() const {
   requireIntAtLeast("geometric.ransac_seed", ransac_seed, 0);
 }
 
+void VerifiedChainOptions::validate() const {
+  requireIntAtLeast("chain.length", length, 0);
+  requireIntAtLeast("chain.max_missed", max_missed, 0);
+  requireIntAtLeast("chain.min_unique_inliers", min_unique_inliers, 0);
+  requireIntAtLeast("chain.repeated_texture_keyframes", repeated_texture_keyframes, 1);
+  requireFiniteAtLeast("chain.repeated_texture_min_m", repeated_texture_min_m, 0.0);
+}
+
 void MetricTranslationOptions::validate() const {
   requireFinitePositive("metric.min_baseline_m", min_baseline_m);
   requireFinitePositive("metric.max_baseline_m", max_baseline_m);
@@ -80,6 +89,7 @@ void LoopDetectorOptions::validate() const {
   islands.validate();
   temporal_verification.validate();
   geometric.validate();
+  chain.validate();
   metric.validate();
 }
 

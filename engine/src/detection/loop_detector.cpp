@@ -157,6 +157,7 @@ LoopResult LoopDetector::process(const KeyframeInput& keyframe) {
   LoopResult r;
   r.query_id = static_cast<EntryId>(database_->size());
   r.stamp = keyframe.stamp;
+  r.odometry_input = odometryInput(keyframe.odometer, keyframe.position);
   last_candidates_.clear();
 
   DatabaseEntry entry;
@@ -173,6 +174,10 @@ LoopResult LoopDetector::process(const KeyframeInput& keyframe) {
     // Added anyway so that entry ids stay aligned with keyframe indices.
     database_->add(std::move(entry), GroupVector());
     query_steps::recordUnscoredQuery(options_, state_.get());
+    ChainQuery unmatched;
+    unmatched.query = r.query_id;
+    unmatched.odometer = keyframe.odometer;
+    state_->verified_chain.push(unmatched);
     r.status = LoopStatus::kNoFeatures;
     r.timings.total_ms = msBetween(t0, Clock::now());
     return r;

@@ -22,6 +22,8 @@ const char* toString(LoopStatus s) {
       return "too_few_correspondences";
     case LoopStatus::kTooFewInliers:
       return "too_few_inliers";
+    case LoopStatus::kNoVerifiedChain:
+      return "no_verified_chain";
   }
   return "unknown";
 }

@@ -24,6 +24,11 @@ void addDetectionRows(std::vector<Row>* rows) {
                             false, BOWG_FIELD(double, detector.islands.recent_exclusion_m),
                             "The same window in metres driven, used instead when odometry gives "
                             "the keyframes an odometer (0 = keyframes always)"));
+  rows->push_back(
+      doubleRow("recent_exclusion_odometer_m", det, "islands.recent_exclusion_odometer_m", 0.0, 1e6,
+                false, BOWG_FIELD(double, detector.islands.recent_exclusion_odometer_m),
+                "The window in metres for keyframes with an odometer but no odometry positions "
+                "(0 = recent_exclusion_m)"));
   rows->push_back(intRow("max_intra_island_gap", det, "islands.max_intra_island_gap", 0, 10000,
                          false, BOWG_FIELD(int, detector.islands.max_intra_island_gap),
                          "Candidates whose ids differ by at most this form one island"));
@@ -138,6 +143,27 @@ void addDetectionRows(std::vector<Row>* rows) {
                          "Geometric re-ranking: at most this many RANSACs, on the candidates "
                          "with the most correspondences (0 = rank by correspondences, RANSAC "
                          "only the island that passes the temporal verification)"));
+  // --- The verified chain: loops no odometry position places.
+  rows->push_back(intRow("verified_chain", det, "chain.length", 0, 60, true,
+                         BOWG_FIELD(int, detector.chain.length),
+                         "A loop no odometry position places needs the verified matches of this "
+                         "many previous queries to lead to its match as the robot moved, or to a "
+                         "published loop (0 = off: the temporal verification alone)"));
+  rows->push_back(intRow("verified_chain_missed", det, "chain.max_missed", 0, 10, false,
+                         BOWG_FIELD(int, detector.chain.max_missed),
+                         "Queries without a verified match the chain steps over, in a row"));
+  rows->push_back(intRow("min_unique_inliers", det, "chain.min_unique_inliers", 0, 10000, true,
+                         BOWG_FIELD(int, detector.chain.min_unique_inliers),
+                         "Inliers each match of the chain needs on features the robot's recent "
+                         "past does not repeat (0 = no test)"));
+  rows->push_back(intRow("repeated_texture_keyframes", det, "chain.repeated_texture_keyframes", 1,
+                         100, false, BOWG_FIELD(int, detector.chain.repeated_texture_keyframes),
+                         "Recent keyframes whose correspondences with the query mark its "
+                         "repeated texture"));
+  rows->push_back(doubleRow("repeated_texture_min_m", det, "chain.repeated_texture_min_m", 0.0,
+                            100.0, false, BOWG_FIELD(double, detector.chain.repeated_texture_min_m),
+                            "They lie from this many metres driven back to recent_exclusion_m "
+                            "(odometer), else spread over the recent_exclusion keyframes"));
   // --- Metric translation of a loop (odometry between the match and a neighbour).
   rows->push_back(boolRow("metric_translation", det, "metric.enabled", false,
                           BOWG_FIELD(bool, detector.metric.enabled),

@@ -38,6 +38,10 @@ const char* const kUsage =
     "  --odometry-poses FILE      the robot's dead-reckoned position per frame (CSV with 'frame',\n"
     "                             'x', 'y', 'z', e.g. the generator's drifting odometry.csv):\n"
     "                             with --odometry, the odometry gate (odometry_gate_m)\n"
+    "  --odometer-topic T         with --bag: std_msgs/Float64 odometer readings (metres driven,\n"
+    "                             a cable counter; the generator's /odometer): each image gets\n"
+    "                             the path of the readings before it, as the nodelet's odometer\n"
+    "                             topic (instead of --odometry)\n"
     "Engine:\n"
     "  --vocabulary FILE          any format bowg::loadVocabulary reads (required)\n"
     "  --config FILE              parameter file, e.g. config/pipe.yaml [engine defaults]\n"
@@ -56,7 +60,8 @@ const char* const kUsage =
     "                             without_linked_places, without_odometry_gate (both\n"
     "                             gates), without_loop_anchor, without_anchored_chain,\n"
     "                             without_place_index, without_ransac_bound,\n"
-    "                             without_native_ransac, without_reranking\n"
+    "                             without_native_ransac, without_reranking,\n"
+    "                             without_verified_chain\n"
     "                             (the configuration with one extension switched off)\n"
     "  --sweep rerun|score        PR curve: re-run the detector per threshold (exact, slower)\n"
     "                             or sweep the final score of one run at the lowest threshold\n"
@@ -83,7 +88,8 @@ std::vector<double> parseThresholds(const std::string& v) {
     if (!std::getline(in, a, ':') || !std::getline(in, b, ':') || !std::getline(in, c, ':')) {
       throw std::invalid_argument("--thresholds: expected LO:STEP:HI, got " + v);
     }
-    const double lo = eval::numberArgument("--thresholds", a), step = eval::numberArgument("--thresholds", b),
+    const double lo = eval::numberArgument("--thresholds", a),
+                 step = eval::numberArgument("--thresholds", b),
                  hi = eval::numberArgument("--thresholds", c);
     if (!(step > 0) || hi < lo || (hi - lo) / step > 1000) {
       throw std::invalid_argument("--thresholds: need STEP > 0, HI >= LO, at most 1000 values");
@@ -164,6 +170,8 @@ Args parseArgs(int argc, char** argv) {
       a.odometry = v;
     else if (flag == "--odometry-poses")
       a.odometry_poses = v;
+    else if (flag == "--odometer-topic")
+      a.odometer_topic = v;
     else if (flag == "--intrinsics")
       a.intrinsics = v;
     else if (flag == "--rows") {
@@ -193,6 +201,12 @@ Args parseArgs(int argc, char** argv) {
     throw std::invalid_argument("--intrinsics is for --images (a bag's camera_info gives them)");
   }
   if (a.max_frames < 0) throw std::invalid_argument("--max-frames must be >= 0");
+  if (!a.odometer_topic.empty() && a.bag.empty()) {
+    throw std::invalid_argument("--odometer-topic is for --bag (an image folder takes --odometry)");
+  }
+  if (!a.odometer_topic.empty() && !a.odometry.empty()) {
+    throw std::invalid_argument("give one of --odometer-topic and --odometry, not both");
+  }
   return a;
 }
 }  // namespace evaluate_app

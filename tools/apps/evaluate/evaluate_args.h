@@ -14,7 +14,8 @@ struct Args {
   std::string images, vocabulary, config, gt, output = "bowg_evaluation", sweep = "rerun";
   std::string odometry;
   std::string odometry_poses;
-  std::string intrinsics;  ///< --intrinsics: fx,fy,cx,cy of folder images
+  std::string odometer_topic;  ///< --odometer-topic: std_msgs/Float64 readings in the bag
+  std::string intrinsics;      ///< --intrinsics: fx,fy,cx,cy of folder images
   std::string dump_candidates;
   double rate = 1.0;
   long max_frames = 0;

@@ -5,11 +5,14 @@
 #include <rosbag/bag.h>
 #include <rosbag/view.h>
 #include <sensor_msgs/CameraInfo.h>
+#include <std_msgs/Float64.h>
 
 #include <algorithm>
 #include <cctype>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
+#include <limits>
 #include <string>
 
 #include "bowg/core/errors.h"
@@ -100,6 +103,10 @@ std::vector<FrameInput> loadFrames(const Args& a, const FeatureExtractor& extrac
   }
   std::vector<std::string> topics{a.image_topic};
   if (a.info_topic != "none") topics.push_back(a.info_topic);
+  if (!a.odometer_topic.empty()) topics.push_back(a.odometer_topic);
+  // The odometer readings' path (|change| summed, as the nodelet's keyframe
+  // gate sums them) when the image comes; NaN before the first reading.
+  double odometer = std::numeric_limits<double>::quiet_NaN(), last_reading = 0.0;
   rosbag::View view(bag, rosbag::TopicQuery(topics));
   rosbag::View images_only(bag, rosbag::TopicQuery(a.image_topic));
   std::size_t total = images_only.size();
@@ -115,6 +122,16 @@ std::vector<FrameInput> loadFrames(const Args& a, const FeatureExtractor& extrac
       if (info && !intrinsics.valid) intrinsics = bowg_ros::toIntrinsics(*info);
       continue;
     }
+    if (m.getTopic() == a.odometer_topic) {
+      const std_msgs::Float64::ConstPtr reading = m.instantiate<std_msgs::Float64>();
+      if (!reading) {
+        throw FormatError(a.bag + ": " + a.odometer_topic + " is not std_msgs/Float64");
+      }
+      if (!std::isfinite(reading->data)) continue;  // the nodelet ignores them too
+      odometer = std::isnan(odometer) ? 0.0 : odometer + std::fabs(reading->data - last_reading);
+      last_reading = reading->data;
+      continue;
+    }
     const bowg_ros::BagImage image = bowg_ros::readBagImage(m, a.bag);
     // Folder images are checked by readGreyImage; a bag's here. A frame
     // without features keeps the frame numbering (ground truth).
@@ -126,6 +143,7 @@ std::vector<FrameInput> loadFrames(const Args& a, const FeatureExtractor& extrac
       ++too_large;
     }
     add(size.empty() ? image.grey : cv::Mat(), image.stamp.toSec(), intrinsics);
+    frames.back().odometer = odometer;
     bar(frames.size(), total);
   }
   if (too_large > 0) {
@@ -159,6 +177,16 @@ void attachOdometry(const std::string& path, std::vector<FrameInput>* frames) {
 void attachOdometryPositions(const std::string& path, std::vector<FrameInput>* frames) {
   attachPerFrame(path, readOdometryPositions(path), "odometry positions", frames,
                  [](FrameInput* f, const OdometryPosition& p) { f->position = p; });
+}
+
+OdometryInput odometryInputOf(const std::vector<eval::FrameInput>& frames) {
+  OdometryInput input = OdometryInput::kNone;
+  for (const eval::FrameInput& f : frames) {
+    const OdometryInput i = odometryInput(f.odometer, f.position);
+    if (i == OdometryInput::kPositions) return i;
+    if (i == OdometryInput::kOdometer) input = i;
+  }
+  return input;
 }
 
 }  // namespace evaluate_app

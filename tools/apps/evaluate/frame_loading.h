@@ -5,6 +5,7 @@
 
 #include <vector>
 
+#include "bowg/detection/odometry_input.h"
 #include "bowg/features/feature_extractor.h"
 #include "bowg_evaluation/detector_run.h"
 #include "evaluate_args.h"
@@ -20,6 +21,10 @@ void attachOdometry(const std::string& path, std::vector<eval::FrameInput>* fram
 /// Sets every frame's odometry position from `path` (odometry_file.h);
 /// throws bowg::FormatError naming the file when it lists fewer frames.
 void attachOdometryPositions(const std::string& path, std::vector<eval::FrameInput>* frames);
+/// The odometry the frames come with, as the detector reads it
+/// (odometry_input.h): positions when any frame has a position and an
+/// odometer, else an odometer when any has one, else none.
+OdometryInput odometryInputOf(const std::vector<eval::FrameInput>& frames);
 
 }  // namespace evaluate_app
 }  // namespace bowg

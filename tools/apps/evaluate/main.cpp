@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "bowg/core/errors.h"
+#include "bowg/detection/odometry_input.h"
 #include "bowg/parameters/parameter_table.h"
 #include "bowg/vocabulary/vocabulary_io.h"
 #include "bowg_evaluation/ground_truth.h"
@@ -71,6 +72,10 @@ int run(int argc, char** argv) {
   std::vector<FrameInput> frames = loadFrames(a, extractor);
   if (!a.odometry.empty()) attachOdometry(a.odometry, &frames);
   if (!a.odometry_poses.empty()) attachOdometryPositions(a.odometry_poses, &frames);
+  // Which acceptance applies: what the robot of this run has.
+  const std::string odometry =
+      std::string("odometry: ") + describeAcceptance(odometryInputOf(frames));
+  if (!a.quiet) std::printf("%s\n", odometry.c_str());
   const GroundTruth gt = usedGroundTruth(all_gt, a, frames.size());
   if (!a.dump_candidates.empty()) {
     if (!has_gt) throw std::invalid_argument("--dump-candidates needs --gt FILE");
@@ -80,7 +85,7 @@ int run(int argc, char** argv) {
   const std::vector<double> thresholds = thresholdGrid(a.thresholds, threshold);
   const std::vector<RowResult> results =
       runRows(a, vocabulary, pipeline.detector, frames, has_gt ? &gt : nullptr, thresholds);
-  writeReport(a, results, frames.size(), has_gt ? &gt : nullptr, thresholds, threshold);
+  writeReport(a, results, frames.size(), odometry, has_gt ? &gt : nullptr, thresholds, threshold);
   return 0;
 }
 

@@ -127,7 +127,8 @@ void memoryVersusSize(const Args& a, const std::vector<RowResult>& results, std:
 }  // namespace
 
 void writeReport(const Args& a, const std::vector<RowResult>& results, std::size_t frames,
-                 const GroundTruth* gt, const std::vector<double>& thresholds, double threshold) {
+                 const std::string& odometry, const GroundTruth* gt,
+                 const std::vector<double>& thresholds, double threshold) {
   for (const RowResult& r : results) {
     writeFileAtomically(a.output + "/keyframes_" + r.run.name + ".csv", keyframesCsv(r.run, gt));
     writeFileAtomically(a.output + "/detections_" + r.run.name + ".csv",
@@ -139,7 +140,8 @@ void writeReport(const Args& a, const std::vector<RowResult>& results, std::size
   s << "input: " << (a.bag.empty() ? a.images : a.bag) << " (" << frames << " frames)\n"
     << "vocabulary: " << a.vocabulary
     << "  config: " << (a.config.empty() ? "(defaults)" : a.config) << "  min_score: " << threshold
-    << "\n";
+    << "\n"
+    << odometry << "\n";
   if (gt) {
     accuracyTable(a, results, *gt, thresholds, threshold, s);
   } else {

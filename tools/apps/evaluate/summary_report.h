@@ -13,11 +13,12 @@
 namespace bowg {
 namespace evaluate_app {
 
-/// Writes every output into a.output and prints the summary. `gt` is null
-/// without a ground truth (counts only).
+/// Writes every output into a.output and prints the summary, which names the
+/// odometry the run had (`odometry`, one line). `gt` is null without a ground
+/// truth (counts only).
 void writeReport(const Args& a, const std::vector<RowResult>& results, std::size_t frames,
-                 const eval::GroundTruth* gt, const std::vector<double>& thresholds,
-                 double threshold);
+                 const std::string& odometry, const eval::GroundTruth* gt,
+                 const std::vector<double>& thresholds, double threshold);
 
 }  // namespace evaluate_app
 }  // namespace bowg

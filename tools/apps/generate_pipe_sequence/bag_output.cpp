@@ -2,19 +2,20 @@
 // messages of a frame and the image in each --bag-images format.
 #include "bag_output.h"
 
-#include <cstdint>
-#include <cstdio>
-#include <stdexcept>
-#include <string>
-
 #include <geometry_msgs/PoseStamped.h>
 #include <nav_msgs/Odometry.h>
-#include <opencv2/imgcodecs.hpp>
-#include <opencv2/imgproc.hpp>
 #include <sensor_msgs/CompressedImage.h>
 #include <sensor_msgs/Image.h>
 #include <sensor_msgs/image_encodings.h>
+#include <std_msgs/Float64.h>
 #include <std_msgs/Header.h>
+
+#include <cstdint>
+#include <cstdio>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+#include <stdexcept>
+#include <string>
 
 namespace bowg {
 namespace generate_pipe_sequence_app {
@@ -42,8 +43,8 @@ void writeBagImage(rosbag::Bag* bag, const std_msgs::Header& header, const cv::M
   msg.header = header;
   msg.height = pixels.rows;
   msg.width = pixels.cols;
-  msg.encoding = format == "bgr8" ? sensor_msgs::image_encodings::BGR8
-                                  : sensor_msgs::image_encodings::MONO8;
+  msg.encoding =
+      format == "bgr8" ? sensor_msgs::image_encodings::BGR8 : sensor_msgs::image_encodings::MONO8;
   msg.is_bigendian = 0;
   msg.step = static_cast<std::uint32_t>(pixels.cols * pixels.elemSize());
   const cv::Mat packed = pixels.isContinuous() ? pixels : pixels.clone();
@@ -132,6 +133,13 @@ void BagOutput::writeOdometry(const pipe_sim::FrameState& f, const pipe_sim::Cam
   }
   // The twist stays zero: the pose is what the pose-graph examples read.
   bag_.write("/odom", odometry.header.stamp, odometry);
+  const cv::Vec3d position(pose.position[0], pose.position[1], pose.position[2]);
+  if (has_position_) odometer_ += cv::norm(position - last_position_);
+  has_position_ = true;
+  last_position_ = position;
+  std_msgs::Float64 reading;
+  reading.data = odometer_;
+  bag_.write("/odometer", stampOf(f.stamp - kOdometerLead), reading);
 }
 
 void BagOutput::finish() {

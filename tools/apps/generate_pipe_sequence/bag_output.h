@@ -4,11 +4,11 @@
 // interrupted run leaves no bag that looks finished.
 #pragma once
 
-#include <string>
-
-#include <opencv2/core.hpp>
 #include <rosbag/bag.h>
 #include <sensor_msgs/CameraInfo.h>
+
+#include <opencv2/core.hpp>
+#include <string>
 
 #include "bowg_pipe_sim/pipe_renderer.h"
 #include "bowg_pipe_sim/pipe_sequence.h"
@@ -28,7 +28,11 @@ class BagOutput {
   void write(const pipe_sim::FrameState& f, const cv::Mat& image, const cv::Vec4d& q);
 
   /// Frame `f`'s odometry on /odom: `pose` (orientation `q`, x y z w) with
-  /// `covariance` (x y z, rotation about x y z), stamped f.stamp.
+  /// `covariance` (x y z, rotation about x y z), stamped f.stamp; and on
+  /// /odometer (std_msgs/Float64) the path length of the odometry's
+  /// positions so far, what a robot without positions counts (a cable
+  /// counter), stamped kOdometerLead before the frame so that a player
+  /// delivers it before the frame's image.
   void writeOdometry(const pipe_sim::FrameState& f, const pipe_sim::CameraPose& pose,
                      const cv::Vec4d& q, const cv::Matx<double, 6, 6>& covariance);
 
@@ -39,7 +43,13 @@ class BagOutput {
   rosbag::Bag bag_;
   std::string path_, tmp_path_, image_format_;
   sensor_msgs::CameraInfo info_;
+  bool has_position_ = false;
+  cv::Vec3d last_position_;
+  double odometer_ = 0;
 };
+
+/// How long before its frame the /odometer reading is stamped (s).
+constexpr double kOdometerLead = 0.02;
 
 }  // namespace generate_pipe_sequence_app
 }  // namespace bowg

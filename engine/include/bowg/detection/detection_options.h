@@ -26,6 +26,13 @@ struct IslandOptions {
   /// keyframes it is a distance only for one spacing. 0 = keyframes always.
   /// >= 0.
   double recent_exclusion_m = 0.0;
+  /// The window in metres for a query with an odometer but no odometry
+  /// position (a cable counter, a wheel encoder alone): without positions no
+  /// gate tells the look-alikes of the robot's own last metres (the same
+  /// texture, the same bend seen a few metres back) from a revisit, and a
+  /// loop that short tells a pose graph little the odometer does not.
+  /// 0 = recent_exclusion_m. >= 0.
+  double recent_exclusion_odometer_m = 0.0;
   /// Entries whose ids differ by at most this belong to one island. >= 0.
   int max_intra_island_gap = 3;
   /// Islands with fewer members are ignored. >= 1.
@@ -188,6 +195,36 @@ struct GeometricVerificationOptions {
   void validate() const;
 };
 
+/// The verified chain (verified_chain.h): what a loop needs that no odometry
+/// position places (images only, an odometer only, or the first loop of a
+/// revisit with positions). In a pipe that repeats every section a
+/// look-alike passes every check of one query; what it cannot do is win the
+/// geometric re-ranking query after query, each match following the robot,
+/// with inliers on what the pipe does not repeat.
+struct VerifiedChainOptions {
+  /// Previous queries whose verified matches (the re-ranking's best two with
+  /// at least min_inliers inliers) must lead, step by step as the robot
+  /// moves, to the loop's match; a chain that leads back to a published
+  /// loop passes at once. 0 = off: the paper's temporal verification alone.
+  /// >= 0.
+  int length = 0;
+  /// Queries without a verified match the chain steps over, in a row. >= 0.
+  int max_missed = 1;
+  /// Each match of the chain (and the loop's) needs this many inliers on
+  /// query features the robot's recent past does not repeat (the unique
+  /// marks, the wall's own grain), unless the chain leads back to a
+  /// published loop. 0 = no such test. >= 0.
+  int min_unique_inliers = 0;
+  /// The recent past: this many keyframes, spread over the metres driven
+  /// from repeated_texture_min_m to IslandOptions::recent_exclusion_m back
+  /// (odometer), else over the recent_exclusion keyframes. Their
+  /// correspondences with the query mark its repeated texture. >= 1.
+  int repeated_texture_keyframes = 12;
+  /// Nearer keyframes see the query's own wall, marks included. >= 0.
+  double repeated_texture_min_m = 0.6;
+  void validate() const;
+};
+
 /// The loop's translation in metres (metric_translation.h): from the
 /// odometer's distance between the match and a neighbour keyframe, when
 /// the keyframes carry odometers and intrinsics are known.
@@ -220,6 +257,7 @@ struct LoopDetectorOptions {
   IslandOptions islands;
   TemporalVerificationOptions temporal_verification;
   GeometricVerificationOptions geometric;
+  VerifiedChainOptions chain;
   MetricTranslationOptions metric;
 
   /// Throws InvalidParameter("<stage>.<field>: <why>") on the first invalid
@@ -235,8 +273,8 @@ struct LoopDetectorOptions {
   /// DLoopDetector's checks); "configured": base unchanged. "without_<x>":
   /// base with one extension of this implementation switched back to the
   /// paper (x = floor, normaliser_distance, alignment, missed_queries,
-  /// hypotheses, min_step, place_index, reranking), so that the suite shows what each
-  /// extension adds to the configuration.
+  /// hypotheses, min_step, place_index, reranking, verified_chain), so that the suite shows what
+  /// each extension adds to the configuration.
   static LoopDetectorOptions ablation(const std::string& row, const LoopDetectorOptions& base);
 };
 

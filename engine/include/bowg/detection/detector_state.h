@@ -12,6 +12,7 @@
 #include "bowg/detection/islands.h"
 #include "bowg/detection/odometry_gate.h"
 #include "bowg/detection/place_links.h"
+#include "bowg/detection/verified_chain.h"
 #include "bowg/scoring/normaliser_history.h"
 
 namespace bowg {
@@ -41,6 +42,7 @@ struct DetectorState {
   /// (IslandOptions::odometry_anchor_m); recorded whether or not the option
   /// is on. Not saved (LoopAnchor).
   std::vector<LoopAnchor> recent_loops;
+  VerifiedChain verified_chain;
 };
 
 }  // namespace bowg

@@ -17,6 +17,7 @@
 #include "bowg/detection/geometric_verification.h"
 #include "bowg/detection/loop_status.h"
 #include "bowg/detection/metric_translation.h"
+#include "bowg/detection/odometry_input.h"
 
 namespace bowg {
 
@@ -65,6 +66,9 @@ struct LoopResult {
   EntryId query_id = 0;
   double stamp = 0;
   LoopStatus status = LoopStatus::kNoFeatures;
+  /// The odometry the keyframe came with, which decided how its loop is
+  /// accepted (odometry_input.h).
+  OdometryInput odometry_input = OdometryInput::kNone;
 
   /// Best candidate before verification (valid when has_candidate).
   bool has_candidate = false;

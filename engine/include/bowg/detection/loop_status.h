@@ -16,6 +16,7 @@ enum class LoopStatus {
   kNoTemporalConsistency,  ///< best island not consistent with k previous
   kTooFewCorrespondences,  ///< fewer than 8 correspondences for RANSAC
   kTooFewInliers,          ///< RANSAC found fewer than min_inliers
+  kNoVerifiedChain,        ///< the match does not continue the previous queries' verified matches
 };
 const char* toString(LoopStatus s);
 

@@ -1,0 +1,112 @@
+#include "bowg/detection/verified_chain.h"
+
+#include <cmath>
+
+namespace bowg {
+namespace {
+
+// The walk never goes further back than this: length matches with up to
+// max_missed skipped queries between them, and the queries of a robot
+// standing still.
+constexpr std::size_t kRemembered = 64;
+
+// chainStep without the place links.
+bool directStep(EntryId previous_query, double previous_odometer, EntryId previous_match,
+                EntryId next_query, double next_odometer, EntryId next_match,
+                const ChainContext& c) {
+  const TemporalVerificationOptions& tv = c.temporal;
+  const double previous_match_m = c.entry_odometers[previous_match];
+  const double next_match_m = c.entry_odometers[next_match];
+  if (tv.max_island_distance_m > 0.0 && std::isfinite(previous_odometer) &&
+      std::isfinite(next_odometer) && std::isfinite(previous_match_m) &&
+      std::isfinite(next_match_m)) {
+    const double driven = next_odometer - previous_odometer;
+    const double moved = next_match_m - previous_match_m;
+    return std::fabs(moved - driven) <= tv.max_island_distance_m + c.drift * std::fabs(driven);
+  }
+  const double steps = static_cast<double>(next_query) - static_cast<double>(previous_query);
+  const double advanced = static_cast<double>(next_match) - static_cast<double>(previous_match);
+  return advanced >= 0.5 * steps - 1.0 && advanced <= 2.0 * steps + 1.0;
+}
+
+// Whether `m` has the unique inliers the chain asks for (any when it asks
+// for none).
+bool uniqueEnough(const ChainMatch& m, int min_unique) {
+  return min_unique <= 0 || m.unique_inliers >= min_unique;
+}
+
+// The match of `q` that chainStep follows to `last` (preferring one with
+// enough unique inliers); nullptr when none does.
+const ChainMatch* followingMatch(const ChainQuery& q, const ChainQuery& last, int min_unique,
+                                 const ChainContext& c) {
+  const ChainMatch* found = nullptr;
+  for (std::uint8_t i = 0; i < q.matches; ++i) {
+    const ChainMatch& m = q.match[i];
+    if (!chainStep(q.query, q.odometer, m.entry, last.query, last.odometer, last.match[0].entry,
+                   c)) {
+      continue;
+    }
+    if (found == nullptr || (!uniqueEnough(*found, min_unique) && uniqueEnough(m, min_unique))) {
+      found = &m;
+    }
+  }
+  return found;
+}
+
+}  // namespace
+
+bool chainStep(EntryId previous_query, double previous_odometer, EntryId previous_match,
+               EntryId next_query, double next_odometer, EntryId next_match,
+               const ChainContext& context) {
+  if (directStep(previous_query, previous_odometer, previous_match, next_query, next_odometer,
+                 next_match, context)) {
+    return true;
+  }
+  if (!context.temporal.linked_places) return false;
+  const EntryId previous_place = context.links.root(previous_match);
+  const EntryId next_place = context.links.root(next_match);
+  if (previous_place == previous_match && next_place == next_match) return false;
+  return directStep(previous_query, previous_odometer, previous_place, next_query, next_odometer,
+                    next_place, context);
+}
+
+void VerifiedChain::push(const ChainQuery& q) {
+  recent_.push_back(q);
+  if (recent_.size() > kRemembered) recent_.pop_front();
+}
+
+bool VerifiedChain::passes(const ChainQuery& current, const VerifiedChainOptions& options,
+                           const ChainContext& context) const {
+  if (current.matches == 0) return false;
+  const int min_unique = options.min_unique_inliers;
+  bool all_unique = uniqueEnough(current.match[0], min_unique);
+  int length = 0, missed = 0;
+  // The last query taken, its match taken in front.
+  ChainQuery last = current;
+  last.matches = 1;
+  const double min_step = context.temporal.min_step_m;
+  for (auto it = recent_.rbegin(); it != recent_.rend() && length < options.length; ++it) {
+    if (it->matches == 0) {
+      if (++missed > options.max_missed) return false;
+      continue;
+    }
+    const ChainMatch* m = followingMatch(*it, last, min_unique, context);
+    if (m == nullptr) return false;
+    missed = 0;
+    if (it->published && m == &it->match[0]) return true;  // continues a published loop
+    // A robot standing still sends one view again and again: one piece of
+    // evidence.
+    if (min_step > 0.0 && std::isfinite(it->odometer) && std::isfinite(last.odometer) &&
+        last.odometer - it->odometer < min_step) {
+      continue;
+    }
+    if (!uniqueEnough(*m, min_unique)) all_unique = false;
+    ++length;
+    last = *it;
+    last.match[0] = *m;
+    last.matches = 1;
+  }
+  return length >= options.length && all_unique;
+}
+
+}  // namespace bowg

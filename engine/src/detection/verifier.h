@@ -1,0 +1,92 @@
+// The two sides of a geometric verification within one query: the query's
+// and the database entries' keypoints, descriptors and direct indexes, made
+// on demand (the database keeps packed positions and words, not direct
+// indexes). Internal to the detection stage.
+#pragma once
+
+#include <vector>
+
+#include "bowg/core/types.h"
+#include "bowg/database/database.h"
+#include "bowg/detection/geometric_verification.h"
+#include "bowg/vocabulary/vocabulary.h"
+
+namespace bowg {
+namespace query_steps {
+
+// What a verification view of a database entry points into: its positions
+// unpacked (the database packs them, PackedPoints) and its direct index,
+// made from its words.
+struct EntryViewStorage {
+  std::vector<ImagePoint> points;
+  std::vector<WordId> words;
+  DirectIndex direct;
+};
+
+// The two sides of a geometric verification. The query's direct index is
+// built on the first verification only (with one verified candidate most
+// queries stop at the temporal check before it), a database entry's for each
+// correspondence search with it: the database keeps words, not direct
+// indexes. RANSAC on correspondences already found needs none (features()).
+class Verifier {
+ public:
+  Verifier(const Vocabulary& vocabulary, const Database& database, const DatabaseEntry& query,
+           const CameraIntrinsics& k, bool exhaustive)
+      : vocabulary_(vocabulary),
+        database_(database),
+        query_(query),
+        intrinsics_(k),
+        exhaustive_(exhaustive),
+        built_(false) {}
+
+  VerificationView query() {
+    if (!built_) {
+      unpack(query_, &query_storage_);
+      built_ = true;
+    }
+    return VerificationView{&query_storage_.points, &query_.descriptors, &query_storage_.direct};
+  }
+
+  /// Valid until the next call.
+  VerificationView match(EntryId id) { return entry(id, &match_storage_); }
+
+  /// Entry `id`'s keypoints and descriptors without a direct index: enough
+  /// for RANSAC on correspondences already found (verifyCorrespondences).
+  /// Valid until the next call.
+  VerificationView features(EntryId id) {
+    const DatabaseEntry& m = database_.entry(id);
+    m.points.unpack(&features_points_);
+    return VerificationView{&features_points_, &m.descriptors, nullptr};
+  }
+
+  /// Entry `id`'s view, its positions and direct index in `storage`.
+  VerificationView entry(EntryId id, EntryViewStorage* storage) const {
+    const DatabaseEntry& m = database_.entry(id);
+    unpack(m, storage);
+    return VerificationView{&storage->points, &m.descriptors, &storage->direct};
+  }
+
+  const CameraIntrinsics& intrinsics() const { return intrinsics_; }
+  const DatabaseEntry& queryEntry() const { return query_; }
+
+ private:
+  void unpack(const DatabaseEntry& e, EntryViewStorage* storage) const {
+    e.points.unpack(&storage->points);
+    if (!exhaustive_) {
+      e.words.unpack(&storage->words);
+      storage->direct = directIndexFromWords(vocabulary_, storage->words, database_.directLevel());
+    }
+  }
+
+  const Vocabulary& vocabulary_;
+  const Database& database_;
+  const DatabaseEntry& query_;
+  const CameraIntrinsics& intrinsics_;
+  EntryViewStorage query_storage_, match_storage_;
+  std::vector<ImagePoint> features_points_;
+  bool exhaustive_;
+  bool built_;
+};
+
+}  // namespace query_steps
+}  // namespace bowg

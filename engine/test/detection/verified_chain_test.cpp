@@ -1,0 +1,218 @@
+// The verified chain (verified_chain.h) on hand-worked queries and matches.
+#include "bowg/detection/verified_chain.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <vector>
+
+namespace bowg {
+namespace {
+
+const double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// A query with its matches (entry, unique inliers), best first.
+ChainQuery query(EntryId id, double odometer, std::vector<ChainMatch> matches,
+                 bool published = false) {
+  ChainQuery q;
+  q.query = id;
+  q.odometer = odometer;
+  for (const ChainMatch& m : matches) q.add(m);
+  q.published = published;
+  return q;
+}
+
+ChainMatch match(EntryId entry, int unique = 30) {
+  ChainMatch m;
+  m.entry = entry;
+  m.unique_inliers = unique;
+  return m;
+}
+
+// Everything a step needs: entries without odometers unless set, no links.
+struct Fixture {
+  std::vector<double> odometers = std::vector<double>(300, kNaN);
+  PlaceLinks links;
+  TemporalVerificationOptions temporal;
+  double drift = 0.25;
+  ChainContext context() const { return ChainContext{odometers, links, temporal, drift}; }
+};
+
+TEST(VerifiedChain, StepInMetresAllowsTheToleranceAndTheDrift) {
+  Fixture f;
+  f.temporal.max_island_distance_m = 0.25;
+  // The query drove 1 m (10 -> 11): the match must move 1 m within
+  // 0.25 + 0.25 * 1 = 0.5 m.
+  f.odometers[3] = 2.0;
+  f.odometers[5] = 3.5;   // moved 1.5: on the bound, follows
+  f.odometers[6] = 3.75;  // moved 1.75: does not
+  f.odometers[7] = 2.5;   // moved 0.5: on the bound, follows
+  f.odometers[8] = 2.25;  // moved 0.25: does not
+  const ChainContext c = f.context();
+  EXPECT_TRUE(chainStep(40, 10.0, 3, 41, 11.0, 5, c));
+  EXPECT_FALSE(chainStep(40, 10.0, 3, 41, 11.0, 6, c));
+  EXPECT_TRUE(chainStep(40, 10.0, 3, 41, 11.0, 7, c));
+  EXPECT_FALSE(chainStep(40, 10.0, 3, 41, 11.0, 8, c));
+}
+
+TEST(VerifiedChain, StepInKeyframesAllowsASpeedRatioOfTwoAndOneKeyframe) {
+  Fixture f;  // no odometers: ids
+  const ChainContext c = f.context();
+  // Two queries on (10 -> 12): the match may advance from 2 / 2 - 1 = 0 to
+  // 2 * 2 + 1 = 5 keyframes.
+  EXPECT_FALSE(chainStep(10, kNaN, 20, 12, kNaN, 19, c));
+  EXPECT_TRUE(chainStep(10, kNaN, 20, 12, kNaN, 20, c));
+  EXPECT_TRUE(chainStep(10, kNaN, 20, 12, kNaN, 25, c));
+  EXPECT_FALSE(chainStep(10, kNaN, 20, 12, kNaN, 26, c));
+  // One query on: from -0.5 to 3.
+  EXPECT_TRUE(chainStep(10, kNaN, 20, 11, kNaN, 20, c));
+  EXPECT_TRUE(chainStep(10, kNaN, 20, 11, kNaN, 23, c));
+  EXPECT_FALSE(chainStep(10, kNaN, 20, 11, kNaN, 24, c));
+  // Metres need every odometer: one missing falls back to ids.
+  f.temporal.max_island_distance_m = 0.1;
+  f.odometers[20] = 1.0;
+  EXPECT_TRUE(chainStep(10, 5.0, 20, 11, 5.04, 23, f.context()));
+}
+
+TEST(VerifiedChain, LinkedPlacesFollowAcrossLaps) {
+  Fixture f;
+  // Lap 2's entry 105 closed a loop to lap 1's entry 6: one place, whose
+  // first entry is 6. The match jumps from lap 1 (5) to lap 2 (105) as the
+  // query moves one keyframe on: 6 - 5 = 1 keyframe, a step.
+  f.links.link(105, 6);
+  EXPECT_FALSE(chainStep(210, kNaN, 5, 211, kNaN, 105, f.context()));
+  f.temporal.linked_places = true;
+  EXPECT_TRUE(chainStep(210, kNaN, 5, 211, kNaN, 105, f.context()));
+  // Back from lap 2 to lap 1 as well; an unlinked lap-2 entry does not.
+  EXPECT_TRUE(chainStep(211, kNaN, 105, 212, kNaN, 7, f.context()));
+  EXPECT_FALSE(chainStep(210, kNaN, 5, 211, kNaN, 104, f.context()));
+  // In metres the places' first entries' odometers are compared.
+  f.temporal.max_island_distance_m = 0.1;
+  f.drift = 0.0;
+  f.odometers[5] = 1.0;
+  f.odometers[6] = 1.2;
+  f.odometers[105] = 15.0;
+  EXPECT_TRUE(chainStep(210, 30.0, 5, 211, 30.2, 105, f.context()));
+  EXPECT_FALSE(chainStep(210, 30.0, 5, 211, 30.5, 105, f.context()));
+}
+
+// Queries 10-13 before the current 14, ids one keyframe apart, every match
+// one entry on: a chain of 3 with K = 3.
+VerifiedChainOptions options(int length, int min_unique, int max_missed = 1) {
+  VerifiedChainOptions o;
+  o.length = length;
+  o.min_unique_inliers = min_unique;
+  o.max_missed = max_missed;
+  return o;
+}
+
+TEST(VerifiedChain, PassesWhenEnoughUniqueMatchesLeadToTheMatch) {
+  Fixture f;
+  VerifiedChain chain;
+  chain.push(query(10, kNaN, {match(3)}));
+  chain.push(query(11, kNaN, {match(4)}));
+  chain.push(query(12, kNaN, {}));  // no verified match: stepped over
+  chain.push(query(13, kNaN, {match(6)}));
+  const ChainQuery current = query(14, kNaN, {match(7)});
+  EXPECT_TRUE(chain.passes(current, options(3, 25), f.context()));
+  EXPECT_FALSE(chain.passes(current, options(4, 25), f.context()));  // only 3 before
+  // The current match needs its unique inliers too.
+  EXPECT_FALSE(chain.passes(query(14, kNaN, {match(7, 24)}), options(3, 25), f.context()));
+  EXPECT_TRUE(chain.passes(query(14, kNaN, {match(7, 24)}), options(3, 24), f.context()));
+  // A query without any match fails.
+  EXPECT_FALSE(chain.passes(query(14, kNaN, {}), options(0, 0), f.context()));
+  EXPECT_TRUE(chain.passes(query(14, kNaN, {match(7)}), options(0, 0), f.context()));
+}
+
+TEST(VerifiedChain, MissesALookAlikeOrTooFewUniqueInliersEndIt) {
+  Fixture f;
+  {
+    VerifiedChain chain;  // two queries in a row without a match, one allowed
+    chain.push(query(10, kNaN, {match(3)}));
+    chain.push(query(11, kNaN, {match(4)}));
+    chain.push(query(12, kNaN, {}));
+    chain.push(query(13, kNaN, {}));
+    chain.push(query(14, kNaN, {match(7)}));
+    EXPECT_FALSE(chain.passes(query(15, kNaN, {match(8)}), options(3, 25), f.context()));
+    EXPECT_TRUE(chain.passes(query(15, kNaN, {match(8)}), options(3, 25, 2), f.context()));
+  }
+  {
+    VerifiedChain chain;  // a look-alike 12 sections away won query 12
+    chain.push(query(10, kNaN, {match(3)}));
+    chain.push(query(11, kNaN, {match(4)}));
+    chain.push(query(12, kNaN, {match(40)}));
+    chain.push(query(13, kNaN, {match(6)}));
+    EXPECT_FALSE(chain.passes(query(14, kNaN, {match(7)}), options(3, 25), f.context()));
+    EXPECT_TRUE(chain.passes(query(14, kNaN, {match(7)}), options(1, 25), f.context()));
+  }
+  {
+    VerifiedChain chain;  // ... unless its runner-up continues the chain
+    chain.push(query(10, kNaN, {match(3)}));
+    chain.push(query(11, kNaN, {match(4)}));
+    chain.push(query(12, kNaN, {match(40), match(5)}));
+    chain.push(query(13, kNaN, {match(6)}));
+    EXPECT_TRUE(chain.passes(query(14, kNaN, {match(7)}), options(3, 25), f.context()));
+  }
+  {
+    VerifiedChain chain;  // a match of the chain with too few unique inliers
+    chain.push(query(10, kNaN, {match(3)}));
+    chain.push(query(11, kNaN, {match(4, 10)}));
+    chain.push(query(12, kNaN, {match(5)}));
+    EXPECT_FALSE(chain.passes(query(13, kNaN, {match(6)}), options(3, 25), f.context()));
+    EXPECT_TRUE(chain.passes(query(13, kNaN, {match(6)}), options(3, 10), f.context()));
+    EXPECT_TRUE(chain.passes(query(13, kNaN, {match(6)}), options(1, 25), f.context()));
+  }
+  {
+    VerifiedChain chain;  // of two that follow, the one with unique inliers
+    chain.push(query(10, kNaN, {match(3)}));
+    chain.push(query(11, kNaN, {match(5, 0), match(4, 30)}));
+    chain.push(query(12, kNaN, {match(5)}));
+    EXPECT_TRUE(chain.passes(query(13, kNaN, {match(6)}), options(3, 25), f.context()));
+  }
+}
+
+TEST(VerifiedChain, APublishedLoopCarriesTheChain) {
+  Fixture f;
+  VerifiedChain chain;
+  chain.push(query(10, kNaN, {match(3, 0)}, true));  // published, no unique inliers
+  chain.push(query(11, kNaN, {match(4, 0)}));
+  // Its match leads to the published loop: passes whatever the length and
+  // the unique inliers.
+  EXPECT_TRUE(chain.passes(query(12, kNaN, {match(5, 0)}), options(5, 25), f.context()));
+  // A match that does not lead to it does not.
+  EXPECT_FALSE(chain.passes(query(12, kNaN, {match(30, 40)}), options(5, 25), f.context()));
+  // A published loop reached through a runner-up does not count: only what
+  // was published carries.
+  VerifiedChain other;
+  other.push(query(10, kNaN, {match(60), match(3)}, true));
+  EXPECT_FALSE(other.passes(query(11, kNaN, {match(4)}), options(2, 25), f.context()));
+}
+
+TEST(VerifiedChain, AStandingRobotCountsOnce) {
+  Fixture f;
+  f.temporal.max_island_distance_m = 0.1;
+  f.temporal.min_step_m = 0.02;
+  for (EntryId e = 0; e < 20; ++e) f.odometers[e] = 0.1 * e;
+  VerifiedChain chain;
+  // Queries 40-43 stand at 10.0 m, matching entry 5 (0.5 m) again and again.
+  for (EntryId q = 40; q < 44; ++q) chain.push(query(q, 10.0, {match(5)}));
+  const ChainQuery moved = query(44, 10.1, {match(6)});
+  EXPECT_TRUE(chain.passes(moved, options(1, 25), f.context()));
+  EXPECT_FALSE(chain.passes(moved, options(2, 25), f.context()));
+  // Without the step every repeat counts.
+  f.temporal.min_step_m = 0.0;
+  EXPECT_TRUE(chain.passes(moved, options(4, 25), f.context()));
+}
+
+TEST(VerifiedChain, RemembersTheLast64Queries) {
+  Fixture f;
+  VerifiedChain chain;
+  for (EntryId q = 0; q < 100; ++q) chain.push(query(q, kNaN, {match(0)}));
+  EXPECT_EQ(chain.size(), 64u);
+  chain.clear();
+  EXPECT_EQ(chain.size(), 0u);
+}
+
+}  // namespace
+}  // namespace bowg
