@@ -31,7 +31,7 @@ ChainQuery chainQuery(const QueryContext& ctx, EntryId query_id, const DatabaseE
     const VerificationView qv = verifier->query();
     for (const EntryId id :
          repeatedTextureEntries(ctx.database, query_entry.odometer, co, ctx.options.islands)) {
-      markRepeated(qv, verifier->match(id), ctx.options.geometric, &repeated);
+      markRepeated(qv, verifier->cached(id, &ctx.views), ctx.options.geometric, &repeated);
     }
   }
   for (int i = 0; i < n; ++i) {

@@ -99,7 +99,10 @@ void checkKeyframe(const KeyframeInput& keyframe, const Database& database) {
 
 }  // namespace
 
-struct LoopDetector::State : DetectorState {};
+// The detector's memory (saved with it) and what only speeds it up.
+struct LoopDetector::State : DetectorState {
+  query_steps::EntryViewCache views;
+};
 
 LoopDetector::LoopDetector(std::shared_ptr<const Vocabulary> vocabulary,
                            const LoopDetectorOptions& options)
@@ -206,8 +209,8 @@ LoopResult LoopDetector::process(const KeyframeInput& keyframe) {
   r.timings.word_groups_ms = msBetween(t1, t2);
 
   // 5. Query, then the entry joins the indexes (it never matches itself).
-  const query_steps::QueryContext ctx{*vocabulary_, options_, *database_, *state_,
-                                      last_candidates_};
+  const query_steps::QueryContext ctx{*vocabulary_, options_,         *database_,
+                                      *state_,      last_candidates_, state_->views};
   try {
     query_steps::runQuery(ctx, q, entry, keyframe.intrinsics, with_groups, with_distribution, &r);
   } catch (...) {

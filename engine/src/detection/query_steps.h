@@ -12,6 +12,7 @@
 #include "bowg/detection/detector_state.h"
 #include "bowg/detection/loop_detector.h"
 #include "bowg/vocabulary/vocabulary.h"
+#include "detection/verifier.h"
 
 namespace bowg {
 namespace query_steps {
@@ -29,6 +30,7 @@ struct QueryContext {
   const Database& database;
   DetectorState& state;
   std::vector<CandidateScores>& candidates;  ///< the query's, sorted by entry id
+  EntryViewCache& views;                     ///< recent entries' views, across queries
 };
 
 // A query that cannot be scored (no features, database too small, normaliser

@@ -4,6 +4,8 @@
 // indexes). Internal to the detection stage.
 #pragma once
 
+#include <deque>
+#include <unordered_map>
 #include <vector>
 
 #include "bowg/core/types.h"
@@ -21,6 +23,41 @@ struct EntryViewStorage {
   std::vector<ImagePoint> points;
   std::vector<WordId> words;
   DirectIndex direct;
+};
+
+// The views of recent database entries, kept across queries: the verified
+// chain's recent past (repeated_texture.h) is a dozen keyframes a query, most
+// of them the previous queries' too. Entries never change once added; a
+// change of the direct-index level empties it. At most kCapacity entries,
+// the oldest out first.
+class EntryViewCache {
+ public:
+  static constexpr std::size_t kCapacity = 128;
+  /// Entry `id`'s storage at direct-index `level`, or nullptr.
+  const EntryViewStorage* find(EntryId id, int level) {
+    if (level != level_) clear();
+    level_ = level;
+    const auto it = views_.find(id);
+    return it == views_.end() ? nullptr : &it->second;
+  }
+  /// Stores `storage` for `id`; valid until kCapacity later insertions.
+  const EntryViewStorage& insert(EntryId id, EntryViewStorage storage) {
+    if (order_.size() == kCapacity) {
+      views_.erase(order_.front());
+      order_.pop_front();
+    }
+    order_.push_back(id);
+    return views_[id] = std::move(storage);
+  }
+  void clear() {
+    views_.clear();
+    order_.clear();
+  }
+
+ private:
+  int level_ = -1;
+  std::unordered_map<EntryId, EntryViewStorage> views_;
+  std::deque<EntryId> order_;
 };
 
 // The two sides of a geometric verification. The query's direct index is
@@ -57,6 +94,18 @@ class Verifier {
     const DatabaseEntry& m = database_.entry(id);
     m.points.unpack(&features_points_);
     return VerificationView{&features_points_, &m.descriptors, nullptr};
+  }
+
+  /// Entry `id`'s view from `cache` (made and stored there when absent).
+  VerificationView cached(EntryId id, EntryViewCache* cache) const {
+    const DatabaseEntry& m = database_.entry(id);
+    const EntryViewStorage* storage = cache->find(id, database_.directLevel());
+    if (storage == nullptr) {
+      EntryViewStorage made;
+      unpack(m, &made);
+      storage = &cache->insert(id, std::move(made));
+    }
+    return VerificationView{&storage->points, &m.descriptors, &storage->direct};
   }
 
   /// Entry `id`'s view, its positions and direct index in `storage`.
