@@ -43,6 +43,36 @@ SUDO=""
 if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
 echo "install_deps: installing ${#missing[@]} missing packages: ${missing[*]}"
 export DEBIAN_FRONTEND=noninteractive
-$SUDO apt-get update -qq
-$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+
+# apt-get, waiting while another apt or dpkg (unattended upgrades on a fresh
+# machine) holds its lock: up to BOWG_APT_LOCK_WAIT seconds (default 600),
+# then the failure as apt reported it.
+apt_get() {
+  local waited=0 limit="${BOWG_APT_LOCK_WAIT:-600}" out status
+  while true; do
+    set +e
+    out="$($SUDO apt-get -o DPkg::Lock::Timeout=60 "$@" 2>&1)"
+    status=$?
+    set -e
+    if [ "$status" -eq 0 ]; then
+      [ -z "$out" ] || printf '%s\n' "$out"
+      return 0
+    fi
+    if ! printf '%s' "$out" | grep -qiE 'could not get lock|unable to acquire|is another process using it'; then
+      printf '%s\n' "$out" >&2
+      return "$status"
+    fi
+    if [ "$waited" -ge "$limit" ]; then
+      printf '%s\n' "$out" >&2
+      echo "install_deps: apt's lock still held after ${waited} s (BOWG_APT_LOCK_WAIT)" >&2
+      return "$status"
+    fi
+    echo "install_deps: apt's lock is held by another process; waiting (${waited} s of ${limit} s)"
+    sleep 5
+    waited=$((waited + 5))
+  done
+}
+
+apt_get update -qq
+apt_get install -y -qq --no-install-recommends "${missing[@]}"
 echo "install_deps: done"

@@ -149,6 +149,9 @@ class LoopDetectorNodelet : public nodelet::Nodelet {
   void odometryCallback(const nav_msgs::OdometryConstPtr& msg);
   void odometerCallback(const std_msgs::Float64ConstPtr& msg);
   void reportOdometryInput(bowg::OdometryInput input);
+  // Under stats_mutex_.
+  void addToStats(const bowg::LoopResult& result, bool found, bool outside_odometry,
+                  double convert_ms, double feature_ms);
   /// Stamp order + keyframe gate; true when `frame` was queued.
   bool offer(Frame frame);
 

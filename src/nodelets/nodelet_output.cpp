@@ -19,8 +19,8 @@ void LoopDetectorNodelet::publishResult(const Frame& frame, const bowg::LoopResu
                                         double feature_ms) {
   const bool found = result.status == bowg::LoopStatus::kLoopDetected;
   if (found) {
-    NODELET_INFO("loop: keyframe %u matches %u (score %.3f, %d inliers)", result.query_id,
-                 result.match_id, result.best.eta, result.inliers);
+    NODELET_DEBUG("loop: keyframe %u matches %u (score %.3f, %d inliers)", result.query_id,
+                  result.match_id, result.best.eta, result.inliers);
     loop_pub_.publish(toLoopClosure(result, frame.header, publish_correspondences_));
   }
   status_pub_.publish(toKeyframeStatus(result, frame.header, detector_->options(), num_features,

@@ -98,7 +98,22 @@ void LoopDetectorNodelet::processFrame(const Frame& frame) {
                           "gates allow between the two keyframes; published without scale",
                           result.query_id, result.match_id);
   }
-  std::lock_guard<std::mutex> stats_lock(stats_mutex_);
+  std::size_t loops;
+  {
+    std::lock_guard<std::mutex> stats_lock(stats_mutex_);
+    addToStats(result, found, outside_odometry, convert_ms, feature_ms);
+    loops = stats_.loops;
+  }
+  // Each loop at DEBUG (a robot on a revisit closes several a second); at
+  // INFO a line every 10 s at most while loops come.
+  if (found) {
+    NODELET_INFO_THROTTLE(10.0, "%zu loops so far; the latest: keyframe %u matches %u (%d inliers)",
+                          loops, result.query_id, result.match_id, result.inliers);
+  }
+}
+
+void LoopDetectorNodelet::addToStats(const bowg::LoopResult& result, bool found,
+                                     bool outside_odometry, double convert_ms, double feature_ms) {
   ++stats_.keyframes;
   ++stats_.window_keyframes;
   if (found) ++stats_.loops;

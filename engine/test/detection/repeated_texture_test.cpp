@@ -31,16 +31,27 @@ std::unique_ptr<Database> databaseWith(const std::vector<double>& odometers) {
   return db;
 }
 
+// Entries every 0.25 m from 0 to 10 m (41).
+std::vector<double> everyQuarterMetre() {
+  std::vector<double> odometers;
+  for (int i = 0; i <= 40; ++i) odometers.push_back(0.25 * i);
+  return odometers;
+}
+
+// Four keyframes from 0.5 m to 3.5 m back.
+VerifiedChainOptions fourFromHalfAMetre() {
+  VerifiedChainOptions chain;
+  chain.repeated_texture_keyframes = 4;
+  chain.repeated_texture_min_m = 0.5;
+  return chain;
+}
+
 TEST(RepeatedTexture, EntriesSpreadOverTheMetresBehindTheQuery) {
   // Entries every 0.25 m from 0 to 10 m; the query at 10 m. Four keyframes
   // from 0.5 to 3.5 m back: 0.5, 1.5, 2.5, 3.5 m, the newest entries at or
   // before 9.5, 8.5, 7.5, 6.5 m: ids 38, 34, 30, 26.
-  std::vector<double> odometers;
-  for (int i = 0; i <= 40; ++i) odometers.push_back(0.25 * i);
-  const std::unique_ptr<Database> db = databaseWith(odometers);
-  VerifiedChainOptions chain;
-  chain.repeated_texture_keyframes = 4;
-  chain.repeated_texture_min_m = 0.5;
+  const std::unique_ptr<Database> db = databaseWith(everyQuarterMetre());
+  VerifiedChainOptions chain = fourFromHalfAMetre();
   IslandOptions islands;
   islands.recent_exclusion_m = 3.5;
   EXPECT_EQ(repeatedTextureEntries(*db, 10.0, chain, islands),
@@ -57,16 +68,13 @@ TEST(RepeatedTexture, EntriesSpreadOverTheMetresBehindTheQuery) {
 TEST(RepeatedTexture, EntriesWithoutAnOdometerAreLeftOut) {
   // Entry 30 (7.5 m) has no odometer: it carries 7.25 m in Database::
   // odometers, so the search for 7.5 m lands on it and leaves it out.
-  std::vector<double> odometers;
-  for (int i = 0; i <= 40; ++i) odometers.push_back(0.25 * i);
+  std::vector<double> odometers = everyQuarterMetre();
   odometers[30] = kNaN;
   const std::unique_ptr<Database> db = databaseWith(odometers);
-  VerifiedChainOptions chain;
-  chain.repeated_texture_keyframes = 4;
-  chain.repeated_texture_min_m = 0.5;
   IslandOptions islands;
   islands.recent_exclusion_m = 3.5;
-  EXPECT_EQ(repeatedTextureEntries(*db, 10.0, chain, islands), (std::vector<EntryId>{38, 34, 26}));
+  EXPECT_EQ(repeatedTextureEntries(*db, 10.0, fourFromHalfAMetre(), islands),
+            (std::vector<EntryId>{38, 34, 26}));
 }
 
 TEST(RepeatedTexture, WithoutAnOdometerTheRecentExclusionKeyframes) {
