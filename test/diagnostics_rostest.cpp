@@ -48,6 +48,65 @@ TEST(Diagnostics, ADistanceGateWithoutOdometryWarnsUntilOdometryArrives) {
       << "level " << int(last.level) << ": " << last.message;
 }
 
+// Silence on the image topic (a wrong topic, a compressed stream read as
+// raw) is a warning within the diagnostics window, naming the topic, and
+// saying what a camera_info arriving alone means; it clears when images come.
+TEST(Diagnostics, NoImageIsAWarningNamingTheTopicThatClearsWhenImagesCome) {
+  DiagnosticsWatcher diagnostics;
+  Detector d("/silent", {{"diagnostics_window", XmlRpc::XmlRpcValue(2.0)}});
+  ASSERT_TRUE(d.loaded());
+  DiagnosticStatus last;
+  EXPECT_TRUE(diagnostics.waitFor(d.name(), DiagnosticStatus::WARN, "no image on /silent/image for",
+                                  10.0, &last))
+      << "level " << int(last.level) << ": " << last.message;
+  EXPECT_EQ(last.message.find("camera_info"), std::string::npos) << last.message;
+  // A camera whose images go elsewhere (a compressed stream): camera_info alone.
+  d.publishCameraInfo(100.0);
+  EXPECT_TRUE(diagnostics.waitFor(d.name(), DiagnosticStatus::WARN,
+                                  "camera_info arrives on /silent/camera_info: a compressed "
+                                  "stream? set ~use_compressed",
+                                  10.0, &last))
+      << "level " << int(last.level) << ": " << last.message;
+  const cv::Mat world = test::makeWorld(kViewWidth + 40 * kStep, kViewHeight, 8);
+  bool running = false;
+  for (int i = 0; i < 30 && !running; ++i) {
+    d.publish(test::viewAt(world, i * kStep, kViewWidth), 101.0 + 0.1 * i);
+    running = diagnostics.waitFor(d.name(), DiagnosticStatus::OK, "running", 0.3, &last);
+  }
+  EXPECT_TRUE(running) << "level " << int(last.level) << ": " << last.message;
+}
+
+// A warning says what happened within the window and clears after it: one
+// frame of an unsupported encoding, then good frames for longer than the
+// window.
+TEST(Diagnostics, AWarningClearsWhenItsCauseStopsForTheWindow) {
+  DiagnosticsWatcher diagnostics;
+  Detector d("/clears", {{"diagnostics_window", XmlRpc::XmlRpcValue(2.0)}});
+  ASSERT_TRUE(d.loaded());
+  const cv::Mat world = test::makeWorld(kViewWidth + 80 * kStep, kViewHeight, 9);
+  d.publish(test::viewAt(world, 0, kViewWidth), 100.0);
+  sensor_msgs::Image bad;
+  bad.header.stamp = ros::Time(100.1);
+  bad.encoding = "yuv422";
+  bad.width = 2;
+  bad.height = 2;
+  bad.step = 4;
+  bad.data.resize(8);
+  d.publishRaw(bad);
+  DiagnosticStatus last;
+  ASSERT_TRUE(diagnostics.waitFor(d.name(), DiagnosticStatus::WARN,
+                                  "frames rejected in the last 2 s", 10.0, &last))
+      << "level " << int(last.level) << ": " << last.message;
+  // Good frames for more than the window: back to OK, the count kept.
+  bool running = false;
+  for (int i = 1; i < 70 && !running; ++i) {
+    d.publish(test::viewAt(world, i * kStep, kViewWidth), 100.1 + 0.1 * i);
+    running = diagnostics.waitFor(d.name(), DiagnosticStatus::OK, "running", 0.1, &last);
+  }
+  EXPECT_TRUE(running) << "level " << int(last.level) << ": " << last.message;
+  EXPECT_EQ(diagnostics.value(d.name(), "dropped frames (unsupported encoding)"), "1");
+}
+
 TEST(Diagnostics, StampsGoingBackAreAWarningThatSaysWhatToDo) {
   DiagnosticsWatcher diagnostics;
   Detector d("/replay", {});
@@ -76,7 +135,8 @@ TEST(Diagnostics, WithResetOnTimeJumpAReplayThatStartsOverStartsANewDatabase) {
   Detector d("/restart", {{"reset_on_time_jump", XmlRpc::XmlRpcValue(5.0)}});
   ASSERT_TRUE(d.loaded());
   const cv::Mat world = test::makeWorld(kViewWidth + 10 * kStep, kViewHeight, 7);
-  for (int i = 0; i < 4; ++i) d.publish(test::viewAt(world, i * kStep, kViewWidth), 100.0 + 0.1 * i);
+  for (int i = 0; i < 4; ++i)
+    d.publish(test::viewAt(world, i * kStep, kViewWidth), 100.0 + 0.1 * i);
   // 2 s back: out of order, not a new run.
   d.publish(test::viewAt(world, 0, kViewWidth), 98.3);
   // 90 s back: a new run.
@@ -91,8 +151,8 @@ TEST(Diagnostics, WithResetOnTimeJumpAReplayThatStartsOverStartsANewDatabase) {
   EXPECT_EQ(s[4].database_size, 1u);
   EXPECT_EQ(s[6].database_size, 3u);
   DiagnosticStatus last;
-  EXPECT_TRUE(diagnostics.waitFor(d.name(), DiagnosticStatus::WARN, "1 frames skipped", 10.0,
-                                  &last))
+  EXPECT_TRUE(
+      diagnostics.waitFor(d.name(), DiagnosticStatus::WARN, "1 frames skipped", 10.0, &last))
       << "level " << int(last.level) << ": " << last.message;
   EXPECT_EQ(diagnostics.value(d.name(), "new runs (time jumped back)"), "1");
 }

@@ -126,6 +126,14 @@ class Detector {
     ros::WallDuration(0.03).sleep();
   }
 
+  /// A camera_info alone (a camera whose images go elsewhere).
+  void publishCameraInfo(double stamp) {
+    std_msgs::Header h;
+    h.stamp = ros::Time(stamp);
+    h.frame_id = kFrame;
+    info_pub_.publish(viewCameraInfo(h));
+  }
+
   /// The robot's odometry position (nav_msgs/Odometry on ns/odom), given
   /// time to arrive before the next image.
   void publishOdometry(const cv::Point3d& p, double stamp) {
@@ -267,9 +275,7 @@ class ErrorLog {
 /// ("<nodelet name without the leading slash>: loop detector").
 class DiagnosticsWatcher {
  public:
-  DiagnosticsWatcher() {
-    sub_ = nh_.subscribe("/diagnostics", 50, &DiagnosticsWatcher::on, this);
-  }
+  DiagnosticsWatcher() { sub_ = nh_.subscribe("/diagnostics", 50, &DiagnosticsWatcher::on, this); }
   /// Waits until the status of `nodelet` (e.g. "/gate/bowg") has `level`
   /// and its message contains `text`; returns whether it did. `last` gets
   /// the latest status seen (for failure messages).

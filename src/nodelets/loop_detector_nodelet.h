@@ -118,6 +118,13 @@ struct Stats {
   std::size_t time_jump_resets = 0;
   std::string last_stamp_rejection;  ///< the latest stamp-order skip, for the diagnostics
   std::string input_problem;         ///< why the input subscription failed (empty: fine)
+  // When each condition of the diagnostics last happened: a condition is
+  // reported while it happened within ~diagnostics_window.
+  Clock::time_point started = Clock::now();
+  Clock::time_point last_frame, last_camera_info, last_rejected, last_stamp_skip, last_drop,
+      last_error;
+  bool any_frame = false, any_camera_info = false;
+  std::size_t drops_seen = 0;
   // Sums since the last diagnostics update (for means per window).
   std::size_t window_keyframes = 0;
   double window_convert_ms = 0, window_feature_ms = 0, window_transform_ms = 0,
@@ -154,6 +161,9 @@ class LoopDetectorNodelet : public nodelet::Nodelet {
                   double convert_ms, double feature_ms);
   /// Stamp order + keyframe gate; true when `frame` was queued.
   bool offer(Frame frame);
+  // Under stats_mutex_: a frame arrived (usable or not).
+  void noteFrame();
+  void noteRejectedFrame();
 
   void workerLoop();
   void processFrame(const Frame& frame);
@@ -173,6 +183,8 @@ class LoopDetectorNodelet : public nodelet::Nodelet {
   bool loadDatabase(LoadDatabase::Request& req, LoadDatabase::Response& res);
   bool resetDatabase(std_srvs::Trigger::Request& req, std_srvs::Trigger::Response& res);
   void diagnose(diagnostic_updater::DiagnosticStatusWrapper& status);
+  void inputWarnings(std::size_t dropped, bool has_odometry, std::vector<std::string>* warnings);
+  std::string silenceWarning(double seconds, bool camera_info) const;
   /// False (counted, logged) when a width x height image exceeds
   /// max_image_pixels.
   bool imageSizeAccepted(std::uint32_t width, std::uint32_t height, const ros::Time& stamp);
@@ -183,6 +195,7 @@ class LoopDetectorNodelet : public nodelet::Nodelet {
   int debug_image_cache_ = 200;
   bool use_compressed_ = false, use_features_input_ = false, publish_correspondences_ = false;
   KeyframeGateOptions gate_options_;
+  double diagnostics_window_ = 30.0;  ///< s: how long a condition stays in the diagnostics
 
   // Engine, guarded by detector_mutex_ (worker, dynamic_reconfigure, services).
   std::mutex detector_mutex_;

@@ -7,6 +7,16 @@
 
 namespace bowg_ros {
 
+void LoopDetectorNodelet::noteFrame() {
+  stats_.last_frame = Clock::now();
+  stats_.any_frame = true;
+}
+
+void LoopDetectorNodelet::noteRejectedFrame() {
+  noteFrame();
+  stats_.last_rejected = stats_.last_frame;
+}
+
 bool LoopDetectorNodelet::offer(Frame frame) {
   const double stamp = frame.header.stamp.toSec();
   GateDecision d;
@@ -20,8 +30,10 @@ bool LoopDetectorNodelet::offer(Frame frame) {
   {
     std::lock_guard<std::mutex> lock(stats_mutex_);
     ++stats_.frames_received;
+    noteFrame();
     if (isStampRejection(d)) {
       ++stats_.skipped_out_of_order;
+      stats_.last_stamp_skip = Clock::now();
       char text[160];
       std::snprintf(text, sizeof text, "frame at %.6f s: %s", stamp, toString(d));
       stats_.last_stamp_rejection = text;
@@ -51,6 +63,7 @@ void LoopDetectorNodelet::imageCallback(const sensor_msgs::ImageConstPtr& msg) {
     {
       std::lock_guard<std::mutex> lock(stats_mutex_);
       ++stats_.bad_encoding;
+      noteRejectedFrame();
     }
     NODELET_ERROR_THROTTLE(5.0, "unsupported image encoding '%s' (supported: %s): frame dropped",
                            msg->encoding.c_str(), supportedEncodings().c_str());
@@ -65,6 +78,7 @@ void LoopDetectorNodelet::imageCallback(const sensor_msgs::ImageConstPtr& msg) {
     {
       std::lock_guard<std::mutex> lock(stats_mutex_);
       ++stats_.malformed;
+      noteRejectedFrame();
     }
     NODELET_ERROR_THROTTLE(5.0, "malformed image at %.6f (encoding '%s'): %s: frame dropped",
                            msg->header.stamp.toSec(), msg->encoding.c_str(), problem.c_str());
@@ -84,6 +98,7 @@ bool LoopDetectorNodelet::imageSizeAccepted(std::uint32_t width, std::uint32_t h
   {
     std::lock_guard<std::mutex> lock(stats_mutex_);
     ++stats_.too_large;
+    noteRejectedFrame();
   }
   NODELET_ERROR_THROTTLE(5.0, "image at %.6f too large: %s: frame dropped", stamp.toSec(),
                          problem.c_str());
@@ -105,6 +120,11 @@ void LoopDetectorNodelet::featuresCallback(const KeyframeFeatures::ConstPtr& msg
 }
 
 void LoopDetectorNodelet::cameraInfoCallback(const sensor_msgs::CameraInfoConstPtr& msg) {
+  {
+    std::lock_guard<std::mutex> lock(stats_mutex_);
+    stats_.last_camera_info = Clock::now();
+    stats_.any_camera_info = true;
+  }
   const bowg::CameraIntrinsics k = toIntrinsics(*msg);
   std::lock_guard<std::mutex> lock(intrinsics_mutex_);
   intrinsics_ = k;

@@ -79,6 +79,68 @@ void LoopDetectorNodelet::publishResult(const Frame& frame, const bowg::LoopResu
   }
 }
 
+// Under stats_mutex_: the warnings about the input, each while its cause
+// happened within ~diagnostics_window (the totals stay in the values).
+void LoopDetectorNodelet::inputWarnings(std::size_t dropped, bool has_odometry,
+                                        std::vector<std::string>* warnings) {
+  Stats& s = stats_;
+  const Clock::time_point now = Clock::now();
+  const auto seconds = [now](Clock::time_point t) {
+    return std::chrono::duration<double>(now - t).count();
+  };
+  const auto recent = [&](bool happened, Clock::time_point t) {
+    return happened && seconds(t) <= diagnostics_window_;
+  };
+  if (dropped > s.drops_seen) {
+    s.drops_seen = dropped;
+    s.last_drop = now;
+  }
+  char window[48];
+  std::snprintf(window, sizeof window, " in the last %.0f s", diagnostics_window_);
+  const bool rejected = s.bad_encoding > 0 || s.malformed > 0 || s.too_large > 0;
+  if (recent(rejected, s.last_rejected) || recent(s.errors > 0, s.last_error)) {
+    warnings->push_back(std::string("frames rejected") + window +
+                        " (unsupported encoding, malformed or too large images, or processing "
+                        "errors)");
+  }
+  if (recent(s.skipped_out_of_order > 0, s.last_stamp_skip)) {
+    warnings->push_back(std::to_string(s.skipped_out_of_order) +
+                        " frames skipped for their stamps (latest: " + s.last_stamp_rejection +
+                        "); a replay that starts over needs ~reset or ~reset_on_time_jump");
+  }
+  if (gate_options_.min_distance > 0.0 && !has_odometry && s.frames_received > 0) {
+    warnings->push_back("~min_keyframe_distance is set but no odometry arrived on " +
+                        publicName("odom") + " or " + publicName("odometer") +
+                        ": only the time gate applies");
+  }
+  if (recent(dropped > 0, s.last_drop)) {
+    warnings->push_back(std::string("keyframes dropped") + window +
+                        ": the detector is slower than the keyframe rate");
+  }
+  const double silent = seconds(s.any_frame ? s.last_frame : s.started);
+  if (initialised_ && s.input_problem.empty() && silent > diagnostics_window_) {
+    warnings->push_back(silenceWarning(silent, recent(s.any_camera_info, s.last_camera_info)));
+  }
+}
+
+// "no image on <topic> for N s", and what a camera_info arriving alone means.
+std::string LoopDetectorNodelet::silenceWarning(double seconds, bool camera_info) const {
+  const std::string topic = use_features_input_ ? publicName("keyframe_features")
+                            : use_compressed_   ? publicName("image") + "/compressed"
+                                                : publicName("image");
+  char text[512];
+  std::snprintf(text, sizeof text, "no %s on %s for %.0f s",
+                use_features_input_ ? "keyframe features" : "image", topic.c_str(), seconds);
+  std::string warning = text;
+  if (camera_info && !use_features_input_) {
+    warning += "; camera_info arrives on " +
+               image_transport::getCameraInfoTopic(publicName("image")) +
+               (use_compressed_ ? ": is the image topic right?"
+                                : ": a compressed stream? set ~use_compressed");
+  }
+  return warning;
+}
+
 void LoopDetectorNodelet::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status) {
   std::size_t database_size = 0, indexed = 0, thumbnail_bytes = 0;
   {
@@ -141,24 +203,7 @@ void LoopDetectorNodelet::diagnose(diagnostic_updater::DiagnosticStatusWrapper& 
   std::vector<std::string> errors, warnings;
   if (!initialised_) errors.push_back("not started (see the log)");
   if (!s.input_problem.empty()) errors.push_back("no input: " + s.input_problem);
-  if (s.bad_encoding > 0 || s.malformed > 0 || s.too_large > 0 || s.errors > 0) {
-    warnings.push_back(
-        "frames rejected (unsupported encoding, malformed or too large images, or processing "
-        "errors)");
-  }
-  if (s.skipped_out_of_order > 0) {
-    warnings.push_back(std::to_string(s.skipped_out_of_order) +
-                       " frames skipped for their stamps (latest: " + s.last_stamp_rejection +
-                       "); a replay that starts over needs ~reset or ~reset_on_time_jump");
-  }
-  if (gate_options_.min_distance > 0.0 && !has_odometry && s.frames_received > 0) {
-    warnings.push_back("~min_keyframe_distance is set but no odometry arrived on " +
-                       publicName("odom") + " or " + publicName("odometer") +
-                       ": only the time gate applies");
-  }
-  if (dropped > 0) {
-    warnings.push_back("keyframes dropped: the detector is slower than the keyframe rate");
-  }
+  inputWarnings(dropped, has_odometry, &warnings);
   auto join = [](const std::vector<std::string>& v) {
     std::string out;
     for (const std::string& r : v) out += (out.empty() ? "" : "; ") + r;

@@ -1,5 +1,6 @@
 // LoopDetectorNodelet: the private parameters. The nodelet's own are read
 // here; every other one must be a row of the engine's parameter table.
+#include <cmath>
 #include <sstream>
 
 #include "loop_detector_nodelet.h"
@@ -11,10 +12,11 @@ namespace {
 /// The nodelet's own private parameters (not engine options); every other
 /// private parameter must be a row of the engine's parameter table.
 const char* const kNodeParameters[] = {
-    "vocabulary_path",    "queue_size",         "min_keyframe_interval",   "min_keyframe_distance",
-    "use_compressed",     "use_features_input", "publish_correspondences", "database_load_path",
-    "database_save_path", "debug_image_cache",  "image_transport",         "diagnostic_period",
-    "reset_on_time_jump", "debug_thumbnail_size",
+    "vocabulary_path",         "queue_size",           "min_keyframe_interval",
+    "min_keyframe_distance",   "use_compressed",       "use_features_input",
+    "publish_correspondences", "database_load_path",   "database_save_path",
+    "debug_image_cache",       "image_transport",      "diagnostic_period",
+    "reset_on_time_jump",      "debug_thumbnail_size", "diagnostics_window",
 };
 
 bool isNodeParameter(const std::string& name) {
@@ -39,6 +41,12 @@ bool LoopDetectorNodelet::loadParameters(ros::NodeHandle& pnh) {
   pnh.param<std::string>("database_save_path", database_save_path_, "");
   pnh.param("debug_image_cache", debug_image_cache_, 200);
   pnh.param("debug_thumbnail_size", thumbnail_options_.max_side, thumbnail_options_.max_side);
+  pnh.param("diagnostics_window", diagnostics_window_, 30.0);
+  if (!(diagnostics_window_ > 0.0) || !std::isfinite(diagnostics_window_)) {
+    NODELET_FATAL("~diagnostics_window must be a finite number of seconds > 0 (got %f)",
+                  diagnostics_window_);
+    return false;
+  }
   if (queue_size_ < 1) {
     NODELET_FATAL("~queue_size must be >= 1 (got %d)", queue_size_);
     return false;

@@ -56,7 +56,7 @@ bool LoopDetectorNodelet::loadDatabase(LoadDatabase::Request& req, LoadDatabase:
   }
   std::lock_guard<std::mutex> lock(detector_mutex_);
   try {
-    detector_->load(path);  // keeps the running database on any error
+    detector_->load(path);   // keeps the running database on any error
     forgetKeyframeImages();  // the loaded keyframes' images are not in the file
     {
       // Stamps restart from the loaded database's; let the gate follow

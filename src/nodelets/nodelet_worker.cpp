@@ -13,6 +13,7 @@ void LoopDetectorNodelet::workerLoop() {
       {
         std::lock_guard<std::mutex> lock(stats_mutex_);
         ++stats_.errors;
+        stats_.last_error = Clock::now();
       }
       NODELET_ERROR_THROTTLE(2.0, "keyframe at %.6f skipped: %s", frame.header.stamp.toSec(),
                              e.what());
