@@ -24,6 +24,21 @@ TEST(Diagnostics, AFailedImageSubscriptionIsAnErrorNamingTheTopic) {
       << "level " << int(last.level) << ": " << last.message;
 }
 
+// A nodelet that cannot start (here: its vocabulary file is missing) says
+// why in its diagnostics, an ERROR for as long as it is loaded.
+TEST(Diagnostics, AStartUpFailureIsAnErrorSayingWhy) {
+  DiagnosticsWatcher diagnostics;
+  Detector d("/novocabulary",
+             {{"vocabulary_path", XmlRpc::XmlRpcValue("/nonexistent/vocabulary.bowgvoc")}});
+  ASSERT_TRUE(d.loaded());
+  EXPECT_FALSE(d.connected());
+  DiagnosticStatus last;
+  EXPECT_TRUE(diagnostics.waitFor(d.name(), DiagnosticStatus::ERROR, "not started: ", 10.0, &last))
+      << "level " << int(last.level) << ": " << last.message;
+  EXPECT_NE(last.message.find("/nonexistent/vocabulary.bowgvoc"), std::string::npos)
+      << last.message;
+}
+
 TEST(Diagnostics, ADistanceGateWithoutOdometryWarnsUntilOdometryArrives) {
   DiagnosticsWatcher diagnostics;
   Detector d("/nodistance", {{"min_keyframe_distance", XmlRpc::XmlRpcValue(0.5)}});

@@ -68,7 +68,7 @@ class Detector {
  public:
   Detector(const std::string& ns, std::map<std::string, XmlRpc::XmlRpcValue> params)
       : ns_(ns), name_(ns + "/bowg") {
-    params["vocabulary_path"] = vocabularyPath();
+    if (!params.count("vocabulary_path")) params["vocabulary_path"] = vocabularyPath();
     if (!params.count("queue_size")) params["queue_size"] = 1000;  // no drops in tests
     for (auto& p : params) ros::param::set(name_ + "/" + p.first, p.second);
     image_pub_ = nh_.advertise<sensor_msgs::Image>(ns + "/image", 200);

@@ -6,6 +6,7 @@
 #include <pluginlib/class_list_macros.hpp>
 
 #include "bowg/detection/geometric_verification.h"
+#include "bowg_ros/startup_status.h"
 
 namespace bowg_ros {
 
@@ -38,10 +39,9 @@ LoopDetectorNodelet::~LoopDetectorNodelet() {
 
 bool LoopDetectorNodelet::startEngine() {
   if (vocabulary_path_.empty()) {
-    NODELET_FATAL(
+    return fatal(
         "~vocabulary_path is not set: the loop detector needs a vocabulary "
         "(.bowgvoc, DBoW2/DBoW3 YAML, DBoW3 binary, ORBvoc.txt or VINS .bin)");
-    return false;
   }
   try {
     const auto t0 = Clock::now();
@@ -65,8 +65,7 @@ bool LoopDetectorNodelet::startEngine() {
     size_limit_ = options_.features;
     detector_.reset(new bowg::LoopDetector(vocabulary_, options_.detector));
   } catch (const std::exception& e) {
-    NODELET_FATAL("bowg_ros: not started: %s", e.what());
-    return false;
+    return fatal(e.what());
   }
   if (!database_load_path_.empty()) {
     try {
@@ -81,6 +80,12 @@ bool LoopDetectorNodelet::startEngine() {
   return true;
 }
 
+bool LoopDetectorNodelet::fatal(const std::string& why) {
+  NODELET_FATAL("bowg_ros: not started: %s", why.c_str());
+  startup_error_ = why;
+  return false;
+}
+
 std::string LoopDetectorNodelet::publicName(const std::string& name) const {
   // getNodeHandle() lives in the parent namespace of the nodelet's name. For
   // a nodelet at the root ("/bowg") that is "/", which roscpp cleans to "" and
@@ -91,6 +96,15 @@ std::string LoopDetectorNodelet::publicName(const std::string& name) const {
   // through the remappings the loader passed (the private handle holds them).
   return getPrivateNodeHandle().resolveName(
       ros::names::append(ros::names::parentNamespace(getName()), name));
+}
+
+// /diagnostics, published twice a second (also when the start failed).
+void LoopDetectorNodelet::startDiagnostics(ros::NodeHandle& nh, ros::NodeHandle& pnh) {
+  updater_.reset(new diagnostic_updater::Updater(nh, pnh, getName()));
+  updater_->setHardwareID("bowg_ros");
+  updater_->add("loop detector", this, &LoopDetectorNodelet::diagnose);
+  diagnostics_timer_ = nh.createWallTimer(
+      ros::WallDuration(0.5), [this](const ros::WallTimerEvent&) { updater_->update(); });
 }
 
 // Outputs, services, diagnostics and live tuning.
@@ -113,11 +127,7 @@ void LoopDetectorNodelet::advertiseInterfaces(ros::NodeHandle& nh, ros::NodeHand
   service_spinner_->start();
 
   // Diagnostics: updated from a wall timer (update() rate-limits itself).
-  updater_.reset(new diagnostic_updater::Updater(nh, pnh, getName()));
-  updater_->setHardwareID("bowg_ros");
-  updater_->add("loop detector", this, &LoopDetectorNodelet::diagnose);
-  diagnostics_timer_ = nh.createWallTimer(
-      ros::WallDuration(0.5), [this](const ros::WallTimerEvent&) { updater_->update(); });
+  startDiagnostics(nh, pnh);
 
   // Live tuning: the server calls reconfigure() once now with the current
   // parameters (the same names the options were read from).
@@ -172,11 +182,13 @@ void LoopDetectorNodelet::subscribeInputs(ros::NodeHandle& nh, ros::NodeHandle& 
 void LoopDetectorNodelet::onInit() {
   ros::NodeHandle& nh = getNodeHandle();
   ros::NodeHandle& pnh = getPrivateNodeHandle();
-  if (!loadParameters(pnh)) {
-    NODELET_FATAL("bowg_ros: not started (fix the parameters above)");
+  if (!loadParameters(pnh) || !startEngine()) {
+    // What a robot's monitoring sees: an ERROR naming the reason, for as
+    // long as the nodelet is loaded; a standalone node exits with it.
+    reportStartupFailure(getName(), startup_error_);
+    startDiagnostics(nh, pnh);
     return;
   }
-  if (!startEngine()) return;
   gate_.setOptions(gate_options_);
   gate_.setOdometer(lastOdometer(*detector_));
   if (!detector_->database().empty()) gate_.setStampFloor(lastStamp(*detector_));

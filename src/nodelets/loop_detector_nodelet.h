@@ -142,6 +142,10 @@ class LoopDetectorNodelet : public nodelet::Nodelet {
   /// Vocabulary, feature extractor, detector and the database to resume
   /// from; false (logged FATAL) when the nodelet cannot start.
   bool startEngine();
+  /// Logs why the nodelet does not start (FATAL) and keeps it for the
+  /// diagnostics; returns false.
+  bool fatal(const std::string& why);
+  void startDiagnostics(ros::NodeHandle& nh, ros::NodeHandle& pnh);
   void advertiseInterfaces(ros::NodeHandle& nh, ros::NodeHandle& pnh);
   void subscribeInputs(ros::NodeHandle& nh, ros::NodeHandle& pnh);
   bool loadParameters(ros::NodeHandle& pnh);
@@ -196,6 +200,7 @@ class LoopDetectorNodelet : public nodelet::Nodelet {
   bool use_compressed_ = false, use_features_input_ = false, publish_correspondences_ = false;
   KeyframeGateOptions gate_options_;
   double diagnostics_window_ = 30.0;  ///< s: how long a condition stays in the diagnostics
+  std::string startup_error_;         ///< why the nodelet did not start (empty: it did)
 
   // Engine, guarded by detector_mutex_ (worker, dynamic_reconfigure, services).
   std::mutex detector_mutex_;

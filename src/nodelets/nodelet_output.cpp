@@ -201,7 +201,10 @@ void LoopDetectorNodelet::diagnose(diagnostic_updater::DiagnosticStatusWrapper& 
   status.add("ms total", s.window_total_ms / n);
   // The worst level wins; every reason at that level is in the message.
   std::vector<std::string> errors, warnings;
-  if (!initialised_) errors.push_back("not started (see the log)");
+  if (!initialised_) {
+    errors.push_back(startup_error_.empty() ? "not started (see the log)"
+                                            : "not started: " + startup_error_);
+  }
   if (!s.input_problem.empty()) errors.push_back("no input: " + s.input_problem);
   inputWarnings(dropped, has_odometry, &warnings);
   auto join = [](const std::vector<std::string>& v) {

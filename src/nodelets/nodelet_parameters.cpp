@@ -43,20 +43,17 @@ bool LoopDetectorNodelet::loadParameters(ros::NodeHandle& pnh) {
   pnh.param("debug_thumbnail_size", thumbnail_options_.max_side, thumbnail_options_.max_side);
   pnh.param("diagnostics_window", diagnostics_window_, 30.0);
   if (!(diagnostics_window_ > 0.0) || !std::isfinite(diagnostics_window_)) {
-    NODELET_FATAL("~diagnostics_window must be a finite number of seconds > 0 (got %f)",
-                  diagnostics_window_);
-    return false;
+    return fatal("~diagnostics_window must be a finite number of seconds > 0 (got " +
+                 std::to_string(diagnostics_window_) + ")");
   }
   if (queue_size_ < 1) {
-    NODELET_FATAL("~queue_size must be >= 1 (got %d)", queue_size_);
-    return false;
+    return fatal("~queue_size must be >= 1 (got " + std::to_string(queue_size_) + ")");
   }
   try {
     gate_options_.validate();
     thumbnails_ = KeyframeThumbnails(thumbnail_options_);
   } catch (const std::exception& e) {
-    NODELET_FATAL("%s", e.what());
-    return false;
+    return fatal(e.what());
   }
 
   // Engine options: every other private parameter must be a table row, so a
@@ -89,15 +86,13 @@ bool LoopDetectorNodelet::loadParameters(ros::NodeHandle& pnh) {
         values[name] = std::string(v);
         break;
       default:
-        NODELET_FATAL("parameter %s: only scalars are allowed", full.c_str());
-        return false;
+        return fatal("parameter " + full + ": only scalars are allowed");
     }
   }
   try {
     bowg::applyParameters(values, &options_, pnh.getNamespace());
   } catch (const std::exception& e) {
-    NODELET_FATAL("invalid parameters: %s", e.what());
-    return false;
+    return fatal(std::string("invalid parameters: ") + e.what());
   }
   return true;
 }
