@@ -128,20 +128,22 @@ def plot(path, table, rows, modes):
                 r = t[4][row]
                 xs.append(j + i * width)
                 ys.append(0.0 if t[3] == 0 else r.recall)
-                labels.append("%d FP" % r.fp if r.fp else ("" if t[3] == 0 else "%.2f" % r.recall))
+                labels.append("%d FP" % r.fp if r.fp else ("no loop" if t[3] == 0 else "%.2f" % r.recall))
             bars = ax.bar(xs, ys, width, label=row)
             for x, y, label, bar in zip(xs, ys, labels, bars):
                 if label:
                     bad = label.endswith("FP")
                     ax.text(x, y + 0.02, label, ha="center", va="bottom", rotation=90,
-                            fontsize=6, color="red" if bad else "black")
+                            fontsize=6, color="red" if bad else
+                            ("green" if label == "no loop" else "black"))
         ax.set_xticks([j + 0.4 - width / 2 for j in range(len(names))])
         ax.set_xticklabels(["%s (%s)" % n for n in names], rotation=60, ha="right", fontsize=7)
         ax.set_ylim(0, 1.3)
         ax.set_yticks([0, 0.2, 0.4, 0.6, 0.8, 1.0])
         ax.set_ylabel("recall at the threshold")
-        ax.set_title("%s mode: recall at the preset's threshold; red: false loops there "
-                     "(sequences without revisits: loops only)" % mode, fontsize=9)
+        ax.set_title("%s mode: recall at the preset's threshold (bars); red: false loops "
+                     "there; sequences without revisits: their loops (all false)" % mode,
+                     fontsize=9)
         ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.0, 1.0))
     fig.tight_layout()
     tmp = path + ".tmp.png"
