@@ -8,8 +8,6 @@
 // launch starts, so the test generates them, runs the offline tool, then runs
 // roslaunch on a free port (its own master) and compares the outputs.
 #include <gtest/gtest.h>
-#include <netinet/in.h>
-#include <sys/socket.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -32,27 +30,9 @@ namespace {
 
 const std::string kDir = std::string(BOWG_TEST_OUTPUT_DIR) + "/bag_agreement_test";
 
+using tool_test::freePort;
 using tool_test::readAll;
 using tool_test::run;
-
-// A TCP port nobody listens on now (the kernel's pick), for roslaunch's own
-// master: a concurrent roscore or rostest elsewhere is never disturbed.
-int freePort() {
-  const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
-  sockaddr_in addr{};
-  addr.sin_family = AF_INET;
-  addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  addr.sin_port = 0;
-  socklen_t len = sizeof(addr);
-  if (fd < 0 || ::bind(fd, reinterpret_cast<sockaddr*>(&addr), sizeof(addr)) != 0 ||
-      ::getsockname(fd, reinterpret_cast<sockaddr*>(&addr), &len) != 0) {
-    if (fd >= 0) ::close(fd);
-    return -1;
-  }
-  const int port = ntohs(addr.sin_port);
-  ::close(fd);
-  return port;
-}
 
 std::map<std::pair<int, int>, double> loopsOf(const std::string& csv_path) {
   std::map<std::pair<int, int>, double> loops;
@@ -243,12 +223,12 @@ TEST_F(BagAgreement, WithTheBagsOdometryTheNodeletMeasuresMetricLoops) {
   // loop correct.
   liveLoops("mono8", "", "live_images");
   double odometry_precision = 0, odometry_recall = 0, images_precision = 0, images_recall = 0;
-  ASSERT_TRUE(liveAccuracy(kDir + "/mono8/live_odom/summary.txt", &odometry_precision,
-                           &odometry_recall));
-  ASSERT_TRUE(liveAccuracy(kDir + "/mono8/live_images/summary.txt", &images_precision,
-                           &images_recall));
-  std::printf("[ MEASURED ] recall %.3f with images alone, %.3f with the odometry\n",
-              images_recall, odometry_recall);
+  ASSERT_TRUE(
+      liveAccuracy(kDir + "/mono8/live_odom/summary.txt", &odometry_precision, &odometry_recall));
+  ASSERT_TRUE(
+      liveAccuracy(kDir + "/mono8/live_images/summary.txt", &images_precision, &images_recall));
+  std::printf("[ MEASURED ] recall %.3f with images alone, %.3f with the odometry\n", images_recall,
+              odometry_recall);
   EXPECT_EQ(images_precision, 1.0);
   EXPECT_GE(images_recall, 0.9 * odometry_recall);
 }

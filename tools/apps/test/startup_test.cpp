@@ -9,8 +9,6 @@
 //  - the standalone loop_detector_node with a missing vocabulary exits 1,
 //    naming the file, instead of running on without a detector.
 #include <gtest/gtest.h>
-#include <netinet/in.h>
-#include <sys/socket.h>
 #include <unistd.h>
 
 #include <string>
@@ -20,28 +18,12 @@
 namespace bowg {
 namespace {
 
+using tool_test::freePort;
 using tool_test::readAll;
 using tool_test::run;
 using tool_test::writeAll;
 
 const std::string kDir = std::string(BOWG_TEST_OUTPUT_DIR) + "/startup_test";
-
-// A TCP port nobody listens on now (the kernel's pick).
-int freePort() {
-  const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
-  sockaddr_in addr{};
-  addr.sin_family = AF_INET;
-  addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  socklen_t len = sizeof(addr);
-  if (fd < 0 || ::bind(fd, reinterpret_cast<sockaddr*>(&addr), sizeof(addr)) != 0 ||
-      ::getsockname(fd, reinterpret_cast<sockaddr*>(&addr), &len) != 0) {
-    if (fd >= 0) ::close(fd);
-    return -1;
-  }
-  const int port = ntohs(addr.sin_port);
-  ::close(fd);
-  return port;
-}
 
 // A master of the test's own for the whole test.
 class Startup : public ::testing::Test {
