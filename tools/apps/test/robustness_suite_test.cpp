@@ -44,9 +44,14 @@ TEST(RobustnessSuite, RendersEvaluatesAndTabulatesAListOfSequences) {
         std::string::npos)
         << mode << "\n"
         << printed;
-    EXPECT_NE(printed.find(std::string("test   paper_bow    ") + mode +
+    // The product publishes nothing where there is no revisit; the baselines'
+    // false loops there are counted on a line of their own.
+    EXPECT_NE(printed.find(std::string("test   configured   ") + mode +
                            " 0 loops on 1 sequences without revisits"),
               std::string::npos)
+        << mode << "\n"
+        << printed;
+    EXPECT_NE(printed.find(std::string("test   paper_bow    ") + mode), std::string::npos)
         << mode << "\n"
         << printed;
   }
