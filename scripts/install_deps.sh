@@ -25,6 +25,7 @@ PACKAGES=(
   libbenchmark-dev python3-numpy python3-yaml python3-matplotlib
   clang libclang-rt-14-dev
   libceres-dev libtf2-ros-dev libtf2-eigen-dev libvisualization-msgs-dev
+  rviz ros-image-view libimage-view-dev
 )
 
 missing=()
