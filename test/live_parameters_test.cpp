@@ -5,7 +5,9 @@
 
 #include <gtest/gtest.h>
 
+#include <set>
 #include <string>
+#include <vector>
 
 #include "bowg/core/errors.h"
 #include "bowg_ros/BoWGConfig.h"
@@ -106,6 +108,107 @@ TEST(LiveParameters, UnknownNamesAndOutOfRangeValuesAreRefusedByName) {
   msg.doubles[0].name = "lambda_1";
   msg.doubles[0].value = 1.5;
   EXPECT_THROW(applyLiveConfig(msg, &options), bowg::InvalidParameter);
+}
+
+TEST(LiveParameters, TheDescriptionListsEveryStartOnlyParameterWithItsValueInForce) {
+  bowg::PipelineOptions options;
+  options.features.orb_levels = 5;
+  const dynamic_reconfigure::ConfigDescription d = describeWithStartOnly(options);
+  const dynamic_reconfigure::Group* start_only = nullptr;
+  for (const dynamic_reconfigure::Group& g : d.groups) {
+    if (g.name == "start_only") start_only = &g;
+  }
+  ASSERT_NE(start_only, nullptr);
+  EXPECT_EQ(start_only->parent, 0);
+  std::size_t expected = 0;
+  for (const bowg::ParameterInfo& p : bowg::parameterTable()) expected += p.live ? 0 : 1;
+  ASSERT_EQ(start_only->parameters.size(), expected);
+  for (const dynamic_reconfigure::ParamDescription& p : start_only->parameters) {
+    const bowg::ParameterInfo* info = bowg::findParameter(p.name);
+    ASSERT_NE(info, nullptr) << p.name;
+    EXPECT_FALSE(info->live) << p.name;
+  }
+  // orb_levels: an int whose default, minimum and maximum are the 5 in force.
+  for (const dynamic_reconfigure::Config* c : {&d.dflt, &d.min, &d.max}) {
+    bool found = false;
+    for (const dynamic_reconfigure::IntParameter& p : c->ints) {
+      if (p.name != "orb_levels") continue;
+      EXPECT_EQ(p.value, 5);
+      found = true;
+    }
+    EXPECT_TRUE(found);
+  }
+  // Every group id is distinct (clients build a tree by id).
+  std::set<int> ids;
+  for (const dynamic_reconfigure::Group& g : d.groups) EXPECT_TRUE(ids.insert(g.id).second);
+}
+
+TEST(LiveParameters, AStartOnlyChangeIsNamedAndNotApplied) {
+  bowg::PipelineOptions options;
+  dynamic_reconfigure::Config request;
+  dynamic_reconfigure::IntParameter levels;
+  levels.name = "orb_levels";
+  levels.value = options.features.orb_levels;
+  request.ints.push_back(levels);
+  // The value in force: nothing to report.
+  EXPECT_TRUE(startOnlyRequests(request, options).empty());
+  // Another value: one message naming it, its value in force kept.
+  request.ints[0].value = options.features.orb_levels + 1;
+  const std::vector<std::string> m = startOnlyRequests(request, options);
+  ASSERT_EQ(m.size(), 1u);
+  EXPECT_NE(m[0].find("orb_levels is start-only"), std::string::npos) << m[0];
+  EXPECT_NE(m[0].find(std::to_string(options.features.orb_levels) + " stays in force"),
+            std::string::npos)
+      << m[0];
+  bowg::PipelineOptions after = options;
+  applyLiveConfig(request, &after);
+  EXPECT_EQ(after.features.orb_levels, options.features.orb_levels);
+  // A double given as the client sends it, and a string.
+  dynamic_reconfigure::Config other;
+  dynamic_reconfigure::DoubleParameter scale;
+  scale.name = "orb_scale_factor";
+  scale.value = options.features.orb_scale_factor;
+  other.doubles.push_back(scale);
+  dynamic_reconfigure::StrParameter mask;
+  mask.name = "mask_path";
+  mask.value = "/tmp/mask.png";
+  other.strs.push_back(mask);
+  const std::vector<std::string> m2 = startOnlyRequests(other, options);
+  ASSERT_EQ(m2.size(), 1u);
+  EXPECT_EQ(m2[0].find("mask_path is start-only"), 0u) << m2[0];
+  EXPECT_NO_THROW(applyLiveConfig(other, &after));
+  // A live parameter is no start-only change.
+  dynamic_reconfigure::Config live;
+  dynamic_reconfigure::DoubleParameter score;
+  score.name = "min_score";
+  score.value = 0.9;
+  live.doubles.push_back(score);
+  EXPECT_TRUE(startOnlyRequests(live, options).empty());
+}
+
+TEST(LiveParameters, AnOutOfRangeValueIsRefusedNamingTheRange) {
+  dynamic_reconfigure::Config request;
+  dynamic_reconfigure::DoubleParameter score;
+  score.name = "min_score";
+  score.value = 99.0;
+  request.doubles.push_back(score);
+  bowg::PipelineOptions options;
+  try {
+    applyLiveConfig(request, &options);
+    ADD_FAILURE() << "min_score 99 accepted";
+  } catch (const bowg::InvalidParameter& e) {
+    EXPECT_NE(std::string(e.what()).find("min_score: 99 is outside [0, 10]"), std::string::npos)
+        << e.what();
+  }
+}
+
+TEST(LiveParameters, TheLiveConfigCarriesTheCfgParametersOnly) {
+  bowg::PipelineOptions options;
+  options.detector.islands.min_score = 0.7;
+  dynamic_reconfigure::Config msg = liveConfig(options);
+  BoWGConfig config;
+  EXPECT_TRUE(config.__fromMessage__(msg));  // a typed client reads it without complaint
+  EXPECT_EQ(config.min_score, 0.7);
 }
 
 }  // namespace

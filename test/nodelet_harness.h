@@ -241,10 +241,13 @@ struct DebugImages {
   }
 };
 
-/// Collects ERROR log lines from /rosout.
+/// Collects log lines from /rosout at `min_level` or above (ERROR unless
+/// told otherwise).
 class ErrorLog {
  public:
-  ErrorLog() { sub_ = nh_.subscribe("/rosout", 100, &ErrorLog::onLog, this); }
+  explicit ErrorLog(std::uint8_t min_level = rosgraph_msgs::Log::ERROR) : min_level_(min_level) {
+    sub_ = nh_.subscribe("/rosout", 100, &ErrorLog::onLog, this);
+  }
   bool waitFor(const std::string& text, double timeout) {
     const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(timeout);
     while (ros::WallTime::now() < end) {
@@ -261,10 +264,11 @@ class ErrorLog {
 
  private:
   void onLog(const rosgraph_msgs::Log::ConstPtr& m) {
-    if (m->level < rosgraph_msgs::Log::ERROR) return;
+    if (m->level < min_level_) return;
     std::lock_guard<std::mutex> lock(mutex_);
     errors_.push_back(m->msg);
   }
+  std::uint8_t min_level_;
   ros::NodeHandle nh_;
   ros::Subscriber sub_;
   std::mutex mutex_;

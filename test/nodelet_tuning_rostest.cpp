@@ -113,6 +113,41 @@ TEST(LoopDetectorNodelet, LiveParametersTakeEffectAndInvalidValuesAreCorrected) 
   EXPECT_FALSE(d.loops().empty()) << "database lost after reconfiguration";
 }
 
+// What a user typing a wrong value or a start-only name is told: dynparam
+// knows the start-only parameters (the "start_only" group), the nodelet
+// names them and keeps their values; an out-of-range value is refused with
+// its range instead of being clamped.
+TEST(LoopDetectorNodelet, LiveParametersReportStartOnlyAndOutOfRangeValues) {
+  ErrorLog log(rosgraph_msgs::Log::WARN);
+  Detector d("/tuning_messages", {});
+  ASSERT_TRUE(d.loaded());
+  ros::WallDuration(0.5).sleep();  // /rosout connection
+  const std::string set = "rosrun dynamic_reconfigure dynparam set " + d.name();
+  const std::string quiet = " > /dev/null 2>&1";
+
+  EXPECT_EQ(std::system((set + " orb_levels 3" + quiet).c_str()), 0);
+  EXPECT_TRUE(log.waitFor("orb_levels is start-only", 10.0)) << "no message for orb_levels";
+
+  BoWGConfig c = BoWGConfig::__getDefault__();
+  c.min_score = 0.6;
+  ASSERT_TRUE(setConfig(d.name(), &c));
+  EXPECT_EQ(std::system((set + " min_score 99" + quiet).c_str()), 0);
+  EXPECT_TRUE(log.waitFor("min_score: 99 is outside [0, 10]", 10.0)) << "no message for 99";
+  // The value in force stays 0.6, on the next keyframe and on the server.
+  const cv::Mat world = test::makeWorld(kViewWidth + 4 * kStep, kViewHeight, 9);
+  d.publish(test::viewAt(world, 0, kViewWidth), 1000.0);
+  ASSERT_TRUE(d.waitForStatuses(1, 20.0));
+  EXPECT_EQ(d.statuses().back().min_score, 0.6);
+  double on_server = 0.0;
+  EXPECT_TRUE(ros::param::get(d.name() + "/min_score", on_server));
+  EXPECT_EQ(on_server, 0.6);
+  // A value in range still applies.
+  EXPECT_EQ(std::system((set + " min_score 0.8" + quiet).c_str()), 0);
+  d.publish(test::viewAt(world, kStep, kViewWidth), 1000.1);
+  ASSERT_TRUE(d.waitForStatuses(2, 20.0));
+  EXPECT_EQ(d.statuses().back().min_score, 0.8);
+}
+
 TEST(LoopDetectorNodelet, SaveResetLoadRestoresDetectionAndCorruptLoadKeepsTheDatabase) {
   Detector d("/persistence", {});
   ASSERT_TRUE(d.loaded());

@@ -129,11 +129,10 @@ void LoopDetectorNodelet::advertiseInterfaces(ros::NodeHandle& nh, ros::NodeHand
   // Diagnostics: updated from a wall timer (update() rate-limits itself).
   startDiagnostics(nh, pnh);
 
-  // Live tuning: the server calls reconfigure() once now with the current
-  // parameters (the same names the options were read from).
-  reconfigure_server_.reset(new dynamic_reconfigure::Server<BoWGConfig>(config_mutex_, pnh));
-  reconfigure_server_->setCallback(
-      [this](BoWGConfig& config, uint32_t level) { reconfigure(config, level); });
+  // Live tuning: the values in force were read from the same names at start.
+  reconfigure_server_.reset(new LiveTuningServer(
+      pnh, describeWithStartOnly(options_), liveConfig(options_),
+      [this](const dynamic_reconfigure::Config& requested) { return reconfigure(requested); }));
 }
 
 // Image (raw or compressed) or upstream features, camera_info and odometry.

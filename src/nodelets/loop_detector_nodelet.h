@@ -22,7 +22,6 @@
 
 #include <cv_bridge/cv_bridge.h>
 #include <diagnostic_updater/diagnostic_updater.h>
-#include <dynamic_reconfigure/server.h>
 #include <image_transport/camera_common.h>
 #include <image_transport/image_transport.h>
 #include <nav_msgs/Odometry.h>
@@ -37,7 +36,6 @@
 
 #include <algorithm>
 #include <atomic>
-#include <boost/thread/recursive_mutex.hpp>
 #include <chrono>
 #include <limits>
 #include <map>
@@ -53,7 +51,6 @@
 #include "bowg/parameters/parameter_table.h"
 #include "bowg/vocabulary/vocabulary.h"
 #include "bowg/vocabulary/vocabulary_io.h"
-#include "bowg_ros/BoWGConfig.h"
 #include "bowg_ros/KeyframeFeatures.h"
 #include "bowg_ros/KeyframeStatus.h"
 #include "bowg_ros/LoadDatabase.h"
@@ -65,6 +62,7 @@
 #include "bowg_ros/keyframe_gate.h"
 #include "bowg_ros/keyframe_thumbnails.h"
 #include "bowg_ros/live_parameters.h"
+#include "bowg_ros/live_tuning_server.h"
 #include "bowg_ros/ros_conversions.h"
 
 namespace bowg_ros {
@@ -182,7 +180,9 @@ class LoopDetectorNodelet : public nodelet::Nodelet {
   /// other keyframes. Called under the detector lock.
   void forgetKeyframeImages();
 
-  void reconfigure(BoWGConfig& config, uint32_t level);
+  /// Live tuning: applies `requested` (as the client sent it), reports
+  /// start-only and out-of-range values, returns the live values in force.
+  dynamic_reconfigure::Config reconfigure(const dynamic_reconfigure::Config& requested);
   bool saveDatabase(SaveDatabase::Request& req, SaveDatabase::Response& res);
   bool loadDatabase(LoadDatabase::Request& req, LoadDatabase::Response& res);
   bool resetDatabase(std_srvs::Trigger::Request& req, std_srvs::Trigger::Response& res);
@@ -249,8 +249,7 @@ class LoopDetectorNodelet : public nodelet::Nodelet {
   ros::CallbackQueue service_queue_;
   std::unique_ptr<ros::AsyncSpinner> service_spinner_;
   ros::ServiceServer save_srv_, load_srv_, reset_srv_;
-  boost::recursive_mutex config_mutex_;
-  std::unique_ptr<dynamic_reconfigure::Server<BoWGConfig>> reconfigure_server_;
+  std::unique_ptr<LiveTuningServer> reconfigure_server_;
   std::unique_ptr<diagnostic_updater::Updater> updater_;
   ros::WallTimer diagnostics_timer_;
 };

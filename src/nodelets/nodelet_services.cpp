@@ -4,15 +4,17 @@
 
 namespace bowg_ros {
 
-void LoopDetectorNodelet::reconfigure(BoWGConfig& config, uint32_t /*level*/) {
-  if (!detector_) return;
+dynamic_reconfigure::Config LoopDetectorNodelet::reconfigure(
+    const dynamic_reconfigure::Config& requested) {
   std::lock_guard<std::mutex> lock(detector_mutex_);
-  // Every cfg parameter by name through the parameter table (live_parameters.h).
-  dynamic_reconfigure::Config values;
-  config.__toMessage__(values);
+  for (const std::string& m : startOnlyRequests(requested, options_)) {
+    NODELET_WARN("dynamic_reconfigure: %s", m.c_str());
+  }
+  // Every live parameter by name through the parameter table
+  // (live_parameters.h), unclamped: a value outside its range is refused.
   bowg::PipelineOptions next = options_;
   try {
-    applyLiveConfig(values, &next);
+    applyLiveConfig(requested, &next);
     for (const std::string& c : bowg::correctLiveParameters(vocabulary_->depth(), &next)) {
       NODELET_WARN("dynamic_reconfigure: %s", c.c_str());
     }
@@ -21,9 +23,8 @@ void LoopDetectorNodelet::reconfigure(BoWGConfig& config, uint32_t /*level*/) {
   } catch (const std::exception& e) {
     NODELET_WARN("dynamic_reconfigure: rejected (%s); keeping the previous values", e.what());
   }
-  // Send the values in force back to the client (corrected or kept).
-  writeLiveConfig(options_, &values);
-  config.__fromMessage__(values);
+  // The values in force go back to the client (corrected or kept).
+  return liveConfig(options_);
 }
 
 bool LoopDetectorNodelet::saveDatabase(SaveDatabase::Request& req, SaveDatabase::Response& res) {
