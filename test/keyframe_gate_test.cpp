@@ -29,6 +29,23 @@ TEST(KeyframeGate, MinimumIntervalCountsFromTheLastKeyframe) {
   EXPECT_EQ(gate.check(11.0), GateDecision::kAccept);
 }
 
+TEST(KeyframeGate, AFrameWithinTenPercentOfTheIntervalIsOnTime) {
+  // A 10 Hz camera under a 0.1 s gate (0.04 m at 0.4 m/s): stamps a few ms
+  // early, or 0.1 apart only up to rounding, keep every frame.
+  KeyframeGateOptions o;
+  o.min_interval = 0.1;
+  KeyframeGate camera(o);
+  const double stamps[] = {1000.0, 1000.1, 1000.197, 1000.3, 1000.4, 1000.492};
+  for (double t : stamps) EXPECT_EQ(camera.check(t), GateDecision::kAccept) << t;
+  // The tolerance is 10 % of the interval, no more: 0.46 of 0.5 is on time,
+  // 0.44 is not.
+  o.min_interval = 0.5;
+  KeyframeGate slow(o);
+  EXPECT_EQ(slow.check(10.0), GateDecision::kAccept);
+  EXPECT_EQ(slow.check(10.44), GateDecision::kTooSoon);
+  EXPECT_EQ(slow.check(10.46), GateDecision::kAccept);
+}
+
 TEST(KeyframeGate, OutOfOrderAndRepeatedStampsAreRejected) {
   KeyframeGate gate;
   EXPECT_EQ(gate.check(5.0), GateDecision::kAccept);

@@ -1,6 +1,6 @@
 // Keyframe selection: not every camera frame is a
 // keyframe. A frame becomes one when at least `min_interval` seconds passed
-// since the last keyframe and, when `min_distance` > 0 and odometry is
+// since the last keyframe (within 10 %: camera jitter) and, when `min_distance` > 0 and odometry is
 // arriving, the robot travelled at least `min_distance` metres (path length of
 // the odometry positions) since then. Until the first odometry message
 // arrives, only the time gate applies, so a missing odometry topic never
@@ -20,6 +20,10 @@
 
 namespace bowg_ros {
 
+/// A frame at least this share of min_interval after the last keyframe is on
+/// time: a camera whose period equals the interval keeps every frame.
+constexpr double kIntervalTolerance = 0.9;
+
 struct KeyframeGateOptions {
   double min_interval = 0.0;  ///< s, >= 0
   double min_distance = 0.0;  ///< m, >= 0; 0 = no distance gate
@@ -31,7 +35,7 @@ struct KeyframeGateOptions {
 
 enum class GateDecision {
   kAccept,         ///< a keyframe
-  kTooSoon,        ///< less than min_interval since the last keyframe
+  kTooSoon,        ///< less than 0.9 x min_interval since the last keyframe
   kTooClose,       ///< travelled less than min_distance
   kOutOfOrder,     ///< stamp older than the previous frame's
   kRepeatedStamp,  ///< same stamp as the previous frame
