@@ -109,7 +109,16 @@ void BagOutput::write(const pipe_sim::FrameState& f, const cv::Mat& image, const
   info_.header.seq = f.index;
   info_.header.stamp = stamp;
   bag_.write("/camera/camera_info", stamp, info_);
-  bag_.write("/ground_truth/pose", stamp, poseOf(f, q, stamp));
+  const geometry_msgs::PoseStamped truth = poseOf(f, q, stamp);
+  bag_.write("/ground_truth/pose", stamp, truth);
+  // The same pose as nav_msgs/Odometry, the type of a simulator's or motion
+  // capture's ground-truth odometry, which bowg_pose_graph_node compares its
+  // paths with (its ground_truth input).
+  nav_msgs::Odometry truth_odometry;
+  truth_odometry.header = truth.header;
+  truth_odometry.child_frame_id = "camera_link";
+  truth_odometry.pose.pose = truth.pose;
+  bag_.write("/ground_truth/odom", stamp, truth_odometry);
 }
 
 void BagOutput::writeOdometry(const pipe_sim::FrameState& f, const pipe_sim::CameraPose& pose,

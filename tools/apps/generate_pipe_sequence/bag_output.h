@@ -23,8 +23,9 @@ class BagOutput {
   BagOutput(const std::string& path, const std::string& compression,
             const std::string& image_format, const pipe_sim::CameraModel& camera);
 
-  /// Frame `f`'s image, camera info and pose (orientation quaternion `q`,
-  /// x y z w), stamped f.stamp.
+  /// Frame `f`'s image, camera info and true pose (orientation quaternion
+  /// `q`, x y z w) on /ground_truth/pose and /ground_truth/odom, stamped
+  /// f.stamp.
   void write(const pipe_sim::FrameState& f, const cv::Mat& image, const cv::Vec4d& q);
 
   /// Frame `f`'s odometry on /odom: `pose` (orientation `q`, x y z w) with

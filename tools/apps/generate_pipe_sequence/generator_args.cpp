@@ -24,6 +24,7 @@ const char* const kUsage =
     "usage: bowg_generate_pipe_sequence (--bag FILE | --images DIR) [options]\n"
     "  --bag FILE             write a rosbag: /camera/image_raw (mono8), /camera/camera_info,\n"
     "                         /ground_truth/pose (geometry_msgs/PoseStamped, frame map),\n"
+    "                         /ground_truth/odom (the same as nav_msgs/Odometry),\n"
     "                         /odom (nav_msgs/Odometry, the drifting odometry, frame odom)\n"
     "  --bag-images FORMAT    the bag's images: mono8, bgr8 (the grey image in three\n"
     "                         channels) or jpeg (sensor_msgs/CompressedImage on\n"

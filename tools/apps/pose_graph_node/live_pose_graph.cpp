@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "bowg_pose_graph/camera_frames.h"
+#include "bowg_pose_graph/trajectory_error.h"
 
 namespace bowg {
 namespace pose_graph_node {
@@ -59,6 +60,8 @@ LivePoseGraph::LivePoseGraph(ros::NodeHandle& nh, ros::NodeHandle& pnh) {
   pnh.param("odometry_horizon", horizon, horizon);
   options_.validate();  // throws: main() reports and exits
   odometry_ = pose_graph::OdometryBuffer(horizon);
+  ground_truth_ = pose_graph::OdometryBuffer(horizon);
+  pnh.param("use_ground_truth", use_ground_truth_, false);
   graph_.reset(new pose_graph::PoseGraph(options_));
 
   path_pub_ = pnh.advertise<nav_msgs::Path>("path", 1, true);
@@ -74,6 +77,13 @@ LivePoseGraph::LivePoseGraph(ros::NodeHandle& nh, ros::NodeHandle& pnh) {
            odom_sub_.getTopic().c_str(), keyframe_sub_.getTopic().c_str(),
            loop_sub_.getTopic().c_str(), path_pub_.getTopic().c_str(),
            odometry_path_pub_.getTopic().c_str());
+  if (use_ground_truth_) {
+    // A remappable topic like odom; the parameter keeps it off unless asked
+    // for, since a robot in the field has no ground truth.
+    ground_truth_sub_ = nh.subscribe("ground_truth", 5000, &LivePoseGraph::onGroundTruth, this);
+    ROS_INFO("bowg_pose_graph_node: ground truth %s: each solve logs the position RMSE",
+             ground_truth_sub_.getTopic().c_str());
+  }
 }
 
 void LivePoseGraph::restart(const std::string& why) {
@@ -86,6 +96,8 @@ void LivePoseGraph::restart(const std::string& why) {
   node_stamps_.clear();
   node_odometry_.clear();
   loop_nodes_.clear();
+  node_truth_.clear();
+  node_has_truth_.clear();
   loops_ = 0;
   metric_loops_ = 0;
   last_tf_stamp_ = -1;
@@ -95,6 +107,10 @@ void LivePoseGraph::onOdometry(const nav_msgs::Odometry::ConstPtr& msg) {
   odom_frame_ = msg->header.frame_id;
   odometry_.add(msg->header.stamp.toSec(), toIsometry(msg->pose.pose));
   addCoveredKeyframes();
+}
+
+void LivePoseGraph::onGroundTruth(const nav_msgs::Odometry::ConstPtr& msg) {
+  ground_truth_.add(msg->header.stamp.toSec(), toIsometry(msg->pose.pose));
 }
 
 void LivePoseGraph::onKeyframe(const bowg_ros::KeyframeStatus::ConstPtr& msg) {
@@ -145,6 +161,8 @@ void LivePoseGraph::addCoveredKeyframes() {
     node_of_keyframe_[id] = node_stamps_.size();
     node_stamps_.push_back(stamp);
     node_odometry_.push_back(odom);
+    node_truth_.emplace_back(Eigen::Isometry3d::Identity());
+    node_has_truth_.push_back(false);
     added = true;
   }
   if (addReadyLoops() || added) publish();
@@ -204,8 +222,40 @@ bool LivePoseGraph::addReadyLoops() {
     const pose_graph::SolveSummary s = graph_->optimize();
     ROS_INFO("bowg_pose_graph_node: %zu keyframes, %zu loops (%zu metric): %s", graph_->size(),
              loops_, metric_loops_, s.report.c_str());
+    if (use_ground_truth_) reportTrajectoryError();
   }
   return added;
+}
+
+void LivePoseGraph::reportTrajectoryError() {
+  for (std::size_t i = 0; i < node_stamps_.size(); ++i) {
+    if (!node_has_truth_[i]) node_has_truth_[i] = ground_truth_.at(node_stamps_[i], &node_truth_[i]);
+  }
+  pose_graph::PoseVector truth;
+  std::vector<Eigen::Vector3d> corrected, odometry;
+  std::size_t first = node_stamps_.size();  // the first node with ground truth
+  for (std::size_t i = 0; i < node_stamps_.size(); ++i) {
+    if (!node_has_truth_[i]) continue;
+    if (first == node_stamps_.size()) first = i;
+    truth.push_back(node_truth_[i]);
+    corrected.push_back(graph_->pose(i).translation());
+    odometry.push_back(node_odometry_[i].translation());
+  }
+  if (truth.empty()) {
+    ROS_WARN("bowg_pose_graph_node: no ground truth on %s at any of the %zu keyframes' stamps",
+             ground_truth_sub_.getTopic().c_str(), node_stamps_.size());
+    return;
+  }
+  // The truth's world frame is its own: carried onto the odometry at the
+  // first keyframe it covers (node 0, where the graph is held, when the
+  // truth was there from the start).
+  const std::vector<Eigen::Vector3d> truth_here =
+      pose_graph::anchoredTruth(truth, 0, node_odometry_[first]);
+  const pose_graph::TrajectoryError after = pose_graph::positionError(corrected, truth_here);
+  const pose_graph::TrajectoryError before = pose_graph::positionError(odometry, truth_here);
+  ROS_INFO("bowg_pose_graph_node: position RMSE against the ground truth at %zu of %zu "
+           "keyframes: corrected path %.3f m, odometry %.3f m",
+           truth.size(), node_stamps_.size(), after.rmse, before.rmse);
 }
 
 bool LivePoseGraph::cameraMounting(const bowg_ros::LoopClosure& loop,

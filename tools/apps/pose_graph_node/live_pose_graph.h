@@ -10,6 +10,9 @@
 //   -> ~path (nav_msgs/Path, corrected), ~odometry_path (as measured),
 //      ~loops (visualization_msgs/Marker: a line per loop on the corrected path),
 //      TF map -> odom (REP-105: the correction of the odometry's drift)
+//   ground_truth (nav_msgs/Odometry, with ~use_ground_truth; off by default)
+//      -> per solve, the position RMSE of the corrected path and of the
+//      odometry against it at the keyframes' stamps (a line on the log)
 //
 // The camera's mounting: with ~base_frame (the odometry's body frame) each
 // loop looks up base_frame <- the loop's optical frame in TF, so that "the
@@ -50,6 +53,10 @@ class LivePoseGraph {
   void onOdometry(const nav_msgs::Odometry::ConstPtr& msg);
   void onKeyframe(const bowg_ros::KeyframeStatus::ConstPtr& msg);
   void onLoop(const bowg_ros::LoopClosure::ConstPtr& msg);
+  void onGroundTruth(const nav_msgs::Odometry::ConstPtr& msg);
+  /// Logs the corrected path's and the odometry's position RMSE against the
+  /// ground truth at the keyframes that have one.
+  void reportTrajectoryError();
   /// Turns the keyframes whose stamp the odometry covers into nodes.
   void addCoveredKeyframes();
   /// Adds the loops whose keyframes are nodes; true when one was added.
@@ -80,7 +87,14 @@ class LivePoseGraph {
   std::vector<Eigen::Isometry3d, Eigen::aligned_allocator<Eigen::Isometry3d>> node_odometry_;
   std::size_t loops_ = 0, metric_loops_ = 0, skipped_keyframes_ = 0, lost_keyframes_ = 0;
 
-  ros::Subscriber odom_sub_, keyframe_sub_, loop_sub_;
+  // Ground truth: looked up per node when a solve is reported, not when the
+  // node is added, since it travels on its own connection and may trail.
+  bool use_ground_truth_ = false;
+  pose_graph::OdometryBuffer ground_truth_;
+  std::vector<Eigen::Isometry3d, Eigen::aligned_allocator<Eigen::Isometry3d>> node_truth_;
+  std::vector<bool> node_has_truth_;
+
+  ros::Subscriber odom_sub_, keyframe_sub_, loop_sub_, ground_truth_sub_;
   ros::Publisher path_pub_, odometry_path_pub_, loops_pub_;
 };
 

@@ -134,7 +134,7 @@ TEST_F(GeneratePipeSequence, TheOdometryOptionsChangeNothingElse) {
   EXPECT_EQ(readAll(kDir + "/drift/frame_000059.png"), readAll(kDir + "/exact/frame_000059.png"));
 }
 
-TEST_F(GeneratePipeSequence, TheBagHasTheOdometryOnOdom) {
+TEST_F(GeneratePipeSequence, TheBagHasTheOdometryOnOdomAndTheTruthAsOdometry) {
   rosbag::Bag bag(kDir + "/drift.bag", rosbag::bagmode::Read);
   std::vector<nav_msgs::Odometry> odometry;
   for (const rosbag::MessageInstance& m : rosbag::View(bag, rosbag::TopicQuery("/odom"))) {
@@ -147,11 +147,24 @@ TEST_F(GeneratePipeSequence, TheBagHasTheOdometryOnOdom) {
        rosbag::View(bag, rosbag::TopicQuery("/ground_truth/pose"))) {
     truth.push_back(*m.instantiate<geometry_msgs::PoseStamped>());
   }
+  std::vector<nav_msgs::Odometry> truth_odometry;
+  for (const rosbag::MessageInstance& m :
+       rosbag::View(bag, rosbag::TopicQuery("/ground_truth/odom"))) {
+    const nav_msgs::Odometry::ConstPtr msg = m.instantiate<nav_msgs::Odometry>();
+    ASSERT_TRUE(msg) << m.getDataType();
+    truth_odometry.push_back(*msg);
+  }
   const Table csv = readCsv(kDir + "/drift/odometry.csv");
   ASSERT_EQ(odometry.size(), 60u);
   ASSERT_EQ(truth.size(), odometry.size());
+  ASSERT_EQ(truth_odometry.size(), truth.size());
   for (std::size_t i = 0; i < odometry.size(); ++i) {
     SCOPED_TRACE(i);
+    // The ground truth as nav_msgs/Odometry: the PoseStamped's pose.
+    EXPECT_EQ(truth_odometry[i].header.stamp, truth[i].header.stamp);
+    EXPECT_EQ(truth_odometry[i].header.frame_id, "map");
+    EXPECT_EQ(truth_odometry[i].child_frame_id, "camera_link");
+    EXPECT_EQ(truth_odometry[i].pose.pose, truth[i].pose);
     const nav_msgs::Odometry& o = odometry[i];
     EXPECT_EQ(o.header.seq, i);
     EXPECT_EQ(o.header.stamp, truth[i].header.stamp);

@@ -28,5 +28,18 @@ TrajectoryError positionError(const std::vector<Eigen::Vector3d>& estimate,
   return e;
 }
 
+std::vector<Eigen::Vector3d> anchoredTruth(const PoseVector& truth, std::size_t anchor,
+                                           const Eigen::Isometry3d& estimate_anchor) {
+  if (anchor >= truth.size()) {
+    throw std::invalid_argument("anchoredTruth: anchor " + std::to_string(anchor) + " of " +
+                                std::to_string(truth.size()) + " true poses");
+  }
+  const Eigen::Isometry3d estimate_T_truth = estimate_anchor * truth[anchor].inverse();
+  std::vector<Eigen::Vector3d> out;
+  out.reserve(truth.size());
+  for (const Eigen::Isometry3d& t : truth) out.push_back((estimate_T_truth * t).translation());
+  return out;
+}
+
 }  // namespace pose_graph
 }  // namespace bowg
