@@ -23,8 +23,8 @@
 #include "bowg_pose_graph/pose_graph.h"
 #include "bowg_pose_graph/trajectory_error.h"
 #include "bowg_pose_graph/trajectory_file.h"
+#include "bowg_pose_graph/trajectory_plot.h"
 #include "pose_graph_args.h"
-#include "trajectory_plot.h"
 
 namespace bowg {
 namespace pose_graph_app {
@@ -174,7 +174,7 @@ int run(const Args& a) {
     writeFileAtomically(a.output + "/trajectories.csv", csv.str());
     writeFileAtomically(a.output + "/summary.txt", report.str());
     std::vector<std::uint8_t> png;
-    cv::imencode(".png", plotTopView(true_p, odo_p, optimised, loops), png);
+    cv::imencode(".png", pose_graph::plotTopView(true_p, odo_p, optimised, loops), png);
     writeFileAtomically(a.output + "/trajectories.png", std::string(png.begin(), png.end()));
     std::cout << "outputs in " << a.output << ": trajectories.csv, summary.txt, trajectories.png\n";
   }

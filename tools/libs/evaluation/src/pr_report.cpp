@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <iomanip>
 #include <sstream>
+#include <string>
 #include <stdexcept>
 
 #include <opencv2/imgcodecs.hpp>
@@ -26,6 +27,41 @@ void writePrCurvesCsv(const std::string& path, const std::vector<NamedCurve>& cu
     }
   }
   writeFileAtomically(path, out.str());
+}
+
+std::vector<cv::Rect> placeLabels(const std::vector<cv::Point>& points,
+                                  const std::vector<cv::Size>& sizes, const cv::Rect& bounds,
+                                  std::vector<cv::Rect>* taken) {
+  if (points.size() != sizes.size()) {
+    throw std::invalid_argument("placeLabels: " + std::to_string(points.size()) + " points, " +
+                                std::to_string(sizes.size()) + " label sizes");
+  }
+  const int gap = 6;  // px between a point and its label: clear of the marker
+  const int pad = 2;  // px kept between two labels
+  std::vector<cv::Rect> placed;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const cv::Point& p = points[i];
+    const cv::Size& s = sizes[i];
+    const cv::Point corners[] = {{p.x + gap, p.y - gap - s.height},
+                                 {p.x + gap, p.y + gap},
+                                 {p.x - gap - s.width, p.y - gap - s.height},
+                                 {p.x - gap - s.width, p.y + gap}};
+    cv::Rect chosen;
+    for (const cv::Point& corner : corners) {
+      const cv::Rect box(corner, s);
+      if ((box & bounds) != box) continue;
+      const cv::Rect padded(box.x - pad, box.y - pad, box.width + 2 * pad, box.height + 2 * pad);
+      const bool free = std::none_of(taken->begin(), taken->end(),
+                                     [&](const cv::Rect& t) { return (t & padded).area() > 0; });
+      if (free) {
+        chosen = box;
+        break;
+      }
+    }
+    if (chosen.area() > 0) taken->push_back(chosen);
+    placed.push_back(chosen);
+  }
+  return placed;
 }
 
 cv::Mat drawPrCurves(const std::vector<NamedCurve>& curves, const std::string& title, int width,
@@ -77,6 +113,17 @@ cv::Mat drawPrCurves(const std::vector<NamedCurve>& curves, const std::string& t
   // Distinct colours (BGR) for up to 8 methods, then repeat.
   const cv::Scalar colours[] = {{200, 80, 0},  {0, 140, 255}, {40, 160, 40}, {30, 30, 220},
                                 {160, 60, 160}, {60, 120, 140}, {180, 180, 0}, {90, 90, 90}};
+  // The legend in the lower-left corner of the plot (PR curves rarely go
+  // there); its boxes are taken first so that no threshold label covers it.
+  const auto legend_y = [&](std::size_t k) {
+    return plot.y + plot.height - 15 - 22 * static_cast<int>(curves.size() - 1 - k);
+  };
+  std::vector<cv::Rect> taken;
+  for (std::size_t k = 0; k < curves.size(); ++k) {
+    const cv::Size text = cv::getTextSize(curves[k].name, font, 0.5, 1, nullptr);
+    taken.emplace_back(plot.x + 15, legend_y(k) - 11, 37 + text.width, 22);
+  }
+  const double label_scale = 0.38;
   for (std::size_t k = 0; k < curves.size(); ++k) {
     const cv::Scalar colour = colours[k % 8];
     // Points in threshold order (descending) trace recall increasing.
@@ -84,24 +131,26 @@ cv::Mat drawPrCurves(const std::vector<NamedCurve>& curves, const std::string& t
     for (const PrPoint& p : curves[k].curve) pts.push_back(toPixel(p.recall, p.precision));
     if (pts.size() > 1) cv::polylines(img, pts, false, colour, 2, cv::LINE_AA);
     // A marker per threshold of the sweep, labelled with its value, so the
-    // reader can pick an operating point (labels that would overlap the
-    // previous one are left out; every point keeps its marker).
-    cv::Point last_label(-1000, -1000);
+    // reader can pick an operating point. Dense sweeps put points a few px
+    // apart: placeLabels moves a label to another side of its point or
+    // leaves it out (the marker stays) rather than print over another
+    // curve's or its own neighbour's.
+    std::vector<std::string> labels;
+    std::vector<cv::Size> sizes;
     for (std::size_t i = 0; i < pts.size(); ++i) {
       cv::circle(img, pts[i], 4, colour, -1, cv::LINE_AA);
       char label[24];
       std::snprintf(label, sizeof label, "%g", curves[k].curve[i].threshold);
-      // Above and right of the point, staggered per curve; below or left of
-      // it where that would leave the plot.
-      cv::Point at = pts[i] + cv::Point(6, -6 - 12 * static_cast<int>(k % 3));
-      if (at.y < plot.y + 10) at.y = pts[i].y + 16 + 12 * static_cast<int>(k % 3);
-      if (at.x > plot.x + plot.width - 28) at.x = pts[i].x - 34;  // left of points at recall ~1
-      if (std::abs(at.x - last_label.x) < 28 && std::abs(at.y - last_label.y) < 12) continue;
-      cv::putText(img, label, at, font, 0.38, colour, 1, cv::LINE_AA);
-      last_label = at;
+      labels.push_back(label);
+      sizes.push_back(cv::getTextSize(label, font, label_scale, 1, nullptr));
     }
-    // Legend in the lower-left corner of the plot (PR curves rarely go there).
-    const int ly = plot.y + plot.height - 15 - 22 * static_cast<int>(curves.size() - 1 - k);
+    const std::vector<cv::Rect> boxes = placeLabels(pts, sizes, plot, &taken);
+    for (std::size_t i = 0; i < boxes.size(); ++i) {
+      if (boxes[i].area() == 0) continue;
+      cv::putText(img, labels[i], cv::Point(boxes[i].x, boxes[i].y + boxes[i].height), font,
+                  label_scale, colour, 1, cv::LINE_AA);
+    }
+    const int ly = legend_y(k);
     cv::line(img, cv::Point(plot.x + 15, ly), cv::Point(plot.x + 45, ly), colour, 3, cv::LINE_AA);
     cv::putText(img, curves[k].name, cv::Point(plot.x + 52, ly + 5), font, 0.5, cv::Scalar(0, 0, 0),
                 1, cv::LINE_AA);

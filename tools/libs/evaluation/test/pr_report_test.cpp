@@ -1,5 +1,6 @@
 #include "bowg_evaluation/pr_report.h"
 
+#include <cmath>
 #include <cstdlib>
 #include <fstream>
 #include <string>
@@ -67,10 +68,93 @@ TEST(PrReportTest, EachThresholdHasAMarkerAndALabel) {
   };
   // The marker: 3 px off the 2 px line, across its direction (slope ~0.2).
   EXPECT_TRUE(has(709, 711, 137, 138));
-  // The label "0.7": right of and above the point (6 px right, 18 px up for
-  // the second curve), not below it.
-  EXPECT_TRUE(has(715, 740, 110, 124));
+  // The label "0.7": right of and above the point (6 px right and up), not
+  // below it.
+  EXPECT_TRUE(has(715, 740, 124, 135));
   EXPECT_FALSE(has(715, 740, 150, 170));
+}
+
+// Do two boxes overlap (touching edges do not)?
+bool overlap(const cv::Rect& a, const cv::Rect& b) { return (a & b).area() > 0; }
+
+TEST(PrReportTest, LabelsMoveAroundTheirPointOrAreLeftOutRatherThanOverlap) {
+  const cv::Rect bounds(0, 0, 400, 300);
+  const cv::Size size(24, 9);
+  std::vector<cv::Rect> taken;
+  // Two points 4 px apart: the first label right above its point, the
+  // second, which would cover it there, right below its own.
+  const std::vector<cv::Rect> two =
+      placeLabels({{100, 100}, {104, 100}}, {size, size}, bounds, &taken);
+  ASSERT_EQ(two.size(), 2u);
+  EXPECT_EQ(two[0], cv::Rect(106, 85, 24, 9));
+  EXPECT_EQ(two[1], cv::Rect(110, 106, 24, 9));
+  ASSERT_EQ(taken.size(), 2u);
+  // Eight points on one pixel (a sweep whose thresholds give the same
+  // precision and recall): four places, four labels, the rest left out.
+  taken.clear();
+  const std::vector<cv::Point> same(8, cv::Point(200, 150));
+  const std::vector<cv::Rect> crowded =
+      placeLabels(same, std::vector<cv::Size>(8, size), bounds, &taken);
+  std::size_t drawn = 0;
+  for (std::size_t i = 0; i < crowded.size(); ++i) {
+    if (crowded[i].area() == 0) continue;
+    ++drawn;
+    for (std::size_t j = 0; j < i; ++j) EXPECT_FALSE(overlap(crowded[i], crowded[j])) << i << j;
+  }
+  EXPECT_EQ(drawn, 4u);
+  EXPECT_EQ(crowded[4], cv::Rect());
+}
+
+TEST(PrReportTest, LabelsStayInsideThePlotAndOffWhatIsTaken) {
+  const cv::Rect bounds(0, 0, 400, 300);
+  const cv::Size size(24, 9);
+  // Top-right corner: neither above nor right fits, left below does.
+  std::vector<cv::Rect> taken;
+  const std::vector<cv::Rect> corner = placeLabels({{398, 2}}, {size}, bounds, &taken);
+  EXPECT_EQ(corner[0], cv::Rect(368, 8, 24, 9));
+  // A box already taken (the legend, another curve's label) beside the
+  // point: the label goes to a side clear of it, 2 px apart at least.
+  taken = {cv::Rect(100, 80, 60, 40)};
+  const std::vector<cv::Rect> beside = placeLabels({{98, 100}}, {size}, bounds, &taken);
+  ASSERT_GT(beside[0].area(), 0);
+  EXPECT_FALSE(overlap(beside[0], cv::Rect(98, 78, 64, 44)));
+  EXPECT_LT(beside[0].x + beside[0].width, 100);
+  EXPECT_THROW(placeLabels({{1, 1}}, {}, bounds, &taken), std::invalid_argument);
+}
+
+TEST(PrReportTest, ADenseSweepOfTwoCurvesDrawsNoLabelOverAnother) {
+  // Two curves of 40 thresholds each along nearly the same path, their
+  // points where drawPrCurves puts them (800 x 600) and their labels about
+  // the size of "1.85" at its label scale: many labels placed, none over
+  // another.
+  std::vector<NamedCurve> curves = {{"a", {}}, {"b", {}}};
+  for (int i = 0; i < 40; ++i) {
+    PrPoint p = point(1.0 - 0.005 * i, 0.02 * i);
+    p.threshold = 2.0 - 0.05 * i;
+    curves[0].curve.push_back(p);
+    p.precision -= 0.01;
+    curves[1].curve.push_back(p);
+  }
+  EXPECT_NO_THROW(drawPrCurves(curves, "dense"));
+  const cv::Rect plot(70, 40, 710, 505);
+  std::vector<cv::Rect> taken, all;
+  for (const NamedCurve& c : curves) {
+    std::vector<cv::Point> pts;
+    for (const PrPoint& p : c.curve) {
+      pts.emplace_back(70 + static_cast<int>(std::lround(p.recall * 710)),
+                       545 - static_cast<int>(std::lround(p.precision * 505)));
+    }
+    const std::vector<cv::Rect> boxes =
+        placeLabels(pts, std::vector<cv::Size>(pts.size(), cv::Size(24, 9)), plot, &taken);
+    for (const cv::Rect& b : boxes) {
+      if (b.area() > 0) all.push_back(b);
+    }
+  }
+  EXPECT_GT(all.size(), 10u);  // thinned, not emptied
+  EXPECT_LT(all.size(), 80u);  // 80 labels cannot all fit
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    for (std::size_t j = 0; j < i; ++j) EXPECT_FALSE(overlap(all[i], all[j])) << i << " " << j;
+  }
 }
 
 TEST(PrReportTest, WritesCsvAndPng) {

@@ -1,4 +1,4 @@
-#include "trajectory_plot.h"
+#include "bowg_pose_graph/trajectory_plot.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,7 @@
 #include <opencv2/imgproc.hpp>
 
 namespace bowg {
-namespace pose_graph_app {
+namespace pose_graph {
 
 cv::Mat plotTopView(const std::vector<Eigen::Vector3d>& truth,
                     const std::vector<Eigen::Vector3d>& odometry,
@@ -38,24 +38,34 @@ cv::Mat plotTopView(const std::vector<Eigen::Vector3d>& truth,
       cv::line(canvas, px(track[i - 1]), px(track[i]), colour, width, cv::LINE_AA);
     }
   };
-  for (const auto& l : loops) {
-    if (l.first < optimised.size() && l.second < optimised.size()) {
-      cv::line(canvas, px(optimised[l.first]), px(optimised[l.second]), cv::Scalar(170, 170, 170),
-               1, cv::LINE_AA);
-    }
-  }
   polyline(odometry, cv::Scalar(40, 40, 220), 1);
   polyline(truth, cv::Scalar(0, 0, 0), 2);
   polyline(optimised, cv::Scalar(220, 90, 20), 1);
-  const auto legend = [&](int row, const cv::Scalar& colour, const char* text) {
-    const cv::Point at(margin, 22 + 20 * row);
+  // The loops over the tracks: under them, a loop whose ends the correction
+  // brought together is a line of a few px hidden by the blue one.
+  const cv::Scalar loop_grey(150, 150, 150);
+  for (const auto& l : loops) {
+    if (l.first < optimised.size() && l.second < optimised.size()) {
+      cv::line(canvas, px(optimised[l.first]), px(optimised[l.second]), loop_grey, 1, cv::LINE_AA);
+      cv::circle(canvas, px(optimised[l.first]), 4, loop_grey, 1, cv::LINE_AA);
+    }
+  }
+  const auto legend_at = [&](const cv::Point& at, const cv::Scalar& colour, const char* text) {
     cv::line(canvas, at + cv::Point(0, -5), at + cv::Point(30, -5), colour, 2, cv::LINE_AA);
     cv::putText(canvas, text, at + cv::Point(40, 0), cv::FONT_HERSHEY_SIMPLEX, 0.5,
                 cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
   };
+  const auto legend = [&](int row, const cv::Scalar& colour, const char* text) {
+    legend_at(cv::Point(margin, 22 + 20 * row), colour, text);
+  };
   legend(0, cv::Scalar(0, 0, 0), "truth");
   legend(1, cv::Scalar(40, 40, 220), "odometry");
-  legend(2, cv::Scalar(220, 90, 20), "pose graph with the detected loops (grey)");
+  legend(2, cv::Scalar(220, 90, 20), "pose graph with the detected loops");
+  // Bottom left, beside the scale bar: a fourth row on top would reach into
+  // the tracks (the margin is 60 px).
+  const cv::Point loop_legend(margin, size - margin / 2);
+  legend_at(loop_legend, loop_grey, "loop: ring at the query, line to the match");
+  cv::circle(canvas, loop_legend + cv::Point(0, -5), 4, loop_grey, 1, cv::LINE_AA);
   // Scale bar: the largest 1-2-5 x 10^k metres under a fifth of the picture.
   double bar = std::pow(10.0, std::floor(std::log10(extent / 5)));
   for (double f : {5.0, 2.0}) {
@@ -73,5 +83,5 @@ cv::Mat plotTopView(const std::vector<Eigen::Vector3d>& truth,
   return canvas;
 }
 
-}  // namespace pose_graph_app
+}  // namespace pose_graph
 }  // namespace bowg
