@@ -26,15 +26,37 @@ build() {
     -DCATKIN_ENABLE_TESTING=ON \
     "$@"
 }
+# Quiet mode's terminal: each target built as it is done, and at least every
+# 10 s a line with catkin's latest percentage and the time so far, so that a
+# minute of compiling one big library does not look like a hang.
+progress() {
+  local start=$SECONDS last=$SECONDS line pct="[  ?%]" status
+  while true; do
+    if IFS= read -r -t 10 line; then
+      case "$line" in
+        "["*"%] Built target "*) echo "   $line"; pct="${line%%]*}]"; last=$SECONDS; continue ;;
+        "["*"%]"*) pct="${line%%]*}]" ;;
+      esac
+    else
+      status=$?
+      [ "$status" -gt 128 ] || break  # end of the output; > 128: timed out
+    fi
+    if [ $((SECONDS - last)) -ge 10 ]; then
+      echo "   $pct building, $((SECONDS - start)) s"
+      last=$SECONDS
+    fi
+  done
+}
+
 if [ -z "${BOWG_BUILD_LOG:-}" ]; then
   build "$@"
 else
   # Quiet mode for the demo and the suite: the whole output goes to the log,
-  # the terminal sees one line per target built (progress, not silence), and
-  # the log's tail when the build fails.
+  # the terminal sees progress (above), and the log's tail when the build
+  # fails.
+  mkdir -p "$(dirname "$BOWG_BUILD_LOG")"
   set +e
-  build "$@" 2>&1 | tee "$BOWG_BUILD_LOG" |
-    { grep --line-buffered -E '^\[ *[0-9]+%\] Built target' || true; } | sed -u 's/^/   /'
+  build "$@" 2>&1 | tee "$BOWG_BUILD_LOG" | progress
   status=${PIPESTATUS[0]}
   set -e
   if [ "$status" -ne 0 ]; then

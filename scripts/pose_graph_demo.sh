@@ -10,7 +10,7 @@
 # Environment: BOWG_WS (workspace), BOWG_JOBS, BOWG_SKIP_DEPS=1,
 # BOWG_SKIP_BUILD=1 with BOWG_TOOLS_DIR (prebuilt tools), BOWG_POSE_GRAPH_DIR
 # (outputs), BOWG_POSE_GRAPH_ARGS (generator options instead of the default
-# sequence's).
+# sequence's), BOWG_CLEAN_FRAMES=1 (remove the rendered frames at the end).
 set -euo pipefail
 repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 ws="${BOWG_WS:-$repo/.ws}"
@@ -24,8 +24,10 @@ if [ "${BOWG_SKIP_DEPS:-0}" != 1 ]; then
   "$repo/scripts/install_deps.sh"
 fi
 if [ "${BOWG_SKIP_BUILD:-0}" != 1 ]; then
-  echo "== build (workspace $ws; log ${TMPDIR:-/tmp}/bowg_pose_graph_build.log)"
-  BOWG_WS="$ws" BOWG_BUILD_LOG="${TMPDIR:-/tmp}/bowg_pose_graph_build.log" \
+  # The log inside the workspace: one per checkout.
+  log="$ws/logs/pose_graph_build.log"
+  echo "== build (workspace $ws; log $log)"
+  BOWG_WS="$ws" BOWG_BUILD_LOG="$log" \
     "$repo/scripts/build.sh" bowg_generate_pipe_sequence bowg_evaluate bowg_pose_graph
 fi
 tools="${BOWG_TOOLS_DIR:-$ws/devel/lib/bowg_ros}"
@@ -60,4 +62,12 @@ echo "== pose graph, metric loops where the detector measured them (--loop-poses
   --loops "$out/detection/detections_configured.csv" \
   --loop-poses "$out/detection/loop_poses_configured.csv" --output "$out/graph" | sed 's/^/   /'
 echo
+# The rendered frames are needed only by the detection above.
+size="$(du -sh "$out/sequence" 2>/dev/null | cut -f1)"
+if [ "${BOWG_CLEAN_FRAMES:-0}" = 1 ]; then
+  find "$out/sequence" -name 'frame_*.png' -delete
+  echo "frames: removed from $out/sequence (${size:-0}; BOWG_CLEAN_FRAMES=1)"
+else
+  echo "frames: $out/sequence/frame_*.png, ${size:-0} on disk (BOWG_CLEAN_FRAMES=1 removes them)"
+fi
 echo "pose-graph demo done in $(( $(date +%s) - start )) s; plot: $out/graph/trajectories.png"

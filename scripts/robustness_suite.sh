@@ -48,8 +48,10 @@ done
 
 if [ "${BOWG_SKIP_DEPS:-0}" != 1 ]; then "$repo/scripts/install_deps.sh"; fi
 if [ "${BOWG_SKIP_BUILD:-0}" != 1 ]; then
-  echo "== build (scripts/build.sh, workspace $ws; log ${TMPDIR:-/tmp}/bowg_suite_build.log)"
-  BOWG_WS="$ws" BOWG_BUILD_LOG="${TMPDIR:-/tmp}/bowg_suite_build.log" \
+  # The log inside the workspace: one per checkout.
+  log="$ws/logs/suite_build.log"
+  echo "== build (scripts/build.sh, workspace $ws; log $log)"
+  BOWG_WS="$ws" BOWG_BUILD_LOG="$log" \
     "$repo/scripts/build.sh" bowg_generate_pipe_sequence bowg_evaluate
 fi
 tools="${BOWG_TOOLS_DIR:-$ws/devel/lib/bowg_ros}"

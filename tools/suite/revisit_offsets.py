@@ -122,6 +122,9 @@ def main():
                      len(inliers[i])))
     print("revisit queries by offset to the nearest true match (%s row, %s mode; %s)"
           % (args.row, args.mode, ", ".join(used)))
+    print("(offset: how far the query stood from the earlier pass's nearest keyframe of that "
+          "place; a revisit falls between two keyframes, and the further off, the less the "
+          "views overlap)")
     print("%-9s %8s %8s %9s %s" % ("offset", "queries", "closed", "recall",
                                     "inliers of verified true candidates: median (n)"))
     for label, n, c, r, median, m in rows:
