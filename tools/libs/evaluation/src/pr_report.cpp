@@ -123,37 +123,45 @@ cv::Mat drawPrCurves(const std::vector<NamedCurve>& curves, const std::string& t
     const cv::Size text = cv::getTextSize(curves[k].name, font, 0.5, 1, nullptr);
     taken.emplace_back(plot.x + 15, legend_y(k) - 11, 37 + text.width, 22);
   }
-  const double label_scale = 0.38;
+  // Every curve and marker first, then the labels: a label then keeps clear
+  // of every marker (their boxes are taken too) and no later curve's line
+  // is drawn over it.
+  std::vector<std::vector<cv::Point>> points(curves.size());
   for (std::size_t k = 0; k < curves.size(); ++k) {
     const cv::Scalar colour = colours[k % 8];
     // Points in threshold order (descending) trace recall increasing.
-    std::vector<cv::Point> pts;
+    std::vector<cv::Point>& pts = points[k];
     for (const PrPoint& p : curves[k].curve) pts.push_back(toPixel(p.recall, p.precision));
     if (pts.size() > 1) cv::polylines(img, pts, false, colour, 2, cv::LINE_AA);
-    // A marker per threshold of the sweep, labelled with its value, so the
-    // reader can pick an operating point. Dense sweeps put points a few px
-    // apart: placeLabels moves a label to another side of its point or
-    // leaves it out (the marker stays) rather than print over another
-    // curve's or its own neighbour's.
-    std::vector<std::string> labels;
-    std::vector<cv::Size> sizes;
-    for (std::size_t i = 0; i < pts.size(); ++i) {
-      cv::circle(img, pts[i], 4, colour, -1, cv::LINE_AA);
-      char label[24];
-      std::snprintf(label, sizeof label, "%g", curves[k].curve[i].threshold);
-      labels.push_back(label);
-      sizes.push_back(cv::getTextSize(label, font, label_scale, 1, nullptr));
-    }
-    const std::vector<cv::Rect> boxes = placeLabels(pts, sizes, plot, &taken);
-    for (std::size_t i = 0; i < boxes.size(); ++i) {
-      if (boxes[i].area() == 0) continue;
-      cv::putText(img, labels[i], cv::Point(boxes[i].x, boxes[i].y + boxes[i].height), font,
-                  label_scale, colour, 1, cv::LINE_AA);
+    for (const cv::Point& p : pts) {
+      cv::circle(img, p, 4, colour, -1, cv::LINE_AA);
+      taken.emplace_back(p.x - 3, p.y - 3, 7, 7);  // the marker's core
     }
     const int ly = legend_y(k);
     cv::line(img, cv::Point(plot.x + 15, ly), cv::Point(plot.x + 45, ly), colour, 3, cv::LINE_AA);
     cv::putText(img, curves[k].name, cv::Point(plot.x + 52, ly + 5), font, 0.5, cv::Scalar(0, 0, 0),
                 1, cv::LINE_AA);
+  }
+  // A label per threshold of the sweep, so the reader can pick an operating
+  // point. Dense sweeps put points a few px apart: placeLabels moves a label
+  // to another side of its point or leaves it out (the marker stays) rather
+  // than print it over another label or marker.
+  const double label_scale = 0.38;
+  for (std::size_t k = 0; k < curves.size(); ++k) {
+    std::vector<std::string> labels;
+    std::vector<cv::Size> sizes;
+    for (const PrPoint& p : curves[k].curve) {
+      char label[24];
+      std::snprintf(label, sizeof label, "%g", p.threshold);
+      labels.push_back(label);
+      sizes.push_back(cv::getTextSize(label, font, label_scale, 1, nullptr));
+    }
+    const std::vector<cv::Rect> boxes = placeLabels(points[k], sizes, plot, &taken);
+    for (std::size_t i = 0; i < boxes.size(); ++i) {
+      if (boxes[i].area() == 0) continue;
+      cv::putText(img, labels[i], cv::Point(boxes[i].x, boxes[i].y + boxes[i].height), font,
+                  label_scale, colours[k % 8], 1, cv::LINE_AA);
+    }
   }
   return img;
 }
