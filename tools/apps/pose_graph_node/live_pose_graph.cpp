@@ -98,6 +98,7 @@ void LivePoseGraph::restart(const std::string& why) {
   loop_nodes_.clear();
   node_truth_.clear();
   node_has_truth_.clear();
+  truth_waiting_.clear();
   loops_ = 0;
   metric_loops_ = 0;
   last_tf_stamp_ = -1;
@@ -111,6 +112,19 @@ void LivePoseGraph::onOdometry(const nav_msgs::Odometry::ConstPtr& msg) {
 
 void LivePoseGraph::onGroundTruth(const nav_msgs::Odometry::ConstPtr& msg) {
   ground_truth_.add(msg->header.stamp.toSec(), toIsometry(msg->pose.pose));
+  fillGroundTruth();
+}
+
+void LivePoseGraph::fillGroundTruth() {
+  // Nodes wait in stamp order: the first one the truth does not reach yet
+  // ends the pass. Looked up as soon as the truth covers them, not at the
+  // next solve, which may come long after the buffer's horizon.
+  while (!truth_waiting_.empty() && !ground_truth_.empty()) {
+    const std::size_t node = truth_waiting_.front();
+    if (node_stamps_[node] > ground_truth_.newest()) break;
+    node_has_truth_[node] = ground_truth_.at(node_stamps_[node], &node_truth_[node]);
+    truth_waiting_.pop_front();  // found, or older than the truth: never
+  }
 }
 
 void LivePoseGraph::onKeyframe(const bowg_ros::KeyframeStatus::ConstPtr& msg) {
@@ -163,8 +177,10 @@ void LivePoseGraph::addCoveredKeyframes() {
     node_odometry_.push_back(odom);
     node_truth_.emplace_back(Eigen::Isometry3d::Identity());
     node_has_truth_.push_back(false);
+    if (use_ground_truth_) truth_waiting_.push_back(node_stamps_.size() - 1);
     added = true;
   }
+  fillGroundTruth();
   if (addReadyLoops() || added) publish();
 }
 
@@ -228,9 +244,6 @@ bool LivePoseGraph::addReadyLoops() {
 }
 
 void LivePoseGraph::reportTrajectoryError() {
-  for (std::size_t i = 0; i < node_stamps_.size(); ++i) {
-    if (!node_has_truth_[i]) node_has_truth_[i] = ground_truth_.at(node_stamps_[i], &node_truth_[i]);
-  }
   pose_graph::PoseVector truth;
   std::vector<Eigen::Vector3d> corrected, odometry;
   std::size_t first = node_stamps_.size();  // the first node with ground truth

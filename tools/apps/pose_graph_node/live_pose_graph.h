@@ -54,6 +54,9 @@ class LivePoseGraph {
   void onKeyframe(const bowg_ros::KeyframeStatus::ConstPtr& msg);
   void onLoop(const bowg_ros::LoopClosure::ConstPtr& msg);
   void onGroundTruth(const nav_msgs::Odometry::ConstPtr& msg);
+  /// Gives the waiting nodes their ground truth where the buffer covers
+  /// their stamp.
+  void fillGroundTruth();
   /// Logs the corrected path's and the odometry's position RMSE against the
   /// ground truth at the keyframes that have one.
   void reportTrajectoryError();
@@ -87,12 +90,13 @@ class LivePoseGraph {
   std::vector<Eigen::Isometry3d, Eigen::aligned_allocator<Eigen::Isometry3d>> node_odometry_;
   std::size_t loops_ = 0, metric_loops_ = 0, skipped_keyframes_ = 0, lost_keyframes_ = 0;
 
-  // Ground truth: looked up per node when a solve is reported, not when the
-  // node is added, since it travels on its own connection and may trail.
+  // Ground truth per node: it travels on its own connection and may trail
+  // the odometry, so a node waits for the truth to cover its stamp.
   bool use_ground_truth_ = false;
   pose_graph::OdometryBuffer ground_truth_;
   std::vector<Eigen::Isometry3d, Eigen::aligned_allocator<Eigen::Isometry3d>> node_truth_;
   std::vector<bool> node_has_truth_;
+  std::deque<std::size_t> truth_waiting_;  ///< nodes, in stamp order
 
   ros::Subscriber odom_sub_, keyframe_sub_, loop_sub_, ground_truth_sub_;
   ros::Publisher path_pub_, odometry_path_pub_, loops_pub_;
