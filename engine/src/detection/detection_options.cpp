@@ -75,6 +75,7 @@ void MetricTranslationOptions::validate() const {
   requireFiniteAtLeast("metric.odometer_sigma", odometer_sigma, 0.0);
   // A spread needs two samples.
   requireIntAtLeast("metric.covariance_samples", covariance_samples, 2);
+  requireFinitePositive("metric.covariance_scale", covariance_scale);
 }
 
 void LoopDetectorOptions::validate() const {

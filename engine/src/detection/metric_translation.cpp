@@ -293,7 +293,8 @@ MetricTranslation estimateMetricTranslation(const std::vector<Correspondence>& l
   //    the estimate and measures the spread of t. Added: the fit's own
   //    noise through its Jacobian (the query's residual sigma, at least
   //    kPixelNoiseFloor) and the odometer's scale error along t (every
-  //    point, and so t, scales with the baseline).
+  //    point, and so t, scales with the baseline). The sum times the
+  //    calibrated covariance_scale.
   std::mt19937 rng(20260101u);
   std::vector<cv::Vec3d> samples;
   std::vector<NeighbourPose> poses_s(tracks.size());
@@ -344,7 +345,8 @@ MetricTranslation estimateMetricTranslation(const std::vector<Correspondence>& l
       spread /= static_cast<double>(samples.size() - 1);
       const double floor =
           0.5 * s2 * (cov6.at<double>(3 + r, 3 + c) + cov6.at<double>(3 + c, 3 + r));
-      out.covariance[3 * r + c] = out.covariance[3 * c + r] = spread + floor + f2 * t[r] * t[c];
+      out.covariance[3 * r + c] = out.covariance[3 * c + r] =
+          options.covariance_scale * (spread + floor + f2 * t[r] * t[c]);
     }
   }
   cv::Mat Rq;

@@ -186,6 +186,10 @@ void addDetectionRows(std::vector<Row>* rows) {
   rows->push_back(intRow("metric_covariance_samples", det, "metric.covariance_samples", 2, 1000,
                          false, BOWG_FIELD(int, detector.metric.covariance_samples),
                          "Bootstrap resamples the translation's covariance is measured from"));
+  rows->push_back(doubleRow("metric_covariance_scale", det, "metric.covariance_scale", 0.01,
+                            1000.0, false, BOWG_FIELD(double, detector.metric.covariance_scale),
+                            "Factor on the measured covariance (calibrated: the 95 % ellipsoid "
+                            "holds the truth 95 % of the time)"));
 }
 
 }  // namespace parameter_rows

@@ -157,6 +157,7 @@ TEST(MetricTranslation, CovarianceAddsTheOdometerErrorAlongTheTranslation) {
   double b = 0;
   const Scene s = makeScene(neighbourFromMatch(&b), rotZ(5, 0.1, 0.0, 0.2), 60, 0, 11);
   MetricTranslationOptions without, with;
+  without.covariance_scale = with.covariance_scale = 1.0;
   without.odometer_sigma = 0;
   with.odometer_sigma = 0.1;
   const MetricTranslation a = estimate(s, b, without), c = estimate(s, b, with);
@@ -313,6 +314,22 @@ TEST(MetricTranslation, OptionsAreValidated) {
   o = MetricTranslationOptions();
   o.odometer_sigma = -0.1;
   EXPECT_THROW(o.validate(), InvalidParameter);
+  o = MetricTranslationOptions();
+  o.covariance_scale = 0.0;
+  EXPECT_THROW(o.validate(), InvalidParameter);
+}
+
+TEST(MetricTranslation, TheCovarianceScaleMultipliesTheCovarianceOnly) {
+  double b = 0;
+  const Scene s = makeScene(neighbourFromMatch(&b), rotZ(5, 0.1, 0.0, 0.2), 60, 0, 11);
+  MetricTranslationOptions raw, scaled;
+  raw.covariance_scale = 1.0;
+  scaled.covariance_scale = 2.5;
+  const MetricTranslation a = estimate(s, b, raw), c = estimate(s, b, scaled);
+  ASSERT_EQ(a.status, MetricTranslationStatus::kEstimated);
+  ASSERT_EQ(c.status, MetricTranslationStatus::kEstimated);
+  for (int i = 0; i < 9; ++i) EXPECT_DOUBLE_EQ(c.covariance[i], 2.5 * a.covariance[i]) << i;
+  for (int r = 0; r < 3; ++r) EXPECT_EQ(c.translation[r], a.translation[r]);
 }
 
 }  // namespace

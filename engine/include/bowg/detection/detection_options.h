@@ -244,6 +244,12 @@ struct MetricTranslationOptions {
   /// Bootstrap resamples the covariance is measured from (each one
   /// essential matrix and one PnP fit).
   int covariance_samples = 20;
+  /// Factor on the covariance measured from those: 20 resamples and the
+  /// first-order terms miss part of the error a neighbour's pose puts into
+  /// every depth, so the raw 95 % ellipsoid holds the truth less often than
+  /// 95 %. Calibrated on the robustness suite's tuning half
+  /// (tools/suite/covariance_coverage.py; docs/pose_graph.md, "Metric loops").
+  double covariance_scale = 1.0;
   void validate() const;
 };
 
