@@ -109,10 +109,13 @@ TEST(LoopDetector, WithOdometersTheLoopsTranslationIsMetric) {
       EXPECT_NEAR(r.translation_m[1], 0, 0.05);
       EXPECT_NEAR(r.translation_m[2], 0, 0.05);
       // The covariance says centimetres (plus the odometer's 5 % of the
-      // distance along it), not metres, and is symmetric.
+      // distance along it, both times the calibration's sqrt(scale) in
+      // sigma), not metres, and is symmetric.
+      const double calibration = std::sqrt(MetricTranslationOptions().covariance_scale);
       for (int i = 0; i < 3; ++i) {
         EXPECT_GT(r.translation_covariance[4 * i], 0);
-        EXPECT_LT(std::sqrt(r.translation_covariance[4 * i]), 0.02 + 0.06 * std::fabs(dx));
+        EXPECT_LT(std::sqrt(r.translation_covariance[4 * i]),
+                  calibration * (0.02 + 0.06 * std::fabs(dx)));
         EXPECT_EQ(r.translation_covariance[3 * i + (i + 1) % 3],
                   r.translation_covariance[3 * ((i + 1) % 3) + i]);
       }
