@@ -218,11 +218,10 @@ TEST_F(BagAgreement, WithTheBagsOdometryTheNodeletMeasuresMetricLoops) {
   std::printf("[ MEASURED ] %d of %zu live loops with a metric translation\n", metric,
               poses.size());
   EXPECT_GT(metric, 0);
-  // Without odometry the same bag still gives most of it, every loop
-  // correct: the recall of images alone within 20 % of this one. Every loop
+  // Without odometry the same bag gives nearly as much, every loop correct:
+  // the recall of images alone within 10 % of this one, although every loop
   // then needs the verified chain (docs/method.md), which costs the first
-  // queries of each revisit and, at this bag's 320 x 240 pixels, the queries
-  // with too few inliers on unrepeated features.
+  // queries of each revisit.
   liveLoops("mono8", "", "live_images");
   double odometry_precision = 0, odometry_recall = 0, images_precision = 0, images_recall = 0;
   ASSERT_TRUE(
@@ -232,7 +231,7 @@ TEST_F(BagAgreement, WithTheBagsOdometryTheNodeletMeasuresMetricLoops) {
   std::printf("[ MEASURED ] recall %.3f with images alone, %.3f with the odometry\n", images_recall,
               odometry_recall);
   EXPECT_EQ(images_precision, 1.0);
-  EXPECT_GE(images_recall, 0.8 * odometry_recall);
+  EXPECT_GE(images_recall, 0.9 * odometry_recall);
 }
 
 }  // namespace
