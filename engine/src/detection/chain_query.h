@@ -8,7 +8,7 @@
 #include "bowg/detection/islands.h"
 #include "bowg/detection/verified_chain.h"
 #include "detection/island_choice.h"
-#include "detection/query_steps.h"
+#include "detection/query_context.h"
 #include "detection/verifier.h"
 
 namespace bowg {

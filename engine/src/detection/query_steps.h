@@ -1,43 +1,19 @@
 // One query of the loop detector once the query's vectors are ready (paper
-// Fig. 2 after the word groups): normalisers and candidate scores (eqs. 2-5,
-// 9), the temporal score (eqs. 6-7), islands (eq. 10), temporal and geometric
-// verification (Sec. III-D). Internal to the detection stage; LoopDetector::
-// process() (loop_detector.cpp) prepares the query and stores the keyframe.
+// Fig. 2 after the word groups), as a list of stages: candidate scores
+// (eqs. 2-7, 9; candidate_scoring.h), the odometry gates
+// (candidate_gates.h), islands (eq. 10) and their geometric re-ranking
+// (island_choice.h), temporal verification (Sec. III-D; temporal_check.h)
+// or the verified chain (chain_query.h), geometric verification
+// (match_verification.h). Internal to the detection stage;
+// LoopDetector::process() (loop_detector.cpp) prepares the query and stores
+// the keyframe.
 #pragma once
 
-#include <chrono>
-#include <vector>
-
-#include "bowg/database/database.h"
-#include "bowg/detection/detector_state.h"
-#include "bowg/detection/loop_detector.h"
-#include "bowg/vocabulary/vocabulary.h"
-#include "detection/verifier.h"
+#include "detection/candidate_scoring.h"
+#include "detection/query_context.h"
 
 namespace bowg {
 namespace query_steps {
-
-using Clock = std::chrono::steady_clock;
-
-inline double msBetween(Clock::time_point a, Clock::time_point b) {
-  return std::chrono::duration<double, std::milli>(b - a).count();
-}
-
-/// What a query reads and updates besides its own keyframe.
-struct QueryContext {
-  const Vocabulary& vocabulary;
-  const LoopDetectorOptions& options;
-  const Database& database;
-  DetectorState& state;
-  std::vector<CandidateScores>& candidates;  ///< the query's, sorted by entry id
-  EntryViewCache& views;                     ///< recent entries' views, across queries
-};
-
-// A query that cannot be scored (no features, database too small, normaliser
-// too small, no candidate): eq. 7's previous scores survive up to
-// temporal_score.max_missed_queries such queries and the temporal chain up to
-// temporal_verification.max_missed_queries (0 = the paper: forgotten at once).
-void recordUnscoredQuery(const LoopDetectorOptions& options, DetectorState* state);
 
 /// Runs the query of `query_entry` (not yet in the database) and fills `r`:
 /// status, scores, the chosen island, the match and its geometry, timings.

@@ -1,0 +1,39 @@
+// The odometry gates of a query (candidate_gates.h).
+#include "detection/candidate_gates.h"
+
+#include <algorithm>
+
+namespace bowg {
+namespace query_steps {
+
+std::vector<AnchorEntries> loopAnchors(const QueryContext& ctx) {
+  std::vector<AnchorEntries> anchors;
+  if (!(ctx.options.islands.odometry_anchor_m > 0.0)) return anchors;
+  for (const LoopAnchor& a : ctx.state.recent_loops) {
+    if (a.query < ctx.database.size() && a.match < ctx.database.size()) {
+      anchors.push_back(AnchorEntries{&ctx.database.entry(a.query), &ctx.database.entry(a.match)});
+    }
+  }
+  return anchors;
+}
+
+std::size_t applyOdometryGates(const QueryContext& ctx, const DatabaseEntry& query_entry,
+                               const std::vector<AnchorEntries>& anchors,
+                               std::vector<std::pair<EntryId, double>>* etas) {
+  const IslandOptions& io = ctx.options.islands;
+  const bool anchored = !anchors.empty();
+  if (!(io.odometry_gate_m > 0.0) && !anchored) return 0;
+  const auto outside = [&](const std::pair<EntryId, double>& c) {
+    if (c.second < io.min_score) return false;
+    const DatabaseEntry& e = ctx.database.entry(c.first);
+    return !withinOdometryGate(query_entry, e, io) ||
+           (anchored && !withinLoopAnchors(query_entry, e, anchors, io));
+  };
+  const auto end = std::remove_if(etas->begin(), etas->end(), outside);
+  const std::size_t gated = static_cast<std::size_t>(etas->end() - end);
+  etas->erase(end, etas->end());
+  return gated;
+}
+
+}  // namespace query_steps
+}  // namespace bowg
