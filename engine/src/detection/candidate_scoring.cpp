@@ -138,7 +138,7 @@ bool scoreCandidates(const QueryContext& ctx, const DatabaseQuery& q,
   r->group_divisor = with_groups ? divisor.group : 0.0;
   r->distribution_divisor = with_distribution ? divisor.distribution : 0.0;
 
-  const std::vector<EntryScores> scores = database.query(q, limit, with_groups);
+  const std::vector<EntryScores> scores = database.query(q, limit, with_groups, &ctx.scratch);
   r->candidates_scored = scores.size();
   etas->reserve(scores.size());
   // Eq. 7's predecessor in metres when odometry allows it

@@ -102,6 +102,7 @@ void checkKeyframe(const KeyframeInput& keyframe, const Database& database) {
 // The detector's memory (saved with it) and what only speeds it up.
 struct LoopDetector::State : DetectorState {
   query_steps::EntryViewCache views;
+  QueryScratch scratch;
 };
 
 LoopDetector::LoopDetector(std::shared_ptr<const Vocabulary> vocabulary,
@@ -209,8 +210,8 @@ LoopResult LoopDetector::process(const KeyframeInput& keyframe) {
   r.timings.word_groups_ms = msBetween(t1, t2);
 
   // 5. Query, then the entry joins the indexes (it never matches itself).
-  const query_steps::QueryContext ctx{*vocabulary_, options_,         *database_,
-                                      *state_,      last_candidates_, state_->views};
+  const query_steps::QueryContext ctx{*vocabulary_,     options_,      *database_,     *state_,
+                                      last_candidates_, state_->views, state_->scratch};
   try {
     query_steps::runQuery(ctx, q, entry, keyframe.intrinsics, with_groups, with_distribution, &r);
   } catch (...) {

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "bowg/database/database.h"
+#include "bowg/database/query_scratch.h"
 #include "bowg/detection/detector_state.h"
 #include "bowg/detection/loop_detector.h"
 #include "bowg/vocabulary/vocabulary.h"
@@ -30,6 +31,7 @@ struct QueryContext {
   DetectorState& state;
   std::vector<CandidateScores>& candidates;  ///< the query's, sorted by entry id
   EntryViewCache& views;                     ///< recent entries' views, across queries
+  QueryScratch& scratch;                     ///< the database query's working memory
 };
 
 }  // namespace query_steps

@@ -655,5 +655,52 @@ TEST(Database, AddRejectsInconsistentEntries) {
   EXPECT_TRUE(db.empty());
 }
 
+
+// The caller's scratch: one reused across queries of two databases of other
+// sizes and limits scores exactly as a fresh one (a query leaves every
+// accumulator and flag at 0 again).
+TEST(Database, AReusedQueryScratchScoresAsAFreshOne) {
+  Database big(vocabulary(), ScoringType::kL1, 2, 8), small(vocabulary(), ScoringType::kL2, 2, 8);
+  const testing::Corridor c = testing::makeCorridor(30, 50, 21);
+  std::mt19937_64 rng(9);
+  for (int i = 0; i < 30; ++i) {
+    BowVector bow;
+    BuiltEntry b = entryFromKeyframe(big.vocabulary(),
+                                     testing::observeCorridor(c, 0.5 * i, 1.0 + i, rng, 2), &bow);
+    big.addToGroupTable(b.raw_groups);
+    if (i < 12) {
+      small.addToGroupTable(b.raw_groups);
+      small.add(b.entry, b.raw_groups);
+    }
+    big.add(std::move(b.entry), b.raw_groups);
+  }
+  BowVector qbow;
+  const BuiltEntry qe =
+      entryFromKeyframe(big.vocabulary(), testing::observeCorridor(c, 3.2, 100.0, rng, 2), &qbow);
+  big.addToGroupTable(qe.raw_groups);
+  small.addToGroupTable(qe.raw_groups);
+  const std::vector<ImagePoint> points = qe.entry.points.unpack();
+  const DatabaseQuery qb = big.makeQuery(qbow, qe.raw_groups, points, 320, 240, true);
+  const DatabaseQuery qs = small.makeQuery(qbow, qe.raw_groups, points, 320, 240, true);
+  QueryScratch scratch;
+  const auto same = [](const std::vector<EntryScores>& a, const std::vector<EntryScores>& b) {
+    if (a.size() != b.size() || a.empty()) return false;
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      if (a[i].entry != b[i].entry || a[i].s_w != b[i].s_w || a[i].s_g != b[i].s_g ||
+          a[i].s_d != b[i].s_d) {
+        return false;
+      }
+    }
+    return true;
+  };
+  for (int round = 0; round < 2; ++round) {
+    EXPECT_TRUE(same(big.query(qb, 30, true, &scratch), big.query(qb, 30, true)));
+    EXPECT_TRUE(same(big.query(qb, 17, false, &scratch), big.query(qb, 17, false)));
+    EXPECT_TRUE(same(small.query(qs, 12, true, &scratch), small.query(qs, 12, true)));
+  }
+  for (double v : scratch.word_acc) EXPECT_EQ(v, 0.0);
+  for (std::uint8_t f : scratch.touched_flag) EXPECT_EQ(f, 0u);
+}
+
 }  // namespace
 }  // namespace bowg

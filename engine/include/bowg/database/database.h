@@ -1,25 +1,20 @@
 // The BoWG database (paper Sec. III-A "BoWG Database"): the keyframes seen so
-// far and every index the queries need:
-//  - one inverse index for words and word groups (a group's id is its word's
-//    id, and an image's groups are among its words): word -> (entry,
-//    normalised BoW weight, raw group weight) in 8 bytes (Posting), as
-//    DBoW2's word index with the group's weight beside it. An entry's BoW
-//    vector and raw groups are rebuilt from its words (2-3 bytes each,
-//    PackedWords) and these postings when needed (bow(), rawGroups()), not
-//    kept. An entry that is not searchable (DatabaseEntry::searchable) has
-//    no postings: its raw groups are kept apart (archived_groups_);
-//  - the online word-group table (eq. 1's IDF totals);
-//  - the level of the direct index (Sec. III-D's correspondence search): an
-//    entry's direct index is rebuilt from its words when it is verified
-//    (directIndexFromWords, a few microseconds), not kept per entry;
-//  - the distribution table: per entry the keypoint positions (4 bytes each
-//    where that is lossless, PackedPoints) and the fan
-//    centre (enough to rebuild the vector for ANY m) plus the cached vectors
-//    for the current m (Sec. III-C).
-//
-// Queries touch only entries that share a word or a group with the query
-// (never a scan of all entries) and only entries with id < a limit (the
-// recent-exclusion window).
+// far and every index the queries need, each a piece of its own:
+//  - the entries' storage (entries_, their odometers): per entry its words
+//    (2-3 bytes each, PackedWords), keypoint positions (4 bytes each where
+//    that is lossless, PackedPoints), descriptors and fan centre. An entry's
+//    BoW vector and raw groups are rebuilt from its words and the inverse
+//    index when needed (bow(), rawGroups()), not kept; its direct index
+//    (Sec. III-D's correspondence search) is rebuilt from its words when it
+//    is verified (directIndexFromWords, a few microseconds);
+//  - the inverse index of words and word groups (inverse_index.h);
+//  - the online word-group table (eq. 1's IDF totals, word_groups.h);
+//  - the distribution table (distribution_table.h, Sec. III-C);
+//  - the newest entries' vectors (recent_vectors.h).
+// The query (database_query.cpp) touches only entries that share a word or a
+// group with the query (never a scan of all entries) and only entries with
+// id < a limit (the recent-exclusion window); its working memory belongs to
+// the caller (query_scratch.h).
 //
 // Per-keyframe order used by LoopDetector (and required here):
 //   transform -> raw groups -> addToGroupTable(raw) -> refined weights ->
@@ -39,8 +34,12 @@
 #include <vector>
 
 #include "bowg/core/types.h"
+#include "bowg/database/distribution_table.h"
+#include "bowg/database/inverse_index.h"
 #include "bowg/database/packed_points.h"
 #include "bowg/database/packed_words.h"
+#include "bowg/database/query_scratch.h"
+#include "bowg/database/recent_vectors.h"
 #include "bowg/scoring/word_groups.h"
 #include "bowg/vocabulary/bow_vector.h"
 
@@ -88,27 +87,6 @@ struct DatabaseEntry {
   // (Database::bow()), the raw groups (Database::rawGroups()) and the direct
   // index at Database::directLevel() (directIndexFromWords). The distribution vector for the
   // current m lives in the database's contiguous distribution table (Database::distribution()).
-};
-
-/// One posting of the inverse index, 8 bytes: entry() holds the word (BoW
-/// weight `word`, 0 when the word weighs nothing in the entry's vector, e.g.
-/// IDF 0) and/or its group (raw weight: a whole count of neighbours, 0 when
-/// the entry has no such group). The entry id takes the low 24 bits of `key`
-/// and the group count the high 8; a count of kGroupOverflow or more is kept
-/// in the database's overflow table (rare: a group counts the features within
-/// a keypoint's radius). A BoW weight keeps 24 bits (a float); scores are
-/// accumulated in double.
-struct Posting {
-  static constexpr std::uint32_t kEntryBits = 24;
-  static constexpr std::uint32_t kEntryMask = (1u << kEntryBits) - 1;
-  /// Group code meaning "look the count up in the overflow table".
-  static constexpr std::uint32_t kGroupOverflow = 255;
-
-  std::uint32_t key;
-  float word;
-
-  EntryId entry() const { return key & kEntryMask; }
-  std::uint32_t groupCode() const { return key >> kEntryBits; }
 };
 
 /// Largest number of entries a database holds: ids fit a posting's 24 bits
@@ -162,7 +140,7 @@ class Database {
 
   ScoringType scoring() const { return scoring_; }
   int directLevel() const { return direct_level_; }
-  int fanBins() const { return fan_bins_; }
+  int fanBins() const { return distributions_.bins(); }
 
   /// Option changes. Each rebuilds only what depends on it: the scoring type
   /// rewrites every posting's BoW weight; the direct-index level applies to
@@ -217,12 +195,16 @@ class Database {
 
   /// Number of searchable entries (DatabaseEntry::searchable): those a
   /// query can return.
-  std::size_t searchableCount() const { return searchable_count_; }
+  std::size_t searchableCount() const { return index_.searchableCount(); }
 
   /// Scores every searchable entry with id < limit that shares at least one word (and,
   /// when `with_groups`, at least one group) with the query, through the
   /// inverse index. s_d is filled when the query has a distribution vector.
-  /// Result sorted by entry id.
+  /// Result sorted by entry id. `scratch`: the caller's working memory,
+  /// reused across queries (query_scratch.h); the overload without it
+  /// allocates its own.
+  std::vector<EntryScores> query(const DatabaseQuery& q, EntryId limit, bool with_groups,
+                                 QueryScratch* scratch) const;
   std::vector<EntryScores> query(const DatabaseQuery& q, EntryId limit, bool with_groups) const;
 
   /// The same three scores against one entry computed directly from the
@@ -240,47 +222,26 @@ class Database {
   // from the words).
   EntryId addEntry(DatabaseEntry entry, const GroupVector& raw_groups,
                    const std::vector<double>& distribution, const BowVector* bow);
+  // add()'s checks of the entry against itself, the database and its inputs.
+  void checkEntry(const DatabaseEntry& e, const std::vector<WordId>& words,
+                  const GroupVector& raw_groups, const std::vector<double>& distribution,
+                  const BowVector* bow) const;
   // Whether q's group IDFs were read from the table as it stands.
   bool queryIdfCurrent(const DatabaseQuery& q) const {
     return q.group_table_version == group_table_.version() &&
            q.group_idf.size() == q.refined_groups.size();
   }
-  /// The BoW vectors and raw groups of the newest kRecentEntries entries,
-  /// as bow() and rawGroups() return them, in a ring by id: every query
-  /// scores I_{t-1}, one of them (score()), and rebuilding its vectors from
-  /// the words was a third of that (sorting, the weighting, a posting
-  /// search per word). A fixed few kB, not per keyframe.
-  struct RecentEntry {
-    EntryId id;
-    BowVector bow;
-    GroupVector raw_groups;
-  };
-  static constexpr std::size_t kRecentEntries = 8;
   /// The normalised BoW vector of an entry's words (bow()).
   BowVector bowOfWords(const std::vector<WordId>& words) const;
-  /// Entry `id`'s posting in word `w`'s list, or nullptr.
-  const Posting* posting(WordId w, EntryId id) const;
-  /// The raw group weight posting `p` of word `w`'s list holds (0: none):
-  /// its code, or the overflow table's count. Inline: the query reads it for
-  /// every group posting it walks.
-  double groupCount(WordId w, const Posting& p) const {
-    const std::uint32_t code = p.groupCode();
-    return code < Posting::kGroupOverflow ? static_cast<double>(code) : overflowCount(w, p.entry());
-  }
-  /// The count add() put in the overflow table for entry `id`'s group `w`.
-  double overflowCount(WordId w, EntryId id) const;
-  /// Entry `id`'s vector copied into a reused scratch buffer (no allocation).
-  const std::vector<double>& cachedDistribution(EntryId id) const;
-  /// Keeps entry `id`'s vectors in recent_, replacing the entry
-  /// kRecentEntries older; returns the kept BoW vector.
-  const BowVector& remember(EntryId id, BowVector bow, const GroupVector& raw_groups);
-  /// The kept copy of entry `id`'s vectors, or nullptr (see recent_).
-  const RecentEntry* recent(EntryId id) const;
+  /// query()'s terms: the query's words and groups with their weights.
+  void collectQueryWords(const DatabaseQuery& q, bool with_groups, QueryScratch* scratch) const;
+  /// query()'s scores of the touched entries, which it resets for the next.
+  std::vector<EntryScores> finishScores(const DatabaseQuery& q, bool with_groups, double base,
+                                        std::size_t touched, QueryScratch* scratch) const;
 
   std::shared_ptr<const Vocabulary> vocabulary_;
   ScoringType scoring_;
   int direct_level_;
-  int fan_bins_;
   /// A deque, not a vector: adding never moves the entries. A vector
   /// grown by an eighth moved them all every ~2,000 keyframes at 17,000,
   /// and the fresh 3.5 MB block's page faults made those keyframes take
@@ -289,51 +250,9 @@ class Database {
   std::deque<DatabaseEntry> entries_;
   std::vector<double> odometers_;  ///< see odometers()
   WordGroupTable group_table_;
-  /// word (= group id) -> postings, entries ascending.
-  std::vector<std::vector<Posting>> index_;
-  /// Group counts too large for a posting's 8 bits, in (entry, word) order:
-  /// add() appends them, since ids and words only grow. Entry e's records
-  /// are [overflow_begin_[e], overflow_begin_[e + 1]) (the table's end for
-  /// the last entry): a query looks a count up among its entry's few
-  /// records, not by a binary search of the whole table (pipe images with
-  /// large multi-scale features overflow often: that search was a third of
-  /// the query's time on a 6,000-keyframe circuit).
-  struct GroupCount {
-    WordId word;
-    std::uint32_t count;
-  };
-  std::vector<GroupCount> group_overflow_;
-  std::vector<std::size_t> overflow_begin_;
-  /// Per entry the raw groups of an entry that is not searchable, by word;
-  /// empty for a searchable entry. Read by entry only (rawGroups), never
-  /// walked by a query. A vector per entry rather than one array: one
-  /// array of every such entry's groups (~2.4 kB each) would be copied
-  /// whole when it grows, tens of MB and a keyframe of 100+ ms at 17,000
-  /// keyframes.
-  std::vector<std::vector<GroupCount>> archived_groups_;
-  std::size_t searchable_count_ = 0;
-  /// Per entry the sum of its raw group weights: eq. 1's TF is raw / sum,
-  /// applied once per scored entry instead of once per posting.
-  std::vector<double> group_sums_;
-  /// Distribution table: entry i's vector for the current m at [i*m, i*m+m).
-  /// One contiguous array rather than a vector per entry: a query reads it
-  /// for thousands of candidates, and separate allocations made that stage
-  /// cache-miss bound (measured: 70 % of the query time at 20,000 entries).
-  std::vector<double> distributions_;
-  mutable std::vector<double> distribution_scratch_;
-  std::vector<RecentEntry> recent_;
-
-  // Query scratch (dense accumulators over entries + touched list): avoids a
-  // hash map per query. Not thread-safe, like the LoopDetector.
-  mutable std::vector<double> word_acc_, group_acc_;
-  mutable std::vector<std::uint8_t> touched_flag_;
-  mutable std::vector<EntryId> touched_;
-  /// The query's words and groups with their weights, in id order.
-  struct QueryWord {
-    WordId w;
-    double qw, qg;
-  };
-  mutable std::vector<QueryWord> query_words_;
+  InverseIndex index_;
+  DistributionTable distributions_;
+  RecentVectors recent_;
 };
 
 }  // namespace bowg
