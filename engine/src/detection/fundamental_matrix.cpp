@@ -69,34 +69,34 @@ int realCubicRoots(const double c[4], double roots[3]) {
   return n;
 }
 
-}  // namespace
-
-int sevenPointFundamental(const PointPair pairs[7], double solutions[3][9]) {
-  // Row i of A: x2^T F x1 = 0 as a linear equation in F's nine elements.
-  // Rows padded to ten so that the elimination below runs on whole rows as
-  // pairs of doubles.
-  alignas(16) double a[7][10];
+// Row i of A: x2^T F x1 = 0 as a linear equation in F's nine elements.
+// Rows padded to ten so that the elimination runs on whole rows as pairs of
+// doubles. False when a coordinate is not finite.
+bool epipolarRows(const PointPair pairs[7], double a[7][10]) {
   for (int i = 0; i < 7; ++i) {
     const PointPair& p = pairs[i];
     if (!std::isfinite(p.x1) || !std::isfinite(p.y1) || !std::isfinite(p.x2) ||
         !std::isfinite(p.y2)) {
-      return 0;
+      return false;
     }
     const double row[9] = {p.x2 * p.x1, p.x2 * p.y1, p.x2, p.y2 * p.x1, p.y2 * p.y1,
                            p.y2,        p.x1,        p.y1, 1.0};
     std::copy(row, row + 9, a[i]);
     a[i][9] = 0.0;
   }
-  // Gauss-Jordan with column pivoting: row by row, the pivot is the row's
-  // largest entry among the columns not yet chosen (the columns are swapped,
-  // `col` records their order). A becomes [I | B] in the permuted columns and
-  // the null space is spanned by the free columns. A row with no pivot left
-  // depends on the rows before it: it goes last and the rank drops. Full
-  // pivoting (searching every remaining row as well) gives the same null
-  // space to ~1e-13 at three times the search; the free columns are chosen
-  // by the data either way, which is what keeps an ill-conditioned choice
-  // of free columns away.
-  int col[9] = {0, 1, 2, 3, 4, 5, 6, 7, 8};
+  return true;
+}
+
+// Gauss-Jordan with column pivoting: row by row, the pivot is the row's
+// largest entry among the columns not yet chosen (the columns are swapped,
+// `col` records their order). A becomes [I | B] in the permuted columns and
+// the null space is spanned by the free columns. A row with no pivot left
+// depends on the rows before it: it goes last and the rank drops. Full
+// pivoting (searching every remaining row as well) gives the same null
+// space to ~1e-13 at three times the search; the free columns are chosen by
+// the data either way, which is what keeps an ill-conditioned choice of free
+// columns away. Returns the rank (0 for a zero matrix).
+int eliminate(double a[7][10], int col[9]) {
   // The largest entry, one running maximum per row: a single one chains 63
   // dependent comparisons. The maximum does not depend on the order.
   double row_largest[7];
@@ -142,35 +142,39 @@ int sevenPointFundamental(const PointPair pairs[7], double solutions[3][9]) {
     }
     ++rank;
   }
-  // The null-space vector of free column `f` (the free columns are rank..8).
-  const auto nullVector = [&](int f, double v[9]) {
-    for (int j = rank; j < 9; ++j) v[col[j]] = j == f ? 1.0 : 0.0;
-    for (int k = 0; k < rank; ++k) v[col[k]] = -a[k][f];
-  };
-  if (rank < 6) return 0;  // degenerate sample
-  if (rank == 6) {
-    // A three-dimensional null space: degenerate for the 7-point algorithm.
-    // When the pairs do not move at all (x1 = x2: the robot stood still)
-    // every F of it is skew-symmetric, singular and fits every pair: keep
-    // the basis vectors that are singular.
-    int n = 0;
-    for (int f = 6; f < 9; ++f) {
-      double* v = solutions[n];
-      nullVector(f, v);
-      double scale = 0.0;
-      for (int j = 0; j < 9; ++j) scale = std::max(scale, std::fabs(v[j]));
-      if (std::fabs(det3(v)) > 1e-9 * scale * scale * scale) continue;
-      for (int j = 0; j < 9; ++j) v[j] /= scale;
-      ++n;
-    }
-    return n;
+  return rank;
+}
+
+// The null-space vector of free column `f` of the eliminated A (the free
+// columns are rank..8).
+void nullVector(const double a[7][10], const int col[9], int rank, int f, double v[9]) {
+  for (int j = rank; j < 9; ++j) v[col[j]] = j == f ? 1.0 : 0.0;
+  for (int k = 0; k < rank; ++k) v[col[k]] = -a[k][f];
+}
+
+// Rank 6, a three-dimensional null space: degenerate for the 7-point
+// algorithm. When the pairs do not move at all (x1 = x2: the robot stood
+// still) every F of it is skew-symmetric, singular and fits every pair: keep
+// the basis vectors that are singular.
+int singularBasis(const double a[7][10], const int col[9], double solutions[3][9]) {
+  int n = 0;
+  for (int f = 6; f < 9; ++f) {
+    double* v = solutions[n];
+    nullVector(a, col, 6, f, v);
+    double scale = 0.0;
+    for (int j = 0; j < 9; ++j) scale = std::max(scale, std::fabs(v[j]));
+    if (std::fabs(det3(v)) > 1e-9 * scale * scale * scale) continue;
+    for (int j = 0; j < 9; ++j) v[j] /= scale;
+    ++n;
   }
-  double f1[9], f2[9];
-  nullVector(7, f1);
-  nullVector(8, f2);
-  // det(F2 + a D), D = F1 - F2, is a cubic c0 + c1 a + c2 a^2 + c3 a^3 with
-  // c0 = det F2, c3 = det D; its values at a = 1 (det F1) and a = -1 give
-  // c1 and c2.
+  return n;
+}
+
+// The singular F = F2 + a (F1 - F2) of a two-dimensional null space:
+// det(F2 + a D), D = F1 - F2, is a cubic c0 + c1 a + c2 a^2 + c3 a^3 with
+// c0 = det F2, c3 = det D; its values at a = 1 (det F1) and a = -1 give c1
+// and c2. One solution per real root, scaled to a largest element of 1.
+int singularPencil(const double f1[9], const double f2[9], double solutions[3][9]) {
   double d[9], fm[9];
   for (int j = 0; j < 9; ++j) {
     d[j] = f1[j] - f2[j];
@@ -193,6 +197,21 @@ int sevenPointFundamental(const PointPair pairs[7], double solutions[3][9]) {
     ++n;
   }
   return n;
+}
+
+}  // namespace
+
+int sevenPointFundamental(const PointPair pairs[7], double solutions[3][9]) {
+  alignas(16) double a[7][10];
+  if (!epipolarRows(pairs, a)) return 0;
+  int col[9] = {0, 1, 2, 3, 4, 5, 6, 7, 8};
+  const int rank = eliminate(a, col);
+  if (rank < 6) return 0;  // degenerate sample
+  if (rank == 6) return singularBasis(a, col, solutions);
+  double f1[9], f2[9];
+  nullVector(a, col, rank, 7, f1);
+  nullVector(a, col, rank, 8, f2);
+  return singularPencil(f1, f2, solutions);
 }
 
 bool eightPointFundamental(const PointPair* pairs, int n, double f[9]) {

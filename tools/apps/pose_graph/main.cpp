@@ -59,125 +59,164 @@ pose_graph::LoopEdge metricEdge(const eval::LoopPose& p) {
   return pose_graph::metricLoopEdge(q_T_m, C, pose_graph::cameraAtBodyOrigin());
 }
 
-int run(const Args& a) {
-  const std::vector<pose_graph::FramePose> truth = pose_graph::readTrajectory(a.truth);
-  const std::vector<pose_graph::FramePose> odometry = pose_graph::readTrajectory(a.odometry);
-  if (truth.size() != odometry.size() || truth.empty()) {
-    throw FormatError(a.odometry + ": " + std::to_string(odometry.size()) + " poses, " + a.truth +
-                      ": " + std::to_string(truth.size()) + " (the same frames needed)");
-  }
-  std::vector<std::size_t> node_of_frame;  // frame -> node
-  for (std::size_t i = 0; i < truth.size(); ++i) {
-    if (truth[i].frame != odometry[i].frame) {
-      throw FormatError(a.odometry + ": row " + std::to_string(i + 1) + " is frame " +
-                        std::to_string(odometry[i].frame) + ", " + a.truth + " has frame " +
-                        std::to_string(truth[i].frame));
-    }
-    node_of_frame.resize(odometry[i].frame + 1, static_cast<std::size_t>(-1));
-    node_of_frame[odometry[i].frame] = i;
-  }
-  const std::vector<eval::Detection> detections =
-      eval::parseDetectionsCsv(eval::readTextFile(a.loops, "loop"), a.loops);
+// The truth and the odometry, frame by frame, and the node of each frame.
+struct Frames {
+  std::vector<pose_graph::FramePose> truth, odometry;
+  std::vector<std::size_t> node_of_frame;  // frame -> node, -1: none
+};
 
-  // The loops with a metric translation, by (query, match).
-  std::map<std::pair<int, int>, eval::LoopPose> metric_poses;
-  if (!a.loop_poses.empty()) {
-    for (const eval::LoopPose& p :
-         eval::parseLoopPosesCsv(eval::readTextFile(a.loop_poses, "loop poses"), a.loop_poses)) {
-      if (p.metric()) metric_poses[{p.query, p.match}] = p;
-    }
+Frames readFrames(const Args& a) {
+  Frames f;
+  f.truth = pose_graph::readTrajectory(a.truth);
+  f.odometry = pose_graph::readTrajectory(a.odometry);
+  if (f.truth.size() != f.odometry.size() || f.truth.empty()) {
+    throw FormatError(a.odometry + ": " + std::to_string(f.odometry.size()) + " poses, " + a.truth +
+                      ": " + std::to_string(f.truth.size()) + " (the same frames needed)");
   }
+  for (std::size_t i = 0; i < f.truth.size(); ++i) {
+    if (f.truth[i].frame != f.odometry[i].frame) {
+      throw FormatError(a.odometry + ": row " + std::to_string(i + 1) + " is frame " +
+                        std::to_string(f.odometry[i].frame) + ", " + a.truth + " has frame " +
+                        std::to_string(f.truth[i].frame));
+    }
+    f.node_of_frame.resize(f.odometry[i].frame + 1, static_cast<std::size_t>(-1));
+    f.node_of_frame[f.odometry[i].frame] = i;
+  }
+  return f;
+}
+
+// The loops with a metric translation, by (query, match).
+std::map<std::pair<int, int>, eval::LoopPose> readMetricPoses(const Args& a) {
+  std::map<std::pair<int, int>, eval::LoopPose> metric_poses;
+  if (a.loop_poses.empty()) return metric_poses;
+  for (const eval::LoopPose& p :
+       eval::parseLoopPosesCsv(eval::readTextFile(a.loop_poses, "loop poses"), a.loop_poses)) {
+    if (p.metric()) metric_poses[{p.query, p.match}] = p;
+  }
+  return metric_poses;
+}
+
+// The loops as graph edges: metric where the loop has a translation, else at
+// the match's place; with the metric edges' true relative poses.
+struct Loops {
+  std::vector<pose_graph::LoopEdge> edges;
+  std::vector<std::pair<std::size_t, std::size_t>> nodes;  // (query, match)
   std::vector<pose_graph::LoopEdge> metric_edges;
   std::vector<Eigen::Isometry3d> metric_truth;
+};
 
-  pose_graph::PoseGraph graph(a.graph);
-  for (const auto& p : odometry) graph.addPose(p.isometry());
-  for (std::size_t i = 1; i < odometry.size(); ++i) {
-    graph.addOdometry(i - 1, i, odometry[i - 1].isometry().inverse() * odometry[i].isometry());
-  }
-  std::vector<std::pair<std::size_t, std::size_t>> loops;
+Loops loopEdges(const Args& a, const Frames& f) {
+  const std::vector<eval::Detection> detections =
+      eval::parseDetectionsCsv(eval::readTextFile(a.loops, "loop"), a.loops);
+  const std::map<std::pair<int, int>, eval::LoopPose> metric_poses = readMetricPoses(a);
+  Loops out;
   for (const eval::Detection& d : detections) {
     const auto node = [&](int frame) {
-      if (frame < 0 || static_cast<std::size_t>(frame) >= node_of_frame.size() ||
-          node_of_frame[frame] == static_cast<std::size_t>(-1)) {
+      if (frame < 0 || static_cast<std::size_t>(frame) >= f.node_of_frame.size() ||
+          f.node_of_frame[frame] == static_cast<std::size_t>(-1)) {
         throw FormatError(a.loops + ": loop " + std::to_string(d.query) + " -> " +
                           std::to_string(d.match) + " names frame " + std::to_string(frame) +
                           ", which " + a.odometry + " does not hold");
       }
-      return node_of_frame[frame];
+      return f.node_of_frame[frame];
     };
     pose_graph::LoopEdge edge;
     const auto pose = metric_poses.find({d.query, d.match});
     if (pose != metric_poses.end()) {
       edge = metricEdge(pose->second);
-      metric_edges.push_back(edge);
-      metric_truth.push_back(truth[node(d.match)].isometry().inverse() *
-                             truth[node(d.query)].isometry());
+      out.metric_edges.push_back(edge);
+      out.metric_truth.push_back(f.truth[node(d.match)].isometry().inverse() *
+                                 f.truth[node(d.query)].isometry());
     }
     edge.query = node(d.query);
     edge.match = node(d.match);
-    graph.addLoop(edge);
-    loops.emplace_back(edge.query, edge.match);
+    out.edges.push_back(edge);
+    out.nodes.emplace_back(edge.query, edge.match);
   }
-  const pose_graph::SolveSummary summary = graph.optimize();
+  return out;
+}
 
-  std::vector<Eigen::Vector3d> optimised;
-  for (std::size_t i = 0; i < graph.size(); ++i) optimised.push_back(graph.pose(i).translation());
-  const std::vector<Eigen::Vector3d> true_p = positions(truth), odo_p = positions(odometry);
-  const pose_graph::TrajectoryError before = pose_graph::positionError(odo_p, true_p);
-  const pose_graph::TrajectoryError after = pose_graph::positionError(optimised, true_p);
+// The three position tracks of the report, the plot and the CSV.
+struct Tracks {
+  std::vector<Eigen::Vector3d> truth, odometry, optimised;
+};
+
+std::string report(const Args& a, const Tracks& t, const Loops& loops,
+                   const pose_graph::SolveSummary& summary) {
+  const pose_graph::TrajectoryError before = pose_graph::positionError(t.odometry, t.truth);
+  const pose_graph::TrajectoryError after = pose_graph::positionError(t.optimised, t.truth);
   double driven = 0;
-  for (std::size_t i = 1; i < true_p.size(); ++i) driven += (true_p[i] - true_p[i - 1]).norm();
-
-  std::ostringstream report;
+  for (std::size_t i = 1; i < t.truth.size(); ++i) driven += (t.truth[i] - t.truth[i - 1]).norm();
+  std::ostringstream out;
   char head[160];
-  std::snprintf(head, sizeof head, "%zu frames, %.1f m driven, %zu loops\n", truth.size(), driven,
-                loops.size());
-  report << head;
+  std::snprintf(head, sizeof head, "%zu frames, %.1f m driven, %zu loops\n", t.truth.size(), driven,
+                loops.nodes.size());
+  out << head;
   if (!a.loop_poses.empty()) {
     const pose_graph::LoopTranslationError m =
-        pose_graph::loopTranslationError(metric_edges, metric_truth);
+        pose_graph::loopTranslationError(loops.metric_edges, loops.metric_truth);
     char line[320];
     std::snprintf(line, sizeof line,
                   "metric loops        : %zu of %zu (the rest at the match's place +- %.2f m)\n"
                   "  position error     : median %.3f m, 90 %% %.3f m (the same-place edge's: "
                   "median %.3f m, 90 %% %.3f m)\n"
                   "  truth inside the 95 %% covariance ellipsoid: %.0f %%\n",
-                  m.loops, loops.size(), a.graph.loop_position_sigma, m.median, m.p90,
+                  m.loops, loops.nodes.size(), a.graph.loop_position_sigma, m.median, m.p90,
                   m.same_place_median, m.same_place_p90, 100 * m.inside_95);
-    report << line;
+    out << line;
   }
-  report << describe("odometry only       ", before) << "\n"
-         << describe("pose graph + loops  ", after) << "\n";
+  out << describe("odometry only       ", before) << "\n"
+      << describe("pose graph + loops  ", after) << "\n";
   char factor[96];
   std::snprintf(factor, sizeof factor, "RMSE ratio odometry / pose graph: %.2f\n",
                 after.rmse > 0 ? before.rmse / after.rmse : 0.0);
-  report << factor << "solver: " << summary.report << "\n";
-  std::cout << report.str();
+  out << factor << "solver: " << summary.report << "\n";
+  return out.str();
+}
 
-  if (!a.output.empty()) {
-    ::mkdir(a.output.c_str(), 0755);
-    std::ostringstream csv;
-    csv << "frame,truth_x,truth_y,truth_z,odometry_x,odometry_y,odometry_z,graph_x,graph_y,"
-           "graph_z\n";
-    csv.precision(6);
-    csv << std::fixed;
-    for (std::size_t i = 0; i < truth.size(); ++i) {
-      csv << truth[i].frame;
-      const std::vector<Eigen::Vector3d>* const tracks[] = {&true_p, &odo_p, &optimised};
-      for (const std::vector<Eigen::Vector3d>* track : tracks) {
-        const Eigen::Vector3d& v = (*track)[i];
-        csv << "," << v.x() << "," << v.y() << "," << v.z();
-      }
-      csv << "\n";
+void writeOutputs(const std::string& dir, const Frames& f, const Tracks& t, const Loops& loops,
+                  const std::string& summary) {
+  ::mkdir(dir.c_str(), 0755);
+  std::ostringstream csv;
+  csv << "frame,truth_x,truth_y,truth_z,odometry_x,odometry_y,odometry_z,graph_x,graph_y,"
+         "graph_z\n";
+  csv.precision(6);
+  csv << std::fixed;
+  for (std::size_t i = 0; i < f.truth.size(); ++i) {
+    csv << f.truth[i].frame;
+    const std::vector<Eigen::Vector3d>* const tracks[] = {&t.truth, &t.odometry, &t.optimised};
+    for (const std::vector<Eigen::Vector3d>* track : tracks) {
+      const Eigen::Vector3d& v = (*track)[i];
+      csv << "," << v.x() << "," << v.y() << "," << v.z();
     }
-    writeFileAtomically(a.output + "/trajectories.csv", csv.str());
-    writeFileAtomically(a.output + "/summary.txt", report.str());
-    std::vector<std::uint8_t> png;
-    cv::imencode(".png", pose_graph::plotTopView(true_p, odo_p, optimised, loops), png);
-    writeFileAtomically(a.output + "/trajectories.png", std::string(png.begin(), png.end()));
-    std::cout << "outputs in " << a.output << ": trajectories.csv, summary.txt, trajectories.png\n";
+    csv << "\n";
   }
+  writeFileAtomically(dir + "/trajectories.csv", csv.str());
+  writeFileAtomically(dir + "/summary.txt", summary);
+  std::vector<std::uint8_t> png;
+  cv::imencode(".png", pose_graph::plotTopView(t.truth, t.odometry, t.optimised, loops.nodes), png);
+  writeFileAtomically(dir + "/trajectories.png", std::string(png.begin(), png.end()));
+  std::cout << "outputs in " << dir << ": trajectories.csv, summary.txt, trajectories.png\n";
+}
+
+int run(const Args& a) {
+  const Frames f = readFrames(a);
+  const Loops loops = loopEdges(a, f);
+  pose_graph::PoseGraph graph(a.graph);
+  for (const auto& p : f.odometry) graph.addPose(p.isometry());
+  for (std::size_t i = 1; i < f.odometry.size(); ++i) {
+    graph.addOdometry(i - 1, i, f.odometry[i - 1].isometry().inverse() * f.odometry[i].isometry());
+  }
+  for (const pose_graph::LoopEdge& edge : loops.edges) graph.addLoop(edge);
+  const pose_graph::SolveSummary summary = graph.optimize();
+
+  Tracks t;
+  for (std::size_t i = 0; i < graph.size(); ++i) t.optimised.push_back(graph.pose(i).translation());
+  t.truth = positions(f.truth);
+  t.odometry = positions(f.odometry);
+  const std::string text = report(a, t, loops, summary);
+  std::cout << text;
+  if (!a.output.empty()) writeOutputs(a.output, f, t, loops, text);
   return 0;
 }
 
