@@ -7,7 +7,7 @@
 #include <random>
 #include <string>
 
-#include "bowg/vocabulary/id_index_sort.h"
+#include "bowg/core/id_index_sort.h"
 #include "bowg/vocabulary/vocabulary_io.h"
 #include "bowg/vocabulary/vocabulary_trainer.h"
 #include "core/cpu_features.h"

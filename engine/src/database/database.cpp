@@ -8,7 +8,7 @@
 
 #include "bowg/core/heap_bytes.h"
 #include "bowg/scoring/distribution.h"
-#include "bowg/vocabulary/id_index_sort.h"
+#include "bowg/core/id_index_sort.h"
 #include "bowg/vocabulary/vocabulary.h"
 
 namespace bowg {

@@ -5,8 +5,8 @@
 #include <opencv2/core.hpp>
 #include <vector>
 
+#include "bowg/core/correspondence.h"
 #include "bowg/core/types.h"
-#include "bowg/detection/geometric_verification.h"
 
 namespace bowg {
 namespace metric_geometry {

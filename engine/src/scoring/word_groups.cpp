@@ -11,7 +11,7 @@
 #include <string>
 
 #include "bowg/core/heap_bytes.h"
-#include "bowg/vocabulary/id_index_sort.h"
+#include "bowg/core/id_index_sort.h"
 #include "scoring/neighbour_count.h"
 
 namespace bowg {

@@ -12,7 +12,7 @@
 
 #include "bowg/core/checksum.h"
 #include "bowg/core/errors.h"
-#include "bowg/vocabulary/id_index_sort.h"
+#include "bowg/core/id_index_sort.h"
 #include "vocabulary/tree_descent.h"
 #include "vocabulary/vocabulary_records.h"
 

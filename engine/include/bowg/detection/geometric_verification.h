@@ -14,19 +14,13 @@
 #include <utility>
 #include <vector>
 
+#include "bowg/core/correspondence.h"
 #include "bowg/core/types.h"
 #include "bowg/detection/detection_options.h"
 #include "bowg/detection/loop_status.h"
 #include "bowg/vocabulary/bow_vector.h"
 
 namespace bowg {
-
-/// One point correspondence that survived geometric verification.
-struct Correspondence {
-  std::uint32_t query_index = 0;  ///< feature index in the query keyframe
-  std::uint32_t match_index = 0;  ///< feature index in the matched keyframe
-  float query_x = 0, query_y = 0, match_x = 0, match_y = 0;
-};
 
 /// The features of one side of the verification.
 struct VerificationView {

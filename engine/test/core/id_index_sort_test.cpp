@@ -1,6 +1,6 @@
 // sortIdIndexPairs against std::sort: the radix path (64 pairs and more,
 // indexes ascending) and the std::sort path give the same order.
-#include "bowg/vocabulary/id_index_sort.h"
+#include "bowg/core/id_index_sort.h"
 
 #include <gtest/gtest.h>
 

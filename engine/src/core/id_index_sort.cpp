@@ -1,4 +1,4 @@
-#include "bowg/vocabulary/id_index_sort.h"
+#include "bowg/core/id_index_sort.h"
 
 #include <algorithm>
 #include <array>
