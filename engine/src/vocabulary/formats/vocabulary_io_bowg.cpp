@@ -160,13 +160,13 @@ class ChunkHasher {
 }  // namespace
 
 Vocabulary loadBowg(const std::string& path) {
-  std::uint64_t file_size = 0;
-  const Fd fd = openRegularFile(path, &file_size);
+  const BoundedFile file(path, FileKind::kVocabulary);
+  const std::uint64_t file_size = file.size();
   if (file_size < kHeaderSize + 8) {
     fail(path, "truncated: " + std::to_string(file_size) + " bytes, shorter than the header");
   }
   char header[kHeaderSize];
-  readFully(fd.get(), header, kHeaderSize, 0, path);
+  readFully(file.fd(), header, kHeaderSize, 0, path);
   if (std::memcmp(header, kBowgMagic, 8) != 0) fail(path, "not a .bowgvoc file (bad magic)");
   ByteReader r(path, header, kHeaderSize);
   r.u64("magic");
@@ -184,11 +184,17 @@ Vocabulary loadBowg(const std::string& path) {
   }
   if (record_size != kRecordSize)
     fail(path, "node record size " + std::to_string(record_size) + " != 64");
+  // The ranges every other format's loader enforces: they bound the counts.
+  checkHeader(path, k, L, scoring, weighting);
   // Sizes against the file length before any allocation.
   if (node_count < 2 || node_count > (file_size - kHeaderSize - 8) / kRecordSize ||
       kHeaderSize + node_count * kRecordSize + 8 != file_size) {
     fail(path, "node count " + std::to_string(node_count) + " does not match the file size " +
                    std::to_string(file_size) + " (truncated or corrupt)");
+  }
+  if (node_count - 1 > maxTreeNodes(k, L)) {
+    fail(path, "node count " + std::to_string(node_count) + " is more than a tree with k = " +
+                   std::to_string(k) + ", L = " + std::to_string(L) + " can have");
   }
   if (word_count >= node_count)
     fail(path, "word count " + std::to_string(word_count) + " >= node count");
@@ -212,7 +218,7 @@ Vocabulary loadBowg(const std::string& path) {
     for (std::size_t done = 0, c = 0; done < count; ++c) {
       std::vector<Node>& chunk = hasher.buffer(c);
       const std::size_t n = std::min(chunk.size(), count - done);
-      readFully(fd.get(), chunk.data(), n * kRecordSize, kHeaderSize + done * kRecordSize, path);
+      readFully(file.fd(), chunk.data(), n * kRecordSize, kHeaderSize + done * kRecordSize, path);
       hasher.publish(c, n);
       for (std::size_t i = 0; i < n && first_bad_reserved == count; ++i) {
         // The reserved word sits in Node's padding; it must be zero in files.
@@ -227,7 +233,7 @@ Vocabulary loadBowg(const std::string& path) {
     hasher.finish();
   }
   unsigned char stored_bytes[8];
-  readFully(fd.get(), stored_bytes, 8, kHeaderSize + count * kRecordSize, path);
+  readFully(file.fd(), stored_bytes, 8, kHeaderSize + count * kRecordSize, path);
   std::uint64_t stored = 0;
   for (int i = 7; i >= 0; --i) stored = (stored << 8) | stored_bytes[i];
   if (sum.value() != stored) fail(path, "checksum mismatch (the file is corrupt)");
