@@ -15,8 +15,8 @@ namespace bowg {
 enum class FileKind {
   kVocabulary,  ///< vocabulary trees of every format (also their decompressed text)
   kDatabase,    ///< saved detector databases
-  kImage,       ///< image files (the pixel limit is checked separately)
-  kText,        ///< configs, ground truth, odometry, intrinsics, patterns, masks
+  kImage,       ///< image files and feature masks (pixels are limited separately)
+  kText,        ///< configs, ground truth, odometry, intrinsics, patterns
 };
 
 /// The limit of one kind: default, or the environment variable's value in
