@@ -1,8 +1,6 @@
 #include "bowg/core/errors.h"
 
-#include <cerrno>
 #include <cstdio>
-#include <cstring>
 
 namespace bowg {
 
@@ -11,7 +9,5 @@ std::string formatNumber(double value) {
   std::snprintf(text, sizeof text, "%g", value);
   return text;
 }
-
-std::string errnoReason() { return std::strerror(errno); }
 
 }  // namespace bowg

@@ -60,7 +60,7 @@ std::uint32_t checkFrame(const std::string& path, const char* head, std::size_t 
 // BOWG_MAX_DATABASE_MB), its header checked against its length before the
 // body is read.
 std::string readDatabaseFile(const std::string& path) {
-  BoundedFile file(path, FileKind::kDatabase);
+  BoundedFile file(path, FileKind::kDatabase, "database file");
   std::string bytes(static_cast<std::size_t>(std::min<std::uint64_t>(file.size(), kHeaderBytes)),
                     '\0');
   file.readExactly(&bytes[0], bytes.size());

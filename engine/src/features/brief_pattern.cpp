@@ -13,7 +13,7 @@ namespace {
 constexpr std::size_t kMaxPatternFileBytes = 1 << 20;
 
 std::string readPatternFile(const std::string& path) {
-  BoundedFile file(path, FileKind::kText);
+  BoundedFile file(path, FileKind::kText, "BRIEF pattern file");
   if (file.size() > kMaxPatternFileBytes) {
     throw FormatError("BRIEF pattern file '" + path + "' is " + formatBytes(file.size()) +
                       ", larger than a pattern file can be (1.0 MiB)");

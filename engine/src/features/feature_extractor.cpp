@@ -30,7 +30,7 @@ const double kHarrisK = 0.04;
 cv::Mat loadMask(const std::string& path) {
   // Opened and bounded like every input (a FIFO never blocks, a huge or
   // special file is refused before it is read), then decoded from memory.
-  const std::string bytes = readBoundedFile(path, FileKind::kImage);
+  const std::string bytes = readBoundedFile(path, FileKind::kImage, "feature mask image");
   const cv::Mat raw =
       bytes.empty() ? cv::Mat()
                     : cv::imdecode(cv::Mat(1, static_cast<int>(bytes.size()), CV_8U,

@@ -222,7 +222,7 @@ void applyParameters(const std::map<std::string, std::string>& values, PipelineO
 
 std::map<std::string, std::string> readFlatYaml(const std::string& path) {
   // A regular file within BOWG_MAX_TEXT_MB (bounded_file.h), read whole.
-  std::istringstream in(readBoundedFile(path, FileKind::kText));
+  std::istringstream in(readBoundedFile(path, FileKind::kText, "parameter file"));
   std::map<std::string, std::string> values;
   std::string line;
   int number = 0;

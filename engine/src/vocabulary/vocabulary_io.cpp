@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <cstring>
 #include <stdexcept>
+#include <vector>
 
 #include "bowg/core/bounded_file.h"
 #include "bowg/core/errors.h"
@@ -22,6 +23,26 @@ void fail(const std::string& path, const std::string& what) {
 
 std::string readVocabularyFile(const std::string& path) {
   return readBoundedFile(path, FileKind::kVocabulary);
+}
+
+void checkText(const std::string& path, const char* data, std::size_t size, std::uint64_t offset) {
+  const void* nul = std::memchr(data, '\0', size);
+  if (nul != nullptr) {
+    const std::uint64_t at = offset + static_cast<std::uint64_t>(static_cast<const char*>(nul) - data);
+    fail(path, "a NUL byte at offset " + std::to_string(at) +
+                   ": not text (a binary, zero-filled or sparse file)");
+  }
+}
+
+std::string readTextRest(BoundedFile* file, std::string text) {
+  checkText(file->path(), text.data(), text.size(), 0);
+  std::vector<char> chunk(1 << 20);
+  for (;;) {
+    const std::size_t got = file->readSome(chunk.data(), chunk.size());
+    if (got == 0) return text;
+    checkText(file->path(), chunk.data(), got, text.size());
+    text.append(chunk.data(), got);
+  }
 }
 
 void checkHeader(const std::string& path, std::int64_t k, std::int64_t L, std::int64_t scoring,

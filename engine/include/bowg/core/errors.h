@@ -31,8 +31,4 @@ class InvalidParameter : public std::invalid_argument {
 /// 300 digits and -1e-9 does not print as "-0.000000".
 std::string formatNumber(double value);
 
-/// "<strerror(errno)>" for the current errno: the reason an open or read
-/// failed, for messages that must always say why.
-std::string errnoReason();
-
 }  // namespace bowg

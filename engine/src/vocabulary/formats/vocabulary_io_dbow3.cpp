@@ -18,7 +18,8 @@ namespace {
 // magic, compressed flag, node count, k, L, scoring, weighting.
 const std::size_t kHeaderSize = 8 + 1 + 4 + 16;
 // A node record with the only descriptor we read (1x32 CV_8U).
-const std::size_t kRecord = 4 + 4 + 8 + 12 + 32;
+const std::uint64_t kRecord = 4 + 4 + 8 + 12 + 32;
+const std::uint64_t kWordRecord = 8;
 }  // namespace
 
 namespace {
@@ -61,10 +62,14 @@ Header readHeader(BoundedFile* file) {
   h.weighting = r.i32("weighting");
   checkHeader(path, h.k, h.L, h.scoring, h.weighting);
   if (h.nnodes < 2) fail(path, "the vocabulary has no nodes");
-  // Every record we accept holds a 32-byte descriptor; a word count follows.
+  // Every record we accept holds a 32-byte descriptor; a word count and at
+  // most one word per node follow: the body's size lies between bounds the
+  // node count sets.
   const std::uint64_t body = file->size() - kHeaderSize;
-  if (h.nnodes - 1 > maxTreeNodes(h.k, h.L) || body < 4 || h.nnodes - 1 > (body - 4) / kRecord) {
-    fail(path, "node count " + std::to_string(h.nnodes) + " does not fit the file (" +
+  const std::uint64_t nodes = h.nnodes - 1;
+  if (nodes > maxTreeNodes(h.k, h.L) || body < 4 + nodes * kRecord ||
+      body > 4 + nodes * (kRecord + kWordRecord)) {
+    fail(path, "node count " + std::to_string(h.nnodes) + " does not fit the file size (" +
                    std::to_string(file->size()) + " bytes) or a tree with k = " +
                    std::to_string(h.k) + ", L = " + std::to_string(h.L) +
                    " (truncated or corrupt)");

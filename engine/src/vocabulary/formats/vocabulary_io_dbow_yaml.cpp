@@ -132,6 +132,7 @@ std::string readText(const std::string& path) {
         fail(path, std::string("cannot decompress it (") + gzerror(f, &code) + ")");
       }
       if (got == 0) break;
+      checkText(path, buffer.data(), static_cast<std::size_t>(got), text.size());
       text.append(buffer.data(), static_cast<std::size_t>(got));
       if (text.size() > limit.max_bytes) {
         throw IoError("cannot read " + limitMessage(FileKind::kVocabulary, path,

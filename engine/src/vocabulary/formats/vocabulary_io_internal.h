@@ -22,6 +22,15 @@ namespace vocabulary_io {
 /// (bounded_file.h, BOWG_MAX_VOCABULARY_MB).
 std::string readVocabularyFile(const std::string& path);
 
+/// Refuses (FormatError) text holding a NUL byte: no text vocabulary has
+/// one, and a zero-filled or sparse file is refused at its first chunk
+/// instead of after it has been read whole. `offset`: of `data` in the text.
+void checkText(const std::string& path, const char* data, std::size_t size, std::uint64_t offset);
+
+/// The rest of a text vocabulary after `text` (its first bytes), read in
+/// chunks that checkText() vets as they come.
+std::string readTextRest(BoundedFile* file, std::string text);
+
 /// Plausibility of a foreign header: k in [2, 1000], L in [1, 100], known
 /// scoring and weighting types. Checked before a loader reads the body,
 /// since these values bound every later allocation.

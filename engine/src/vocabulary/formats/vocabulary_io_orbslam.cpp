@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <utility>
 
 #include "bowg/core/atomic_file.h"
 #include "bowg/core/errors.h"
@@ -108,7 +109,7 @@ Vocabulary loadOrbSlamText(const std::string& path) {
   const long head_L = head.integer("L");
   const long head_scoring = head.integer("scoringType");
   checkHeader(path, head_k, head_L, head_scoring, head.integer("weightingType"));
-  text += file.readRest();
+  text = readTextRest(&file, std::move(text));
   TextCursor c(path, text);
   const long k = c.integer("k");
   const long L = c.integer("L");
