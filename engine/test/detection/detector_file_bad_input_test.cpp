@@ -284,6 +284,7 @@ TEST(DatabaseIo, SpecialFilesAreRefusedFastAndKeepTheOldState) {
   const auto files = testing::makeSpecialFiles(std::string(BOWG_TEST_OUTPUT_DIR) + "/db_special",
                                                ".bowgdb", 3ull << 30, "bad magic");
   testing::expectSpecialFilesRefused(files, load);
+  testing::expectRefusedFast(outPath("absent.bowgdb"), "No such file or directory", load);
   // A real header whose payload size does not match the file's length.
   victim.save(outPath("hole.bowgdb"));
   const std::string header = readBytes(outPath("hole.bowgdb")).substr(0, 28);

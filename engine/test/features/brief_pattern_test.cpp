@@ -101,6 +101,7 @@ TEST(BriefPattern, SpecialAndOversizedFilesAreRefusedFast) {
   const auto files = testing::makeSpecialFiles(dir, ".yml", 3ull << 30, "more than the limit");
   const auto load = [](const std::string& p) { loadBriefPattern(p); };
   testing::expectSpecialFilesRefused(files, load);
+  testing::expectRefusedFast(dir + "/absent.yml", "No such file or directory", load);
   testing::makeSparseFile(dir + "/big_pattern.yml", 2u << 20);
   testing::expectRefusedFast(dir + "/big_pattern.yml", "larger than a pattern file can be", load);
 }

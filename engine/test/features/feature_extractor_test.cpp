@@ -376,11 +376,13 @@ TEST(FeatureExtractor, BadMaskAndPatternFilesNameThePath) {
 TEST(FeatureExtractor, SpecialMaskFilesAreRefusedFast) {
   const auto files = testing::makeSpecialFiles(std::string(BOWG_TEST_OUTPUT_DIR) + "/mask", ".png",
                                                3ull << 30, "more than the limit");
-  testing::expectSpecialFilesRefused(files, [](const std::string& p) {
+  const auto load = [](const std::string& p) {
     FeatureOptions o;
     o.mask_path = p;
     FeatureExtractor{o};
-  });
+  };
+  testing::expectSpecialFilesRefused(files, load);
+  testing::expectRefusedFast(outPath("absent_mask.png"), "No such file or directory", load);
 }
 
 }  // namespace

@@ -179,11 +179,5 @@ TEST(VocabularyFileLimits, NumbersInMessagesAreReadable) {
   }
 }
 
-TEST(VocabularyFileLimits, CannotOpenSaysWhy) {
-  const std::string missing = outPath("does_not_exist.yml.gz");
-  expectRefusedFast(missing, "No such file or directory",
-                    [](const std::string& p) { loadVocabulary(p, VocabularyFormat::kDbow2Yaml); });
-}
-
 }  // namespace
 }  // namespace bowg
