@@ -22,7 +22,7 @@ namespace bowg {
 namespace testing {
 
 struct SpecialFile {
-  std::string what;    ///< "FIFO", "directory", "device", "sparse file"
+  std::string what;  ///< "FIFO", "directory", "device", "sparse file"
   std::string path;
   std::string reason;  ///< a part the refusal's message must hold
 };
@@ -82,8 +82,8 @@ inline void expectRefusedFast(const std::string& path, const std::string& reason
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   EXPECT_NE(message.find(path), std::string::npos) << message;
-  EXPECT_NE(message.find(reason), std::string::npos) << "expected '" << reason << "' in: "
-                                                     << message;
+  EXPECT_NE(message.find(reason), std::string::npos)
+      << "expected '" << reason << "' in: " << message;
   EXPECT_LT(seconds, 1.0) << message;
   EXPECT_LT(peakResidentKb() - peak_before, 100 * 1024) << message;
 }

@@ -37,14 +37,12 @@ TEST(VocabularyFileLimits, SpecialFilesAreRefusedByEveryLoader) {
     SCOPED_TRACE(c.file);
     const std::string suffix = std::string("_") + c.file;
     const auto files = testing::makeSpecialFiles(dir(), suffix, 3 * kGiB, "more than the limit");
-    testing::expectSpecialFilesRefused(files, [&](const std::string& path) {
-      loadVocabulary(path, c.format);
-    });
+    testing::expectSpecialFilesRefused(
+        files, [&](const std::string& path) { loadVocabulary(path, c.format); });
   }
   // Format detection opens the file first: it refuses them as well.
   const auto files = testing::makeSpecialFiles(dir(), ".bin", 3 * kGiB, "more than the limit");
-  testing::expectSpecialFilesRefused(files,
-                                     [](const std::string& path) { loadVocabulary(path); });
+  testing::expectSpecialFilesRefused(files, [](const std::string& path) { loadVocabulary(path); });
 }
 
 // A gzip file of `members` copies of one member that inflates to 16 MiB of
@@ -82,8 +80,9 @@ TEST(VocabularyFileLimits, GzipBombsAreRefusedWhileInflating) {
   expectRefusedFast(zeros, "NUL byte", [](const std::string& p) { loadVocabulary(p); });
   // The decompressed size is bounded by the limit, named with its variable.
   ::setenv("BOWG_MAX_VOCABULARY_MB", "8", 1);
-  expectRefusedFast(blanks, "more than the limit of 8.0 MiB (raise it with the environment "
-                            "variable BOWG_MAX_VOCABULARY_MB",
+  expectRefusedFast(blanks,
+                    "more than the limit of 8.0 MiB (raise it with the environment "
+                    "variable BOWG_MAX_VOCABULARY_MB",
                     [](const std::string& p) { loadVocabulary(p); });
   ::unsetenv("BOWG_MAX_VOCABULARY_MB");
 }
@@ -100,8 +99,7 @@ TEST(VocabularyFileLimits, RealGzippedVocabulariesInflateWellBelowTheBombRatio) 
 }
 
 // `header` followed by zeros up to `size` bytes (sparse: nothing on disk).
-std::string headerThenHole(const std::string& name, const std::string& header,
-                           std::uint64_t size) {
+std::string headerThenHole(const std::string& name, const std::string& header, std::uint64_t size) {
   const std::string path = outPath(name);
   writeAll(path, header);
   EXPECT_EQ(::truncate(path.c_str(), static_cast<off_t>(size)), 0);
@@ -125,8 +123,7 @@ TEST(VocabularyFileLimits, HeadersThatDoNotMatchTheFileSizeAreRefusedBeforeTheBo
   std::string dbow3;
   for (int i = 0; i < 8; ++i) dbow3.push_back(static_cast<char>(88877711233ull >> (8 * i)));
   dbow3 += std::string(1, '\0') + le32(11) + le32(10) + le32(6) + le32(0) + le32(0);
-  expectRefusedFast(headerThenHole("hole.dbow3", dbow3, size), "does not fit the file size",
-                    load);
+  expectRefusedFast(headerThenHole("hole.dbow3", dbow3, size), "does not fit the file size", load);
   // Text formats: a valid first line, then zeros.
   expectRefusedFast(headerThenHole("hole_ORBvoc.txt", "10 6 0 0\n", size), "NUL byte", load);
   expectRefusedFast(headerThenHole("hole.yml", "vocabulary:\n", size), "NUL byte", load);

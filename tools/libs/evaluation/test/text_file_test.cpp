@@ -47,9 +47,9 @@ TEST(TextFile, SpecialFilesAreRefusedByEveryReader) {
 
 TEST(TextFile, AMissingFileSaysWhy) {
   const std::string path = std::string(BOWG_TEST_OUTPUT_DIR) + "/no_such_truth.csv";
-  testing::expectRefusedFast(path, "cannot open the ground-truth file '" + path +
-                                       "': No such file or directory",
-                             [](const std::string& p) { readGroundTruth(p); });
+  testing::expectRefusedFast(
+      path, "cannot open the ground-truth file '" + path + "': No such file or directory",
+      [](const std::string& p) { readGroundTruth(p); });
 }
 
 }  // namespace
