@@ -92,14 +92,20 @@ std::string formatBytes(std::uint64_t bytes) {
 
 std::string limitMessage(FileKind kind, const std::string& path, const std::string& what_size,
                          const FileLimit& limit) {
-  return std::string(fileKindName(kind)) + " '" + path + "' " + what_size +
+  return limitMessage(std::string(fileKindName(kind)), path, what_size, limit);
+}
+
+std::string limitMessage(const std::string& label, const std::string& path,
+                         const std::string& what_size, const FileLimit& limit) {
+  return label + " '" + path + "' " + what_size +
          ", more than the limit of " + formatBytes(limit.max_bytes) +
          " (raise it with the environment variable " + limit.variable + ", in MiB)";
 }
 
-BoundedFile::BoundedFile(const std::string& path, FileKind kind) : path_(path), kind_(kind) {
-  const std::string name = std::string(fileKindName(kind)) + " '" + path + "'";
-  if (path.empty()) throw IoError(std::string("no ") + fileKindName(kind) + " path given");
+BoundedFile::BoundedFile(const std::string& path, FileKind kind, const std::string& label)
+    : path_(path), kind_(kind), label_(label.empty() ? fileKindName(kind) : label) {
+  const std::string name = label_ + " '" + path + "'";
+  if (path.empty()) throw IoError("no " + label_ + " path given");
   // O_NONBLOCK: open() of a FIFO without a writer would wait for ever.
   fd_ = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
   if (fd_ < 0) throw IoError("cannot open " + name + ": " + std::strerror(errno));
@@ -117,7 +123,7 @@ BoundedFile::BoundedFile(const std::string& path, FileKind kind) : path_(path), 
   const FileLimit limit = fileLimit(kind);
   if (size_ > limit.max_bytes) {
     ::close(fd_);
-    throw IoError("cannot read " + limitMessage(kind, path, "is " + formatBytes(size_), limit));
+    throw IoError("cannot read " + limitMessage(label_, path, "is " + formatBytes(size_), limit));
   }
   // Regular files never block; blocking reads are the normal contract.
   ::fcntl(fd_, F_SETFL, ::fcntl(fd_, F_GETFL) & ~O_NONBLOCK);
@@ -128,7 +134,11 @@ BoundedFile::~BoundedFile() {
 }
 
 BoundedFile::BoundedFile(BoundedFile&& other) noexcept
-    : path_(std::move(other.path_)), kind_(other.kind_), size_(other.size_), fd_(other.fd_) {
+    : path_(std::move(other.path_)),
+      kind_(other.kind_),
+      label_(std::move(other.label_)),
+      size_(other.size_),
+      fd_(other.fd_) {
   other.fd_ = -1;
 }
 
@@ -137,7 +147,7 @@ std::size_t BoundedFile::readSome(void* dst, std::size_t n) {
     const ssize_t got = ::read(fd_, dst, n);
     if (got >= 0) return static_cast<std::size_t>(got);
     if (errno != EINTR) {
-      throw IoError("cannot read " + std::string(fileKindName(kind_)) + " '" + path_ +
+      throw IoError("cannot read " + label_ + " '" + path_ +
                     "': " + std::strerror(errno));
     }
   }
@@ -149,7 +159,7 @@ void BoundedFile::readExactly(void* dst, std::size_t n) {
   while (done < n) {
     const std::size_t got = readSome(out + done, n - done);
     if (got == 0) {
-      throw IoError("cannot read " + std::string(fileKindName(kind_)) + " '" + path_ +
+      throw IoError("cannot read " + label_ + " '" + path_ +
                     "': it ends after " + std::to_string(done) + " of " + std::to_string(n) +
                     " expected bytes");
     }
@@ -171,8 +181,8 @@ std::string BoundedFile::readRest() {
   return data;
 }
 
-std::string readBoundedFile(const std::string& path, FileKind kind) {
-  BoundedFile file(path, kind);
+std::string readBoundedFile(const std::string& path, FileKind kind, const std::string& label) {
+  BoundedFile file(path, kind, label);
   return file.readRest();
 }
 

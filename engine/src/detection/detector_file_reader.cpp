@@ -6,10 +6,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-#include <fstream>
 #include <limits>
-#include <sstream>
 
+#include "bowg/core/bounded_file.h"
 #include "bowg/core/checksum.h"
 #include "bowg/detection/detector_file.h"
 #include "bowg/vocabulary/vocabulary.h"
@@ -32,35 +31,53 @@ Island readIsland(Reader* r) {
   return i;
 }
 
-std::string readWholeFile(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw IoError("cannot open database file '" + path + "' for reading");
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  if (in.bad()) throw IoError("error while reading database file '" + path + "'");
-  return ss.str();
-}
-
-// Magic, version, payload size, checksum and vocabulary; returns the version.
-std::uint32_t checkHeader(const std::string& path, const std::string& bytes,
-                          const Vocabulary& vocabulary, std::uint64_t* payload_size) {
-  Reader header(path, bytes.data(), bytes.size());
-  if (bytes.size() < kHeaderBytes + kTrailerBytes) {
-    header.fail("file too short (" + std::to_string(bytes.size()) + " bytes) to be a database");
+// Magic, version and payload size of a file of `file_size` bytes whose
+// first bytes are `head`; returns the version.
+std::uint32_t checkFrame(const std::string& path, const char* head, std::size_t head_size,
+                         std::uint64_t file_size, std::uint64_t* payload_size) {
+  Reader header(path, head, head_size);
+  if (file_size < kHeaderBytes + kTrailerBytes) {
+    header.fail("file too short (" + std::to_string(file_size) + " bytes) to be a database");
   }
-  if (std::memcmp(bytes.data(), kMagic, 8) != 0) header.fail("not a BoWG database (bad magic)");
-  Reader r(path, bytes.data() + 8, bytes.size() - 8);
+  if (std::memcmp(head, kMagic, 8) != 0) header.fail("not a BoWG database (bad magic)");
+  Reader r(path, head + 8, head_size - 8);
   const std::uint32_t version = r.u32("version");
   if (version < kOldestVersion || version > kVersion) {
     r.fail("unsupported version " + std::to_string(version) + " (expected " +
            std::to_string(kOldestVersion) + " to " + std::to_string(kVersion) + ")");
   }
-  const std::uint64_t fingerprint = r.u64("vocabulary fingerprint");
+  r.u64("vocabulary fingerprint");
   const std::uint64_t payload = r.u64("payload size");
-  if (payload != bytes.size() - kHeaderBytes - kTrailerBytes) {
+  if (payload != file_size - kHeaderBytes - kTrailerBytes) {
     r.fail("payload size " + std::to_string(payload) + " does not match the file length " +
-           std::to_string(bytes.size()) + " (truncated or extended)");
+           std::to_string(file_size) + " (truncated or extended)");
   }
+  *payload_size = payload;
+  return version;
+}
+
+// The file's bytes (bounded_file.h: a regular file within
+// BOWG_MAX_DATABASE_MB), its header checked against its length before the
+// body is read.
+std::string readDatabaseFile(const std::string& path) {
+  BoundedFile file(path, FileKind::kDatabase, "database file");
+  std::string bytes(static_cast<std::size_t>(std::min<std::uint64_t>(file.size(), kHeaderBytes)),
+                    '\0');
+  file.readExactly(&bytes[0], bytes.size());
+  std::uint64_t payload = 0;
+  checkFrame(path, bytes.data(), bytes.size(), file.size(), &payload);
+  bytes += file.readRest();
+  return bytes;
+}
+
+// Frame, checksum and vocabulary; returns the version.
+std::uint32_t checkHeader(const std::string& path, const std::string& bytes,
+                          const Vocabulary& vocabulary, std::uint64_t* payload_size) {
+  const std::uint32_t version =
+      checkFrame(path, bytes.data(), bytes.size(), bytes.size(), payload_size);
+  Reader r(path, bytes.data() + 8, bytes.size() - 8);
+  r.u32("version");
+  const std::uint64_t fingerprint = r.u64("vocabulary fingerprint");
   Reader trailer(path, bytes.data() + bytes.size() - kTrailerBytes, kTrailerBytes);
   const std::uint64_t stored_sum = trailer.u64("checksum");
   if (checksum64(bytes.data(), bytes.size() - kTrailerBytes) != stored_sum) {
@@ -71,7 +88,6 @@ std::uint32_t checkHeader(const std::string& path, const std::string& bytes,
         "it was built with another vocabulary (fingerprint mismatch): load the vocabulary "
         "the database was created with");
   }
-  *payload_size = payload;
   return version;
 }
 
@@ -354,7 +370,7 @@ std::unique_ptr<Database> loadDetectorFile(const std::string& path,
                                            std::shared_ptr<const Vocabulary> vocabulary,
                                            ScoringType scoring, int direct_index_level,
                                            int fan_bins, DetectorState* state) {
-  const std::string bytes = readWholeFile(path);
+  const std::string bytes = readDatabaseFile(path);
   std::uint64_t payload = 0;
   const std::uint32_t version = checkHeader(path, bytes, *vocabulary, &payload);
   Reader p(path, bytes.data() + kHeaderBytes, static_cast<std::size_t>(payload));

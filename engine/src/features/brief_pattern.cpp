@@ -2,8 +2,7 @@
 // cv::FileStorage, whose parser spins for ever on some malformed files.
 #include "bowg/features/brief_pattern.h"
 
-#include <fstream>
-
+#include "bowg/core/bounded_file.h"
 #include "bowg/core/errors.h"
 #include "core/yaml_tokens.h"
 
@@ -14,18 +13,12 @@ namespace {
 constexpr std::size_t kMaxPatternFileBytes = 1 << 20;
 
 std::string readPatternFile(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw IoError("cannot open BRIEF pattern file " + path);
-  std::string text;
-  char buffer[4096];
-  while (in.read(buffer, sizeof(buffer)) || in.gcount() > 0) {
-    text.append(buffer, static_cast<std::size_t>(in.gcount()));
-    if (text.size() > kMaxPatternFileBytes) {
-      throw FormatError("BRIEF pattern file " + path + " is larger than 1 MiB");
-    }
+  BoundedFile file(path, FileKind::kText, "BRIEF pattern file");
+  if (file.size() > kMaxPatternFileBytes) {
+    throw FormatError("BRIEF pattern file '" + path + "' is " + formatBytes(file.size()) +
+                      ", larger than a pattern file can be (1.0 MiB)");
   }
-  if (in.bad()) throw IoError("error while reading BRIEF pattern file " + path);
-  return text;
+  return file.readRest();
 }
 
 [[noreturn]] void failAt(const std::string& path, const YamlTokens::Token& t,

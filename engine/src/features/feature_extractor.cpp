@@ -4,13 +4,13 @@
 // word-group radius s_t^(i).
 #include "bowg/features/feature_extractor.h"
 
-#include <fstream>
 #include <opencv2/features2d.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <stdexcept>
 #include <string>
 
+#include "bowg/core/bounded_file.h"
 #include "bowg/core/errors.h"
 #include "bowg/features/brief_descriptor.h"
 #include "bowg/features/brief_pattern.h"
@@ -28,8 +28,14 @@ const double kHarrisK = 0.04;
 
 // Usable pixels = non-zero in any channel, as 0/255 CV_8UC1.
 cv::Mat loadMask(const std::string& path) {
-  if (!std::ifstream(path).good()) throw IoError("cannot open feature mask image " + path);
-  const cv::Mat raw = cv::imread(path, cv::IMREAD_UNCHANGED);
+  // Opened and bounded like every input (a FIFO never blocks, a huge or
+  // special file is refused before it is read), then decoded from memory.
+  const std::string bytes = readBoundedFile(path, FileKind::kImage, "feature mask image");
+  const cv::Mat raw =
+      bytes.empty() ? cv::Mat()
+                    : cv::imdecode(cv::Mat(1, static_cast<int>(bytes.size()), CV_8U,
+                                           const_cast<char*>(bytes.data())),
+                                   cv::IMREAD_UNCHANGED);
   if (raw.empty()) {
     throw FormatError("feature mask " + path + " is not an image OpenCV can decode");
   }

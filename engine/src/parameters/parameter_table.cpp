@@ -8,10 +8,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
-#include <fstream>
 #include <functional>
 #include <sstream>
 
+#include "bowg/core/bounded_file.h"
 #include "bowg/core/errors.h"
 #include "parameters/parameter_rows.h"
 
@@ -221,8 +221,8 @@ void applyParameters(const std::map<std::string, std::string>& values, PipelineO
 }
 
 std::map<std::string, std::string> readFlatYaml(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw IoError("cannot open parameter file '" + path + "'");
+  // A regular file within BOWG_MAX_TEXT_MB (bounded_file.h), read whole.
+  std::istringstream in(readBoundedFile(path, FileKind::kText, "parameter file"));
   std::map<std::string, std::string> values;
   std::string line;
   int number = 0;

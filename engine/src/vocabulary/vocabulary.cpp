@@ -85,7 +85,7 @@ std::size_t checkTree(int k, int L, const Vocabulary::NodeArray& nodes) {
       throw FormatError("vocabulary: " + nodeName(i) + " has a non-finite weight");
     if (node.weight < 0.0) {
       throw FormatError("vocabulary: " + nodeName(i) + " has a negative weight (" +
-                        std::to_string(node.weight) + ")");
+                        formatNumber(node.weight) + ")");
     }
     if (node.level > static_cast<std::uint32_t>(L)) {
       throw FormatError("vocabulary: " + nodeName(i) + " is at level " +

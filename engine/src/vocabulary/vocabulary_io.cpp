@@ -2,15 +2,12 @@
 // helpers every foreign loader shares (vocabulary_io_internal.h).
 #include "bowg/vocabulary/vocabulary_io.h"
 
-#include <fcntl.h>
-#include <sys/stat.h>
-#include <unistd.h>
-
-#include <algorithm>
-#include <cerrno>
+#include <cstdint>
 #include <cstring>
 #include <stdexcept>
+#include <vector>
 
+#include "bowg/core/bounded_file.h"
 #include "bowg/core/errors.h"
 #include "vocabulary/formats/vocabulary_io_internal.h"
 
@@ -24,40 +21,51 @@ void fail(const std::string& path, const std::string& what) {
   throw FormatError(path + ": " + what);
 }
 
-Fd::~Fd() {
-  if (fd_ >= 0) ::close(fd_);
+std::string readVocabularyFile(const std::string& path) {
+  return readBoundedFile(path, FileKind::kVocabulary);
 }
 
-Fd openRegularFile(const std::string& path, std::uint64_t* size) {
-  Fd fd(::open(path.c_str(), O_RDONLY | O_CLOEXEC));
-  if (fd.get() < 0) throw IoError("cannot open '" + path + "': " + std::strerror(errno));
-  struct stat st;
-  if (::fstat(fd.get(), &st) != 0 || !S_ISREG(st.st_mode)) {
-    throw IoError("cannot read '" + path + "': not a regular file");
+void checkText(const std::string& path, const char* data, std::size_t size, std::uint64_t offset) {
+  const void* nul = std::memchr(data, '\0', size);
+  if (nul != nullptr) {
+    const std::uint64_t at = offset + static_cast<std::uint64_t>(static_cast<const char*>(nul) - data);
+    fail(path, "a NUL byte at offset " + std::to_string(at) +
+                   ": not text (a binary, zero-filled or sparse file)");
   }
-  if (size) *size = static_cast<std::uint64_t>(st.st_size);
-  return fd;
 }
 
-std::string readFile(const std::string& path, std::uint64_t max_size) {
-  std::uint64_t size = 0;
-  const Fd fd = openRegularFile(path, &size);
-  if (size > max_size) fail(path, "file too large (" + std::to_string(size) + " bytes)");
-  std::string data(static_cast<std::size_t>(size), '\0');
-  std::size_t done = 0;
-  while (done < data.size()) {
-    const ssize_t n = ::read(fd.get(), &data[done], data.size() - done);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) {
-      const std::string err = n < 0 ? std::strerror(errno) : "unexpected end of file";
-      throw IoError("cannot read '" + path + "': " + err);
-    }
-    done += static_cast<std::size_t>(n);
+std::string readTextRest(BoundedFile* file, std::string text) {
+  checkText(file->path(), text.data(), text.size(), 0);
+  std::vector<char> chunk(1 << 20);
+  for (;;) {
+    const std::size_t got = file->readSome(chunk.data(), chunk.size());
+    if (got == 0) return text;
+    checkText(file->path(), chunk.data(), got, text.size());
+    text.append(chunk.data(), got);
   }
-  return data;
 }
 
-void checkReadable(const std::string& path) { openRegularFile(path); }
+void checkHeader(const std::string& path, std::int64_t k, std::int64_t L, std::int64_t scoring,
+                 std::int64_t weighting) {
+  if (k < 2 || k > 1000)
+    fail(path, "branching factor k = " + std::to_string(k) + " out of range [2, 1000]");
+  if (L < 1 || L > 100) fail(path, "depth L = " + std::to_string(L) + " out of range [1, 100]");
+  if (scoring < 0 || scoring > 5) fail(path, "unknown scoring type " + std::to_string(scoring));
+  if (weighting < 0 || weighting > 3)
+    fail(path, "unknown weighting type " + std::to_string(weighting));
+}
+
+std::uint64_t maxTreeNodes(std::int64_t k, std::int64_t L) {
+  const std::uint64_t kMax = UINT64_MAX;
+  std::uint64_t level = 1, total = 0;
+  for (std::int64_t l = 1; l <= L; ++l) {
+    if (level > kMax / static_cast<std::uint64_t>(k)) return kMax;
+    level *= static_cast<std::uint64_t>(k);
+    if (total > kMax - level) return kMax;
+    total += level;
+  }
+  return total;
+}
 
 namespace {
 
@@ -67,16 +75,10 @@ struct ChildRows {
   std::vector<std::uint32_t> count, row, children;
 };
 
-// Plausibility of the header values first: they also bound every later
-// allocation.
+// The header first: its values also bound every later allocation.
 void checkForeignHeader(const std::string& path, std::int64_t k, std::int64_t L,
                         std::int64_t scoring, std::int64_t weighting, std::size_t nodes) {
-  if (k < 2 || k > 1000)
-    fail(path, "branching factor k = " + std::to_string(k) + " out of range [2, 1000]");
-  if (L < 1 || L > 100) fail(path, "depth L = " + std::to_string(L) + " out of range [1, 100]");
-  if (scoring < 0 || scoring > 5) fail(path, "unknown scoring type " + std::to_string(scoring));
-  if (weighting < 0 || weighting > 3)
-    fail(path, "unknown weighting type " + std::to_string(weighting));
+  checkHeader(path, k, L, scoring, weighting);
   if (nodes == 0) fail(path, "the vocabulary has no nodes");
   if (nodes + 1 >= Vocabulary::kNoWord) fail(path, "too many nodes");
 }
@@ -242,15 +244,18 @@ bool endsWith(const std::string& s, const std::string& suffix) {
          s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
+// The first bytes, enough to tell the formats apart; the file is refused
+// here already when it is not a regular file or over the limit.
 std::string readHead(const std::string& path, std::size_t max) {
-  const vocabulary_io::Fd fd = vocabulary_io::openRegularFile(path);
+  BoundedFile file(path, FileKind::kVocabulary);
   std::string head(max, '\0');
-  ssize_t n;
-  do {
-    n = ::read(fd.get(), &head[0], max);
-  } while (n < 0 && errno == EINTR);
-  if (n < 0) throw IoError("cannot read '" + path + "': " + std::strerror(errno));
-  head.resize(static_cast<std::size_t>(n));
+  std::size_t done = 0;
+  while (done < max) {
+    const std::size_t got = file.readSome(&head[done], max - done);
+    if (got == 0) break;
+    done += got;
+  }
+  head.resize(done);
   return head;
 }
 
@@ -342,6 +347,14 @@ Vocabulary loadVocabulary(const std::string& path, VocabularyFormat format) {
 void saveVocabulary(const Vocabulary& vocabulary, const std::string& path,
                     VocabularyFormat format) {
   if (vocabulary.empty()) throw std::invalid_argument("saveVocabulary: the vocabulary is empty");
+  // What every loader refuses is never written.
+  if (vocabulary.branching() < 2 || vocabulary.branching() > 1000 || vocabulary.depth() < 1 ||
+      vocabulary.depth() > 100) {
+    throw std::invalid_argument("saveVocabulary: '" + path + "': k = " +
+                                std::to_string(vocabulary.branching()) + ", L = " +
+                                std::to_string(vocabulary.depth()) +
+                                " outside the loadable ranges k in [2, 1000], L in [1, 100]");
+  }
   switch (format) {
     case VocabularyFormat::kBowg:
       return vocabulary_io::saveBowg(vocabulary, path);

@@ -27,7 +27,8 @@ void TrainingOptions::validate() const {
   if (k < 2) throw InvalidParameter("training.k: must be >= 2, got " + std::to_string(k));
   if (L < 1) throw InvalidParameter("training.L: must be >= 1, got " + std::to_string(L));
   if (L > 64) throw InvalidParameter("training.L: must be <= 64, got " + std::to_string(L));
-  if (k > 4096) throw InvalidParameter("training.k: must be <= 4096, got " + std::to_string(k));
+  // The largest k every vocabulary format's loader accepts.
+  if (k > 1000) throw InvalidParameter("training.k: must be <= 1000, got " + std::to_string(k));
   if (max_iterations < 1) {
     throw InvalidParameter("training.max_iterations: must be >= 1, got " +
                            std::to_string(max_iterations));

@@ -1,6 +1,7 @@
 // LoopDetector::load of bad files: clean FormatError/IoError on truncation,
-// byte flips, another vocabulary, forged content or a missing file, and the
-// strong guarantee (a failed load keeps the old state).
+// byte flips, another vocabulary, forged content, a missing file or a
+// special one (FIFO, directory, device, huge sparse file), and the strong
+// guarantee (a failed load keeps the old state).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -12,6 +13,7 @@
 
 #include "bowg/core/errors.h"
 #include "core/resealed_checksum.h"
+#include "core/special_files.h"
 #include "detection/detector_file_runs.h"
 
 namespace bowg {
@@ -268,6 +270,38 @@ TEST(DatabaseIo, ForgedContentIsRefusedByName) {
         "previous scores refer to an entry beyond the database");
   forge("previous_score.bowgdb", last_score + 4, &negative, 8, "a previous score is negative");
   std::remove(path.c_str());
+}
+
+TEST(DatabaseIo, SpecialFilesAreRefusedFastAndKeepTheOldState) {
+  const auto kfs = keyframes();
+  LoopDetector victim(vocabulary(), options()), twin(vocabulary(), options());
+  for (int i = 0; i < 5; ++i) {
+    victim.process(kfs[i]);
+    twin.process(kfs[i]);
+  }
+  const auto load = [&](const std::string& path) { victim.load(path); };
+  // 3 GiB is under the database limit: the header, read first, refuses it.
+  const auto files = testing::makeSpecialFiles(std::string(BOWG_TEST_OUTPUT_DIR) + "/db_special",
+                                               ".bowgdb", 3ull << 30, "bad magic");
+  testing::expectSpecialFilesRefused(files, load);
+  testing::expectRefusedFast(outPath("absent.bowgdb"), "No such file or directory", load);
+  // A real header whose payload size does not match the file's length.
+  victim.save(outPath("hole.bowgdb"));
+  const std::string header = readBytes(outPath("hole.bowgdb")).substr(0, 28);
+  writeBytes(outPath("hole.bowgdb"), header);
+  ASSERT_EQ(::truncate(outPath("hole.bowgdb").c_str(), 900ll << 20), 0);
+  testing::expectRefusedFast(outPath("hole.bowgdb"), "does not match the file length", load);
+  // Over the limit, named with the variable that raises it.
+  ::setenv("BOWG_MAX_DATABASE_MB", "100", 1);
+  testing::expectRefusedFast(outPath("hole.bowgdb"),
+                             "more than the limit of 100 MiB (raise it with the environment "
+                             "variable BOWG_MAX_DATABASE_MB",
+                             load);
+  ::unsetenv("BOWG_MAX_DATABASE_MB");
+  std::remove(outPath("hole.bowgdb").c_str());
+  for (std::size_t i = 5; i < 8; ++i) {
+    expectSameResult(victim.process(kfs[i]), twin.process(kfs[i]));
+  }
 }
 
 }  // namespace

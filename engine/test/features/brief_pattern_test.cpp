@@ -7,6 +7,7 @@
 #include <string>
 
 #include "bowg/core/errors.h"
+#include "core/special_files.h"
 
 namespace bowg {
 namespace {
@@ -93,6 +94,16 @@ TEST(BriefPattern, CorruptFilesAreFormatErrors) {
   expectThrowNamingPath<FormatError>(writeFile(
       "pattern_huge.yml", "%YAML:1.0\n" + sequence("x1", 256, "1000") + sequence("y1", 256, "1") +
                               sequence("x2", 256, "1") + sequence("y2", 256, "1")));
+}
+
+TEST(BriefPattern, SpecialAndOversizedFilesAreRefusedFast) {
+  const std::string dir = std::string(BOWG_TEST_OUTPUT_DIR) + "/pattern";
+  const auto files = testing::makeSpecialFiles(dir, ".yml", 3ull << 30, "more than the limit");
+  const auto load = [](const std::string& p) { loadBriefPattern(p); };
+  testing::expectSpecialFilesRefused(files, load);
+  testing::expectRefusedFast(dir + "/absent.yml", "No such file or directory", load);
+  testing::makeSparseFile(dir + "/big_pattern.yml", 2u << 20);
+  testing::expectRefusedFast(dir + "/big_pattern.yml", "larger than a pattern file can be", load);
 }
 
 }  // namespace

@@ -13,6 +13,7 @@
 #include <string>
 
 #include "bowg/core/errors.h"
+#include "core/special_files.h"
 #include "bowg/features/brief_descriptor.h"
 #include "bowg/features/brief_pattern.h"
 #include "bowg/features/descriptor_conversion.h"
@@ -370,6 +371,18 @@ TEST(FeatureExtractor, BadMaskAndPatternFilesNameThePath) {
   b.descriptor = FeatureOptions::DescriptorType::kBrief;
   b.brief_pattern_path = outPath("no_such_pattern.yml");
   expectThrowContaining<IoError>([&] { FeatureExtractor{b}; }, b.brief_pattern_path);
+}
+
+TEST(FeatureExtractor, SpecialMaskFilesAreRefusedFast) {
+  const auto files = testing::makeSpecialFiles(std::string(BOWG_TEST_OUTPUT_DIR) + "/mask", ".png",
+                                               3ull << 30, "more than the limit");
+  const auto load = [](const std::string& p) {
+    FeatureOptions o;
+    o.mask_path = p;
+    FeatureExtractor{o};
+  };
+  testing::expectSpecialFilesRefused(files, load);
+  testing::expectRefusedFast(outPath("absent_mask.png"), "No such file or directory", load);
 }
 
 }  // namespace

@@ -12,6 +12,7 @@
 #include <string>
 
 #include "bowg/core/errors.h"
+#include "core/special_files.h"
 
 namespace bowg {
 namespace {
@@ -275,6 +276,15 @@ TEST(ParameterTable, LoadsEveryShippedConfig) {
   const PipelineOptions generic = loadParameterFile(configDir() + "/generic.yaml");
   EXPECT_FALSE(generic.detector.distribution.enabled);
   EXPECT_EQ(generic.features.detector, FeatureOptions::Detector::kOrb);
+}
+
+TEST(ParameterTable, SpecialParameterFilesAreRefusedFast) {
+  const auto files = testing::makeSpecialFiles(std::string(BOWG_TEST_OUTPUT_DIR) + "/params",
+                                               ".yaml", 3ull << 30, "more than the limit");
+  testing::expectSpecialFilesRefused(files, [](const std::string& p) { readFlatYaml(p); });
+  testing::expectRefusedFast(std::string(BOWG_TEST_OUTPUT_DIR) + "/missing.yaml",
+                             "No such file or directory",
+                             [](const std::string& p) { readFlatYaml(p); });
 }
 
 }  // namespace

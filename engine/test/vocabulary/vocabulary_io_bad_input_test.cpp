@@ -134,11 +134,17 @@ void expectRefusedNaming(const std::string& name, const std::string& bytes,
 }
 
 TEST(VocabularyIo, MalformedYamlIsRefusedWithTheFileAndLine) {
-  // 98 bytes found by fuzzing: OpenCV's parser never returned on them.
+  // 98 bytes found by fuzzing: OpenCV's parser never returned on them. Text
+  // holds no NUL byte: refused where it appears, before any parsing; without
+  // it the tokenizer refuses the rest.
   const char hang[] =
       "%YAML:1.0\n weightingType:(0\ne\0   nodes:\n            - { nodeIdtIiptor:dbw3 0 32 33 7 "
       ":01 2[ nodeI }\n";
-  expectRefusedNaming("hang.yml", std::string(hang, sizeof(hang) - 1), "no 'vocabulary' map");
+  const std::string hang_text(hang, sizeof(hang) - 1);
+  expectRefusedNaming("hang.yml", hang_text, "a NUL byte at offset 29");
+  std::string hang_without_nul = hang_text;
+  hang_without_nul[29] = ' ';
+  expectRefusedNaming("hang_text.yml", hang_without_nul, "no 'vocabulary' map");
   // An inline map with an empty key.
   expectRefusedNaming("empty_key.yml",
                       "%YAML:1.0\n---\nvocabulary:\n   k: 3\n   L: 2\n   scoringType: 0\n"
@@ -173,7 +179,8 @@ TEST(VocabularyIo, MalformedYamlIsRefusedWithTheFileAndLine) {
   expectRefusedNaming("deep.yml", head + "   nodes:\n      - { nodeId:{ a:1 } }\n",
                       "'nodeId' has no value");
   // Not a single byte of a vocabulary: still named, still a FormatError.
-  expectRefusedNaming("binary.yml", std::string("%YAML\0\1\2{{{[[[", 14), "no 'vocabulary' map");
+  expectRefusedNaming("binary.yml", std::string("%YAML\0\1\2{{{[[[", 14), "a NUL byte at offset 5");
+  expectRefusedNaming("binary_text.yml", "%YAML\1\2{{{[[[", "no 'vocabulary' map");
 }
 
 TEST(VocabularyIo, FlowSequencesAndQuotedDescriptorsAreRead) {

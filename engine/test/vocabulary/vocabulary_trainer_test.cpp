@@ -47,6 +47,11 @@ TEST(TrainingOptions, ValidateNamesTheField) {
   EXPECT_NO_THROW(o.validate());
   o.k = 1;
   expectBad(o, "training.k");
+  // Beyond what the vocabulary loaders accept: it could not be saved.
+  o.k = 1001;
+  expectBad(o, "training.k: must be <= 1000");
+  o.k = 1000;
+  EXPECT_NO_THROW(o.validate());
   o = TrainingOptions();
   o.L = 0;
   expectBad(o, "training.L");

@@ -128,8 +128,8 @@ TEST(PoseGraphCli, BadInputNamesTheFile) {
                     kOut + "/far.csv",
                 log),
             1);
-  EXPECT_NE(readAll(log).find("cannot read the trajectory file " + kOut +
-                              "/missing.csv: No such file or directory"),
+  EXPECT_NE(readAll(log).find("cannot open the trajectory file '" + kOut +
+                              "/missing.csv': No such file or directory"),
             std::string::npos);
   {
     std::ofstream f(kOut + "/bad_poses.csv");

@@ -24,7 +24,7 @@ const char* const kUsage =
     "  --format FORMAT             bowg (default) | dbow2_yaml | dbow2_brief_yaml | dbow3 |\n"
     "                              dbow3_yaml | orbslam_txt | vins_bin\n"
     "Tree:\n"
-    "  --k N                       branching factor, >= 2 (default 10)\n"
+    "  --k N                       branching factor, 2 to 1000 (default 10)\n"
     "  --L N                       depth, >= 1 (default 6)\n"
     "  --weighting W               tf_idf (default) | tf | idf | binary\n"
     "  --scoring S                 l1 (default) | l2 | chi_square | kl | bhattacharyya | "
@@ -88,7 +88,7 @@ bool setTreeOption(const std::string& arg, ArgReader* r, Args* a) {
   } else if (arg == "--format") {
     a->format = r->value(arg);
   } else if (arg == "--k") {
-    training.k = static_cast<int>(parseInteger(arg, r->value(arg), 2, 4096));
+    training.k = static_cast<int>(parseInteger(arg, r->value(arg), 2, 1000));
   } else if (arg == "--L") {
     training.L = static_cast<int>(parseInteger(arg, r->value(arg), 1, 64));
   } else if (arg == "--weighting") {

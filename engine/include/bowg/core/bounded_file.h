@@ -15,8 +15,8 @@ namespace bowg {
 enum class FileKind {
   kVocabulary,  ///< vocabulary trees of every format (also their decompressed text)
   kDatabase,    ///< saved detector databases
-  kImage,       ///< image files (the pixel limit is checked separately)
-  kText,        ///< configs, ground truth, odometry, intrinsics, patterns, masks
+  kImage,       ///< image files and feature masks (pixels are limited separately)
+  kText,        ///< configs, ground truth, odometry, intrinsics, patterns
 };
 
 /// The limit of one kind: default, or the environment variable's value in
@@ -44,6 +44,9 @@ std::string formatBytes(std::uint64_t bytes);
 /// replaces "is <size>" for limits on what a file decompresses to.
 std::string limitMessage(FileKind kind, const std::string& path, const std::string& what_size,
                          const FileLimit& limit);
+/// The same with `label` ("ground-truth file") in place of the kind's name.
+std::string limitMessage(const std::string& label, const std::string& path,
+                         const std::string& what_size, const FileLimit& limit);
 
 /// An open regular file, closed with this object.
 class BoundedFile {
@@ -51,7 +54,9 @@ class BoundedFile {
   /// Opens `path` read-only without blocking and refuses (IoError naming the
   /// path and the reason) a missing or unreadable file, a FIFO, a device, a
   /// directory, a socket, and a file larger than fileLimit(kind).
-  BoundedFile(const std::string& path, FileKind kind);
+  /// `label` names the file in messages ("ground-truth file"); empty:
+  /// fileKindName(kind).
+  BoundedFile(const std::string& path, FileKind kind, const std::string& label = std::string());
   ~BoundedFile();
   BoundedFile(BoundedFile&& other) noexcept;
   BoundedFile(const BoundedFile&) = delete;
@@ -74,11 +79,13 @@ class BoundedFile {
  private:
   std::string path_;
   FileKind kind_;
+  std::string label_;
   std::uint64_t size_ = 0;
   int fd_ = -1;
 };
 
 /// The whole file, bounded as above.
-std::string readBoundedFile(const std::string& path, FileKind kind);
+std::string readBoundedFile(const std::string& path, FileKind kind,
+                            const std::string& label = std::string());
 
 }  // namespace bowg

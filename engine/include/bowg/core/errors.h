@@ -26,4 +26,9 @@ class InvalidParameter : public std::invalid_argument {
   using std::invalid_argument::invalid_argument;
 };
 
+/// A number for a message, as a person reads it: at most 6 significant
+/// digits ("%g"), so that a corrupt value such as -1e300 does not print as
+/// 300 digits and -1e-9 does not print as "-0.000000".
+std::string formatNumber(double value);
+
 }  // namespace bowg

@@ -19,7 +19,8 @@
 namespace bowg {
 
 struct TrainingOptions {
-  /// k: branching factor (children per node), >= 2. Paper: 10.
+  /// k: branching factor (children per node), in [2, 1000] (what every
+  /// vocabulary format loads). Paper: 10.
   int k = 10;
   /// L: depth of the tree (levels below the root), >= 1. Paper: 6.
   int L = 6;

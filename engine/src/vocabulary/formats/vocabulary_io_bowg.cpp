@@ -157,41 +157,63 @@ class ChunkHasher {
   std::thread thread_;
 };
 
-}  // namespace
+struct Header {
+  char bytes[kHeaderSize];
+  std::uint32_t k = 0, L = 0, weighting = 0, scoring = 0;
+  std::uint64_t node_count = 0, word_count = 0;
+};
 
-Vocabulary loadBowg(const std::string& path) {
-  std::uint64_t file_size = 0;
-  const Fd fd = openRegularFile(path, &file_size);
+// The header, checked on its own and against the file's length before any
+// allocation.
+Header readHeader(const BoundedFile& file) {
+  const std::string& path = file.path();
+  const std::uint64_t file_size = file.size();
   if (file_size < kHeaderSize + 8) {
     fail(path, "truncated: " + std::to_string(file_size) + " bytes, shorter than the header");
   }
-  char header[kHeaderSize];
-  readFully(fd.get(), header, kHeaderSize, 0, path);
-  if (std::memcmp(header, kBowgMagic, 8) != 0) fail(path, "not a .bowgvoc file (bad magic)");
-  ByteReader r(path, header, kHeaderSize);
+  Header h;
+  readFully(file.fd(), h.bytes, kHeaderSize, 0, path);
+  if (std::memcmp(h.bytes, kBowgMagic, 8) != 0) fail(path, "not a .bowgvoc file (bad magic)");
+  ByteReader r(path, h.bytes, kHeaderSize);
   r.u64("magic");
   const std::uint32_t version = r.u32("version");
-  const std::uint32_t k = r.u32("k");
-  const std::uint32_t L = r.u32("L");
-  const std::uint32_t weighting = r.u32("weighting");
-  const std::uint32_t scoring = r.u32("scoring");
+  h.k = r.u32("k");
+  h.L = r.u32("L");
+  h.weighting = r.u32("weighting");
+  h.scoring = r.u32("scoring");
   const std::uint32_t record_size = r.u32("record size");
-  const std::uint64_t node_count = r.u64("node count");
-  const std::uint64_t word_count = r.u64("word count");
+  h.node_count = r.u64("node count");
+  h.word_count = r.u64("word count");
   if (version != kVersion) {
     fail(path, "unsupported .bowgvoc version " + std::to_string(version) + " (this build reads " +
                    std::to_string(kVersion) + ")");
   }
   if (record_size != kRecordSize)
     fail(path, "node record size " + std::to_string(record_size) + " != 64");
-  // Sizes against the file length before any allocation.
-  if (node_count < 2 || node_count > (file_size - kHeaderSize - 8) / kRecordSize ||
-      kHeaderSize + node_count * kRecordSize + 8 != file_size) {
-    fail(path, "node count " + std::to_string(node_count) + " does not match the file size " +
+  // The ranges every other format's loader enforces: they bound the counts.
+  checkHeader(path, h.k, h.L, h.scoring, h.weighting);
+  if (h.node_count < 2 || h.node_count > (file_size - kHeaderSize - 8) / kRecordSize ||
+      kHeaderSize + h.node_count * kRecordSize + 8 != file_size) {
+    fail(path, "node count " + std::to_string(h.node_count) + " does not match the file size " +
                    std::to_string(file_size) + " (truncated or corrupt)");
   }
-  if (word_count >= node_count)
-    fail(path, "word count " + std::to_string(word_count) + " >= node count");
+  if (h.node_count - 1 > maxTreeNodes(h.k, h.L)) {
+    fail(path, "node count " + std::to_string(h.node_count) + " is more than a tree with k = " +
+                   std::to_string(h.k) + ", L = " + std::to_string(h.L) + " can have");
+  }
+  if (h.word_count >= h.node_count)
+    fail(path, "word count " + std::to_string(h.word_count) + " >= node count");
+  return h;
+}
+
+}  // namespace
+
+Vocabulary loadBowg(const std::string& path) {
+  const BoundedFile file(path, FileKind::kVocabulary);
+  const Header h = readHeader(file);
+  const char* header = h.bytes;
+  const std::uint32_t k = h.k, L = h.L, weighting = h.weighting, scoring = h.scoring;
+  const std::uint64_t node_count = h.node_count, word_count = h.word_count;
 
   // The block is the file checksum's tail and, with its reserved words zero,
   // the fingerprint's records: it is read in chunks that stay in the cache
@@ -212,7 +234,7 @@ Vocabulary loadBowg(const std::string& path) {
     for (std::size_t done = 0, c = 0; done < count; ++c) {
       std::vector<Node>& chunk = hasher.buffer(c);
       const std::size_t n = std::min(chunk.size(), count - done);
-      readFully(fd.get(), chunk.data(), n * kRecordSize, kHeaderSize + done * kRecordSize, path);
+      readFully(file.fd(), chunk.data(), n * kRecordSize, kHeaderSize + done * kRecordSize, path);
       hasher.publish(c, n);
       for (std::size_t i = 0; i < n && first_bad_reserved == count; ++i) {
         // The reserved word sits in Node's padding; it must be zero in files.
@@ -227,7 +249,7 @@ Vocabulary loadBowg(const std::string& path) {
     hasher.finish();
   }
   unsigned char stored_bytes[8];
-  readFully(fd.get(), stored_bytes, 8, kHeaderSize + count * kRecordSize, path);
+  readFully(file.fd(), stored_bytes, 8, kHeaderSize + count * kRecordSize, path);
   std::uint64_t stored = 0;
   for (int i = 7; i >= 0; --i) stored = (stored << 8) | stored_bytes[i];
   if (sum.value() != stored) fail(path, "checksum mismatch (the file is corrupt)");

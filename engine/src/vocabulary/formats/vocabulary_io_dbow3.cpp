@@ -15,14 +15,32 @@ namespace bowg {
 namespace vocabulary_io {
 
 namespace {
-// Smallest possible node record (a zero-byte descriptor): bounds nnodes.
-const std::size_t kMinRecord = 4 + 4 + 8 + 12;
-const std::size_t kRecord = kMinRecord + 32;
+// magic, compressed flag, node count, k, L, scoring, weighting.
+const std::size_t kHeaderSize = 8 + 1 + 4 + 16;
+// A node record with the only descriptor we read (1x32 CV_8U).
+const std::uint64_t kRecord = 4 + 4 + 8 + 12 + 32;
+const std::uint64_t kWordRecord = 8;
 }  // namespace
 
-Vocabulary loadDbow3Binary(const std::string& path) {
-  const std::string data = readFile(path);
-  ByteReader r(path, data.data(), data.size());
+namespace {
+
+struct Header {
+  std::uint32_t nnodes = 0;
+  std::int32_t k = 0, L = 0, scoring = 0, weighting = 0;
+};
+
+// The header, checked against the file size before the body is read: the
+// body is read only when the node count fits the bytes that follow.
+Header readHeader(BoundedFile* file) {
+  const std::string& path = file->path();
+  // Magic, flag and node count decide whether the rest is worth a look.
+  char bytes[kHeaderSize];
+  const std::size_t kFlagsEnd = 13;
+  if (file->size() < kFlagsEnd) {
+    fail(path, "truncated: " + std::to_string(file->size()) + " bytes, shorter than the header");
+  }
+  file->readExactly(bytes, kFlagsEnd);
+  ByteReader r(path, bytes, kHeaderSize);
   if (r.u64("magic") != kDbow3Magic) fail(path, "not a DBoW3 binary vocabulary (bad magic)");
   const std::uint8_t compressed = r.u8("compressed flag");
   if (compressed > 1) fail(path, "invalid compressed flag " + std::to_string(compressed));
@@ -31,16 +49,42 @@ Vocabulary loadDbow3Binary(const std::string& path) {
          "QuickLZ-compressed DBoW3 vocabularies are not supported; re-save it uncompressed "
          "with DBoW3 (Vocabulary::save(file, false)) or as YAML");
   }
-  const std::uint32_t nnodes = r.u32("node count");
-  if (nnodes < 2) fail(path, "the vocabulary has no nodes");
-  if (nnodes - 1 > r.remaining() / kMinRecord) {
-    fail(path, "node count " + std::to_string(nnodes) +
-                   " exceeds what the file can hold (truncated or corrupt)");
+  Header h;
+  h.nnodes = r.u32("node count");
+  if (file->size() < kHeaderSize) {
+    fail(path, "truncated: " + std::to_string(file->size()) + " bytes, shorter than the " +
+                   std::to_string(kHeaderSize) + "-byte header");
   }
-  const std::int32_t k = r.i32("k");
-  const std::int32_t L = r.i32("L");
-  const std::int32_t scoring = r.i32("scoring");
-  const std::int32_t weighting = r.i32("weighting");
+  file->readExactly(bytes + kFlagsEnd, kHeaderSize - kFlagsEnd);
+  h.k = r.i32("k");
+  h.L = r.i32("L");
+  h.scoring = r.i32("scoring");
+  h.weighting = r.i32("weighting");
+  checkHeader(path, h.k, h.L, h.scoring, h.weighting);
+  if (h.nnodes < 2) fail(path, "the vocabulary has no nodes");
+  // Every record we accept holds a 32-byte descriptor; a word count and at
+  // most one word per node follow: the body's size lies between bounds the
+  // node count sets.
+  const std::uint64_t body = file->size() - kHeaderSize;
+  const std::uint64_t nodes = h.nnodes - 1;
+  if (nodes > maxTreeNodes(h.k, h.L) || body < 4 + nodes * kRecord ||
+      body > 4 + nodes * (kRecord + kWordRecord)) {
+    fail(path, "node count " + std::to_string(h.nnodes) + " does not fit the file size (" +
+                   std::to_string(file->size()) + " bytes) or a tree with k = " +
+                   std::to_string(h.k) + ", L = " + std::to_string(h.L) +
+                   " (truncated or corrupt)");
+  }
+  return h;
+}
+
+}  // namespace
+
+Vocabulary loadDbow3Binary(const std::string& path) {
+  BoundedFile file(path, FileKind::kVocabulary);
+  const Header h = readHeader(&file);
+  const std::uint32_t nnodes = h.nnodes;
+  const std::string data = file.readRest();
+  ByteReader r(path, data.data(), data.size());
   std::vector<ForeignNode> nodes(nnodes - 1);
   for (ForeignNode& f : nodes) {
     f.id = r.u32("node id");
@@ -68,7 +112,7 @@ Vocabulary loadDbow3Binary(const std::string& path) {
   }
   if (r.remaining() != 0)
     fail(path, std::to_string(r.remaining()) + " unexpected bytes after the words");
-  return buildFromForeign(path, k, L, scoring, weighting, nodes, words);
+  return buildFromForeign(path, h.k, h.L, h.scoring, h.weighting, nodes, words);
 }
 
 void saveDbow3Binary(const Vocabulary& v, const std::string& path) {

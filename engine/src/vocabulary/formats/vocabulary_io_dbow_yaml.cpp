@@ -14,9 +14,13 @@
 // Read with this project's tokenizer (yaml_tokens.h), not cv::FileStorage,
 // whose parser never returns on some malformed files; written with
 // cv::FileStorage.
+#include <unistd.h>
 #include <zlib.h>
 
+#include <algorithm>
+#include <cerrno>
 #include <cstdlib>
+#include <cstring>
 #include <opencv2/core.hpp>
 #include <string>
 #include <utility>
@@ -92,28 +96,60 @@ bool parseDescriptor(const std::string& s, Descriptor* d) {
   return false;
 }
 
+// Decompressed bytes per compressed byte beyond which a .gz is refused as
+// a bomb, not a vocabulary. Real vocabularies inflate 3.9:1 (DBoW2 k9L3
+// small_voc.yml.gz), 4.5:1 (slambook2's DBoW3 k10L5 vocabulary.yml.gz);
+// the default vocabulary saved gzipped inflates 3.9:1 (DBoW2 ORB), 4.1:1
+// (DBoW3) and 5.4:1 (BRIEF bit strings, the most redundant text we write).
+// 64:1 leaves a wide margin for degenerate but honest trees, while a gzip of
+// zeros or blanks inflates about 1000:1: refused after kRatioGrace bytes, in
+// milliseconds and a few tens of MB, instead of at the decompressed limit.
+const std::uint64_t kMaxRatio = 64;
+// Below this much text the ratio is not judged: a small file's header and
+// first records may compress well by chance.
+const std::uint64_t kRatioGrace = std::uint64_t(16) << 20;
+
 // The file's text, gunzipped when it is gzip (zlib reads plain files as
-// they are). Bounded: a k = 10, L = 6 DBoW2 vocabulary is ~200 MB of YAML.
+// they are). Bounded: the file by the vocabulary limit before a byte is
+// read, its text by the same limit and by kMaxRatio while it is inflated.
 std::string readText(const std::string& path) {
-  const std::size_t kMaxBytes = std::size_t(1) << 31;
-  gzFile f = gzopen(path.c_str(), "rb");
-  if (f == nullptr) throw IoError("cannot open vocabulary file '" + path + "' for reading");
+  const BoundedFile file(path, FileKind::kVocabulary);
+  const FileLimit limit = fileLimit(FileKind::kVocabulary);
+  // gzdopen owns the descriptor it is given; `file` keeps its own.
+  const int fd = ::dup(file.fd());
+  gzFile f = fd < 0 ? nullptr : gzdopen(fd, "rb");
+  if (f == nullptr) {
+    const std::string why = std::strerror(errno);
+    if (fd >= 0) ::close(fd);
+    throw IoError("cannot read vocabulary '" + path + "': " + why);
+  }
   std::string text;
-  char buffer[1 << 16];
-  for (;;) {
-    const int got = gzread(f, buffer, sizeof(buffer));
-    if (got < 0) {
-      int code = 0;
-      const std::string why = gzerror(f, &code);
-      gzclose(f);
-      fail(path, "cannot decompress it (" + why + ")");
+  std::vector<char> buffer(1 << 16);
+  try {
+    for (;;) {
+      const int got = gzread(f, buffer.data(), static_cast<unsigned>(buffer.size()));
+      if (got < 0) {
+        int code = 0;
+        fail(path, std::string("cannot decompress it (") + gzerror(f, &code) + ")");
+      }
+      if (got == 0) break;
+      checkText(path, buffer.data(), static_cast<std::size_t>(got), text.size());
+      text.append(buffer.data(), static_cast<std::size_t>(got));
+      if (text.size() > limit.max_bytes) {
+        throw IoError("cannot read " + limitMessage(FileKind::kVocabulary, path,
+                                                    "decompresses to " + formatBytes(text.size()),
+                                                    limit));
+      }
+      const std::uint64_t consumed = static_cast<std::uint64_t>(std::max<z_off_t>(gzoffset(f), 1));
+      if (text.size() > kRatioGrace && text.size() > kMaxRatio * consumed) {
+        fail(path, "decompresses more than " + std::to_string(kMaxRatio) + ":1 (" +
+                       formatBytes(text.size()) + " from the first " + formatBytes(consumed) +
+                       "): a compression bomb, not a vocabulary");
+      }
     }
-    if (got == 0) break;
-    text.append(buffer, static_cast<std::size_t>(got));
-    if (text.size() > kMaxBytes) {
-      gzclose(f);
-      fail(path, "larger than 2 GiB of YAML: not a vocabulary this loader accepts");
-    }
+  } catch (...) {
+    gzclose(f);
+    throw;
   }
   gzclose(f);
   return text;
@@ -333,10 +369,7 @@ std::string descriptorString(const Descriptor& d, YamlFlavour flavour) {
 
 }  // namespace
 
-Vocabulary loadDbowYaml(const std::string& path) {
-  checkReadable(path);
-  return loadYaml(path);
-}
+Vocabulary loadDbowYaml(const std::string& path) { return loadYaml(path); }
 
 void saveDbowYaml(const Vocabulary& v, const std::string& path, YamlFlavour flavour) {
   AtomicFileWriter writer(path);

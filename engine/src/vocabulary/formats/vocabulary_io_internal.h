@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "bowg/core/bounded_file.h"
 #include "bowg/core/errors.h"
 #include "bowg/vocabulary/vocabulary.h"
 
@@ -16,31 +17,30 @@ namespace vocabulary_io {
 /// "<path>: <what>" as a FormatError.
 [[noreturn]] void fail(const std::string& path, const std::string& what);
 
-/// A file descriptor, closed when this goes out of scope.
-class Fd {
- public:
-  explicit Fd(int fd) : fd_(fd) {}
-  Fd(Fd&& other) noexcept : fd_(other.fd_) { other.fd_ = -1; }
-  Fd(const Fd&) = delete;
-  Fd& operator=(const Fd&) = delete;
-  Fd& operator=(Fd&&) = delete;
-  ~Fd();
-  int get() const { return fd_; }
+/// The file's bytes, refused (IoError naming the file and the reason)
+/// unless it is a regular file within the vocabulary limit
+/// (bounded_file.h, BOWG_MAX_VOCABULARY_MB).
+std::string readVocabularyFile(const std::string& path);
 
- private:
-  int fd_;
-};
+/// Refuses (FormatError) text holding a NUL byte: no text vocabulary has
+/// one, and a zero-filled or sparse file is refused at its first chunk
+/// instead of after it has been read whole. `offset`: of `data` in the text.
+void checkText(const std::string& path, const char* data, std::size_t size, std::uint64_t offset);
 
-/// Opens `path` read-only. Throws IoError naming the path when it cannot be
-/// opened or is not a regular file; `size` (optional) receives its length.
-Fd openRegularFile(const std::string& path, std::uint64_t* size = nullptr);
+/// The rest of a text vocabulary after `text` (its first bytes), read in
+/// chunks that checkText() vets as they come.
+std::string readTextRest(BoundedFile* file, std::string text);
 
-/// Reads a whole file (throws IoError with the path; FormatError if larger
-/// than `max_size`).
-std::string readFile(const std::string& path, std::uint64_t max_size = (1ull << 34));
+/// Plausibility of a foreign header: k in [2, 1000], L in [1, 100], known
+/// scoring and weighting types. Checked before a loader reads the body,
+/// since these values bound every later allocation.
+void checkHeader(const std::string& path, std::int64_t k, std::int64_t L, std::int64_t scoring,
+                 std::int64_t weighting);
 
-/// Throws IoError naming the path unless it is a readable regular file.
-void checkReadable(const std::string& path);
+/// The most non-root nodes a tree of branching k and depth L can have
+/// (k + k^2 + ... + k^L), saturated at UINT64_MAX: a file's node count above
+/// it is corrupt, whatever its size.
+std::uint64_t maxTreeNodes(std::int64_t k, std::int64_t L);
 
 /// A node as foreign formats list it: by id, with its parent's id (root = 0,
 /// not listed).

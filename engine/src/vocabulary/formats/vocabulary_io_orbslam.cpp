@@ -6,10 +6,12 @@
 // d0..d31 are the ORB descriptor bytes; words are numbered in the order
 // their leaves appear (isLeaf = 1). ORB-SLAM's reader needs every parent
 // listed before its children, which our layout guarantees.
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <utility>
 
 #include "bowg/core/atomic_file.h"
 #include "bowg/core/errors.h"
@@ -18,6 +20,9 @@
 namespace bowg {
 namespace vocabulary_io {
 namespace {
+
+// The header line "k L scoring weighting" is far shorter than this.
+const std::uint64_t kHeadBytes = 256;
 
 // A cursor over one NUL-terminated buffer that never crosses a line end
 // unless asked to.
@@ -90,7 +95,21 @@ class TextCursor {
 }  // namespace
 
 Vocabulary loadOrbSlamText(const std::string& path) {
-  const std::string text = readFile(path);
+  // The header line first (it fits the first bytes), the body only when it
+  // is plausible.
+  BoundedFile file(path, FileKind::kVocabulary);
+  std::string text(static_cast<std::size_t>(std::min<std::uint64_t>(file.size(), kHeadBytes)),
+                   '\0');
+  file.readExactly(&text[0], text.size());
+  const std::size_t eol = text.find('\n');
+  const std::string first_line = text.substr(0, eol);
+  TextCursor head(path, first_line);
+  // One statement each: the order of a call's arguments is unspecified.
+  const long head_k = head.integer("k");
+  const long head_L = head.integer("L");
+  const long head_scoring = head.integer("scoringType");
+  checkHeader(path, head_k, head_L, head_scoring, head.integer("weightingType"));
+  text = readTextRest(&file, std::move(text));
   TextCursor c(path, text);
   const long k = c.integer("k");
   const long L = c.integer("L");

@@ -12,27 +12,43 @@
 
 namespace bowg {
 namespace vocabulary_io {
+namespace {
+const std::size_t kHeaderSize = 24;
+const std::uint64_t kNodeRecord = 48, kWordRecord = 8;
+}  // namespace
 
 Vocabulary loadVinsBinary(const std::string& path) {
-  const std::string data = readFile(path);
-  ByteReader r(path, data.data(), data.size());
-  const std::int32_t k = r.i32("k");
-  const std::int32_t L = r.i32("L");
-  const std::int32_t scoring = r.i32("scoringType");
-  const std::int32_t weighting = r.i32("weightingType");
-  const std::int32_t n_nodes = r.i32("nNodes");
-  const std::int32_t n_words = r.i32("nWords");
-  if (n_nodes < 1 || n_words < 0) {
-    fail(path, "invalid counts nNodes = " + std::to_string(n_nodes) +
-                   ", nWords = " + std::to_string(n_words));
+  // The header and the file size first: a body is read only when the
+  // header's counts account for every byte of the file.
+  BoundedFile file(path, FileKind::kVocabulary);
+  char header[kHeaderSize];
+  if (file.size() < kHeaderSize) {
+    fail(path, "truncated: " + std::to_string(file.size()) + " bytes, shorter than the " +
+                   std::to_string(kHeaderSize) + "-byte header");
   }
-  const std::uint64_t expected =
-      24 + 48ull * static_cast<std::uint64_t>(n_nodes) + 8ull * static_cast<std::uint64_t>(n_words);
-  if (expected != data.size()) {
-    fail(path, "size " + std::to_string(data.size()) + " bytes does not match the header (" +
+  file.readExactly(header, kHeaderSize);
+  ByteReader h(path, header, kHeaderSize);
+  const std::int32_t k = h.i32("k");
+  const std::int32_t L = h.i32("L");
+  const std::int32_t scoring = h.i32("scoringType");
+  const std::int32_t weighting = h.i32("weightingType");
+  const std::int32_t n_nodes = h.i32("nNodes");
+  const std::int32_t n_words = h.i32("nWords");
+  checkHeader(path, k, L, scoring, weighting);
+  if (n_nodes < 1 || n_words < 0 || static_cast<std::uint64_t>(n_nodes) > maxTreeNodes(k, L)) {
+    fail(path, "invalid counts nNodes = " + std::to_string(n_nodes) +
+                   ", nWords = " + std::to_string(n_words) + " for k = " + std::to_string(k) +
+                   ", L = " + std::to_string(L));
+  }
+  const std::uint64_t expected = kHeaderSize + kNodeRecord * static_cast<std::uint64_t>(n_nodes) +
+                                 kWordRecord * static_cast<std::uint64_t>(n_words);
+  if (expected != file.size()) {
+    fail(path, "size " + std::to_string(file.size()) + " bytes does not match the header (" +
                    std::to_string(n_nodes) + " nodes, " + std::to_string(n_words) + " words need " +
                    std::to_string(expected) + "): truncated, corrupt or not a VINS vocabulary");
   }
+  const std::string data = file.readRest();
+  ByteReader r(path, data.data(), data.size());
   std::vector<ForeignNode> nodes(static_cast<std::size_t>(n_nodes));
   for (ForeignNode& f : nodes) {
     f.id = r.i32("nodeId");

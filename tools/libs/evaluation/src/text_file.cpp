@@ -1,23 +1,15 @@
 #include "bowg_evaluation/text_file.h"
 
-#include <cerrno>
-#include <cstring>
-#include <fstream>
-#include <sstream>
-
-#include "bowg/core/errors.h"
+#include "bowg/core/bounded_file.h"
 
 namespace bowg {
 namespace eval {
 
 std::string readTextFile(const std::string& path, const std::string& what) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    throw IoError("cannot read the " + what + " file " + path + ": " + std::strerror(errno));
-  }
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
+  // A regular file within BOWG_MAX_TEXT_MB (bounded_file.h): a FIFO, a
+  // device or a huge file is refused, naming the file and why, before a
+  // byte is read.
+  return readBoundedFile(path, FileKind::kText, "the " + what + " file");
 }
 
 }  // namespace eval
