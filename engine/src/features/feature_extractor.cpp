@@ -4,17 +4,18 @@
 // word-group radius s_t^(i).
 #include "bowg/features/feature_extractor.h"
 
-#include <fstream>
 #include <opencv2/features2d.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <stdexcept>
 #include <string>
 
+#include "bowg/core/bounded_file.h"
 #include "bowg/core/errors.h"
 #include "bowg/features/brief_descriptor.h"
 #include "bowg/features/brief_pattern.h"
 #include "bowg/features/descriptor_conversion.h"
+#include "bowg/features/image_decoding.h"
 #include "bowg/features/orb_descriptor.h"
 #include "bowg/features/orientation.h"
 
@@ -26,10 +27,22 @@ namespace {
 const int kGfttGradientSize = 3;
 const double kHarrisK = 0.04;
 
-// Usable pixels = non-zero in any channel, as 0/255 CV_8UC1.
-cv::Mat loadMask(const std::string& path) {
-  if (!std::ifstream(path).good()) throw IoError("cannot open feature mask image " + path);
-  const cv::Mat raw = cv::imread(path, cv::IMREAD_UNCHANGED);
+// Usable pixels = non-zero in any channel, as 0/255 CV_8UC1. Read like any
+// input image: BoundedFile (no FIFO, device or huge file), then the header
+// check (format, truncation, max_image_pixels) before decoding.
+cv::Mat loadMask(const std::string& path, const FeatureOptions& options) {
+  const std::string bytes = readBoundedFile(path, FileKind::kImage);
+  const auto* data = reinterpret_cast<const std::uint8_t*>(bytes.data());
+  const ImageCheck check = checkEncodedImage(data, bytes.size(), options);
+  if (!check.ok()) throw FormatError("feature mask " + path + ": " + check.message());
+  const cv::Mat encoded(1, static_cast<int>(bytes.size()), CV_8UC1,
+                        const_cast<std::uint8_t*>(data));
+  cv::Mat raw;
+  try {
+    raw = cv::imdecode(encoded, cv::IMREAD_UNCHANGED);
+  } catch (const cv::Exception&) {
+    raw = cv::Mat();
+  }
   if (raw.empty()) {
     throw FormatError("feature mask " + path + " is not an image OpenCV can decode");
   }
@@ -119,7 +132,7 @@ FeatureExtractor::FeatureExtractor(const FeatureOptions& options) : options_(opt
   if (options_.descriptor == FeatureOptions::DescriptorType::kBrief) {
     brief_pattern_ = loadBriefPattern(options_.brief_pattern_path);
   }
-  if (!options_.mask_path.empty()) mask_ = loadMask(options_.mask_path);
+  if (!options_.mask_path.empty()) mask_ = loadMask(options_.mask_path, options_);
 }
 
 ImageFeatures FeatureExtractor::extract(const cv::Mat& image) const {

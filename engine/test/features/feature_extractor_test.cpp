@@ -3,6 +3,7 @@
 #include "bowg/features/feature_extractor.h"
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <cmath>
 #include <fstream>
@@ -355,6 +356,18 @@ TEST(FeatureExtractor, BadMaskAndPatternFilesNameThePath) {
   o.mask_path = outPath("corrupt_mask.png");
   std::ofstream(o.mask_path) << "not a png";
   expectThrowContaining<FormatError>([&] { FeatureExtractor{o}; }, o.mask_path);
+  o.mask_path = outPath("mask_cut.jpg");  // a JPEG cut short: refused from its header
+  {
+    std::vector<unsigned char> jpeg;
+    ASSERT_TRUE(cv::imencode(".jpg", cv::Mat(240, 320, CV_8UC1, cv::Scalar(255)), jpeg));
+    jpeg.resize(jpeg.size() / 2);
+    std::ofstream(o.mask_path, std::ios::binary)
+        .write(reinterpret_cast<const char*>(jpeg.data()), static_cast<std::streamsize>(jpeg.size()));
+  }
+  expectThrowContaining<FormatError>([&] { FeatureExtractor{o}; }, "truncated");
+  o.mask_path = outPath("mask_dir.png");  // a directory: refused without reading
+  ::mkdir(o.mask_path.c_str(), 0755);
+  expectThrowContaining<IoError>([&] { FeatureExtractor{o}; }, o.mask_path);
   o.mask_path = outPath("mask_16bit.png");
   ASSERT_TRUE(cv::imwrite(o.mask_path, cv::Mat(240, 320, CV_16UC1, cv::Scalar(1000))));
   expectThrowContaining<FormatError>([&] { FeatureExtractor{o}; }, o.mask_path);
