@@ -17,7 +17,8 @@ repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 export PATH="/usr/bin:$PATH"
 seconds="${1:-60}"
 dir="${BOWG_FUZZ_DIR:-$repo/.ws/fuzz}"
-targets="${BOWG_FUZZ_TARGETS:-vocabulary database brief_pattern config ground_truth image features_message}"
+all_targets="vocabulary database brief_pattern config ground_truth image features_message"
+targets="${BOWG_FUZZ_TARGETS:-$all_targets}"
 case "$seconds" in ''|*[!0-9]*) echo "fuzz.sh: seconds must be a whole number" >&2; exit 2 ;; esac
 if [ "${BOWG_SKIP_DEPS:-0}" != 1 ]; then bash "$repo/scripts/install_deps.sh"; fi
 

@@ -59,7 +59,7 @@ for t in "${asan_tests[@]}"; do
   fi
 done
 
-echo "== libFuzzer: every file loader, ${BOWG_FUZZ_SECONDS:-30} s each (scripts/fuzz.sh)"
+echo "== libFuzzer: every file loader, image decoding and the features input, ${BOWG_FUZZ_SECONDS:-30} s each (scripts/fuzz.sh)"
 fuzz_failed=0
 BOWG_SKIP_DEPS=1 BOWG_FUZZ_DIR="$ws/fuzz" bash "$repo/scripts/fuzz.sh" "${BOWG_FUZZ_SECONDS:-30}" \
   || fuzz_failed=1

@@ -147,7 +147,7 @@ TEST(Diagnostics, AWarningClearsWhenItsCauseStopsForTheWindow) {
     running = diagnostics.waitFor(d.name(), DiagnosticStatus::OK, "running", 0.1, &last);
   }
   EXPECT_TRUE(running) << "level " << int(last.level) << ": " << last.message;
-  EXPECT_EQ(diagnostics.value(d.name(), "dropped frames (unsupported encoding)"), "1");
+  EXPECT_EQ(diagnostics.value(d.name(), "dropped images (unsupported_format)"), "1");
 }
 
 TEST(Diagnostics, StampsGoingBackAreAWarningThatSaysWhatToDo) {

@@ -34,10 +34,17 @@ void checkLayout(const FeatureArrays& a, const FeatureOptions& options) {
 }
 
 // Later stages (word groups, RANSAC, the database's packed positions)
-// compute with these values: a NaN or an infinity would poison them.
-void checkKeypoint(const Keypoint& k, std::size_t i) {
+// compute with these values: a NaN, an infinity or a position far outside
+// the image would poison them.
+void checkKeypoint(const Keypoint& k, std::size_t i, const FeatureArrays& a) {
   if (!std::isfinite(k.x) || !std::isfinite(k.y)) {
     refuse("keypoint " + std::to_string(i) + " has a non-finite position");
+  }
+  if (k.x < 0.f || k.y < 0.f || k.x > static_cast<float>(a.image_width) ||
+      k.y > static_cast<float>(a.image_height)) {
+    refuse("keypoint " + std::to_string(i) + " at (" + std::to_string(k.x) + ", " +
+           std::to_string(k.y) + ") lies outside the " + std::to_string(a.image_width) + " x " +
+           std::to_string(a.image_height) + " image");
   }
   if (!std::isfinite(k.size) || k.size < 0.f) {
     refuse("keypoint " + std::to_string(i) + " has a size that is negative or not finite");
@@ -65,7 +72,7 @@ ImageFeatures featuresFromArrays(const FeatureArrays& a, const FeatureOptions& o
     k.angle = a.angle[i];
     k.response = a.response[i];
     k.octave = a.octave[i];
-    checkKeypoint(k, i);
+    checkKeypoint(k, i, a);
     f.descriptors[i] = descriptorFromBytes(&a.descriptors[i * kDescriptorBytes]);
   }
   return f;

@@ -68,6 +68,12 @@ TEST(FeatureArrays, UnusableValuesAndOversizeImagesAreRefused) {
   a.y[0] = inf;
   EXPECT_NE(refusal(a).find("keypoint 0 has a non-finite position"), std::string::npos);
   a = twoFeatures();
+  a.x[1] = -5e25f;  // far outside: the word-group grid's cell would overflow
+  EXPECT_NE(refusal(a).find("keypoint 1 at"), std::string::npos) << refusal(a);
+  a = twoFeatures();
+  a.y[0] = 240.5f;
+  EXPECT_NE(refusal(a).find("outside the 320 x 240 image"), std::string::npos) << refusal(a);
+  a = twoFeatures();
   a.size[1] = nan;
   EXPECT_NE(refusal(a).find("keypoint 1"), std::string::npos);
   a = twoFeatures();

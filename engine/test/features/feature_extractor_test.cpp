@@ -18,6 +18,7 @@
 #include "bowg/features/brief_pattern.h"
 #include "bowg/features/descriptor_conversion.h"
 #include "bowg/features/orb_descriptor.h"
+#include "encoded_test_images.h"
 #include "feature_test_images.h"
 
 namespace bowg {
@@ -357,13 +358,7 @@ TEST(FeatureExtractor, BadMaskAndPatternFilesNameThePath) {
   std::ofstream(o.mask_path) << "not a png";
   expectThrowContaining<FormatError>([&] { FeatureExtractor{o}; }, o.mask_path);
   o.mask_path = outPath("mask_cut.jpg");  // a JPEG cut short: refused from its header
-  {
-    std::vector<unsigned char> jpeg;
-    ASSERT_TRUE(cv::imencode(".jpg", cv::Mat(240, 320, CV_8UC1, cv::Scalar(255)), jpeg));
-    jpeg.resize(jpeg.size() / 2);
-    std::ofstream(o.mask_path, std::ios::binary)
-        .write(reinterpret_cast<const char*>(jpeg.data()), static_cast<std::streamsize>(jpeg.size()));
-  }
+  test::writeBytes(o.mask_path, test::truncatedJpeg());
   expectThrowContaining<FormatError>([&] { FeatureExtractor{o}; }, "truncated");
   o.mask_path = outPath("mask_dir.png");  // a directory: refused without reading
   ::mkdir(o.mask_path.c_str(), 0755);

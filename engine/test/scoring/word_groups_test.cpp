@@ -123,6 +123,17 @@ TEST(WordGroups, BadKeypointsThrow) {
   EXPECT_THROW(buildWordGroups(fourKeypoints(), {1, 2, 3, 4}, bad), std::invalid_argument);
 }
 
+// A point some 10^25 px away (finite, from a bad upstream feature) makes the
+// grid's cells huge; the cells of the near points must still be whole
+// numbers on the grid (a far point's cell number does not fit an integer).
+TEST(WordGroups, FarAwayPointsKeepTheGridSound) {
+  const std::vector<Keypoint> kps{kp(0, 0, 4), kp(1, 0, 4), kp(-5e25f, 340.f, 30.f),
+                                  kp(2, 1, 0), kp(300, 200, 500)};
+  const std::vector<WordId> words{1, 2, 3, 4, 5};
+  const GroupVector g = buildWordGroups(kps, words, WordGroupOptions());
+  EXPECT_EQ(g, bruteForceGroups(kps, words, 1.0));
+}
+
 TEST(WordGroups, GridSearchMatchesAllPairs) {
   // 600 keypoints of mixed sizes in a 640x480 image, a few words repeated.
   std::mt19937 rng(42);

@@ -138,7 +138,9 @@ std::vector<FrameInput> loadFrames(const Args& a, const FeatureExtractor& extrac
       continue;
     }
     const bowg_ros::BagImage image = bowg_ros::readBagImage(m, a.bag, extractor.options());
-    if (!image.check.ok()) skipImage("frame " + std::to_string(frames.size()), image.check, &skipped);
+    if (!image.check.ok()) {
+      skipImage("frame " + std::to_string(frames.size()), image.check, &skipped);
+    }
     add(image.grey, image.stamp.toSec(), intrinsics);
     frames.back().odometer = odometer;
     bar(frames.size(), total);

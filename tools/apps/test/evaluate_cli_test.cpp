@@ -160,8 +160,9 @@ TEST_F(EvaluateCli, BadCompressedBagImagesAreSkippedWithTheFolderReasons) {
       << readAll(kDir + "/damaged_bag.log");
   const std::string log = readAll(kDir + "/damaged_bag.log");
   for (const char* expected :
-       {"frame 5 skipped (empty: ", "frame 9 skipped (truncated: JPEG without its end-of-image",
-        "frame 12 skipped (too_large: PNG 30000 x 30000",
+       {"frame 5 skipped (empty: bag '", "frame 9 skipped (truncated: bag '",
+        "at 109.000000: JPEG without its end-of-image marker", "frame 12 skipped (too_large: bag '",
+        "at 112.000000: PNG 30000 x 30000 = 900000000 pixels",
         "3 of 20 images skipped (1 empty, 1 truncated, 1 too_large)"}) {
     EXPECT_NE(log.find(expected), std::string::npos) << expected << "\n" << log;
   }

@@ -23,8 +23,9 @@ struct FeatureArrays {
 
 /// The features, or std::invalid_argument naming the field: arrays of
 /// different lengths, a descriptor block that is not N x 32 bytes, a zero
-/// image size or one over options.max_image_pixels, a position, size,
-/// angle or response that is not a finite number, a negative size.
+/// image size or one over options.max_image_pixels, a position outside the
+/// image, a position, size, angle or response that is not a finite number,
+/// a negative size.
 ImageFeatures featuresFromArrays(const FeatureArrays& arrays, const FeatureOptions& options);
 
 }  // namespace bowg
