@@ -35,6 +35,7 @@
 #include <std_srvs/Trigger.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <limits>
@@ -112,6 +113,9 @@ struct Stats {
   /// Images refused, by reason (bowg/features/image_check.h): the same
   /// reasons the offline tools count.
   bowg::ImageProblemCounts bad_images;
+  /// When a refusal of each reason was last logged: each reason is logged
+  /// at most every 5 s, a burst of one does not hide another.
+  std::array<Clock::time_point, bowg::kImageProblemCount> bad_image_logged{};
   std::size_t errors = 0;
   std::size_t time_jump_resets = 0;
   std::string last_stamp_rejection;  ///< the latest stamp-order skip, for the diagnostics

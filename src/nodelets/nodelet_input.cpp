@@ -80,13 +80,17 @@ void LoopDetectorNodelet::compressedCallback(const sensor_msgs::CompressedImageC
 }
 
 void LoopDetectorNodelet::dropBadImage(const bowg::ImageCheck& check, const ros::Time& stamp) {
+  bool log;
   {
     // Counted in the diagnostics whatever the throttled log shows.
     std::lock_guard<std::mutex> lock(stats_mutex_);
     stats_.bad_images.add(check.problem);
     noteRejectedFrame();
+    Clock::time_point& logged = stats_.bad_image_logged[static_cast<std::size_t>(check.problem)];
+    log = stats_.last_frame - logged >= std::chrono::seconds(5);
+    if (log) logged = stats_.last_frame;
   }
-  NODELET_ERROR_THROTTLE(5.0, "image at %.6f dropped: %s", stamp.toSec(), check.message().c_str());
+  if (log) NODELET_ERROR("image at %.6f dropped: %s", stamp.toSec(), check.message().c_str());
 }
 
 void LoopDetectorNodelet::featuresCallback(const KeyframeFeatures::ConstPtr& msg) {
