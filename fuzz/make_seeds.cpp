@@ -2,8 +2,8 @@
 // of every format the loaders read, made by the project's own writers, so
 // the fuzzer starts from inputs that reach deep into each loader.
 //   bowg_fuzz_seeds <corpus folder>
-// creates <folder>/<target>/ for vocabulary, database, brief_pattern, config
-// and ground_truth.
+// creates <folder>/<target>/ for vocabulary, database, brief_pattern, config,
+// ground_truth, image (every image format read) and features_message.
 #include <sys/stat.h>
 
 #include <cerrno>
@@ -11,10 +11,13 @@
 #include <fstream>
 #include <iterator>
 #include <string>
+#include <vector>
 
 #include "bowg/core/errors.h"
 #include "bowg/detection/loop_detector.h"
 #include "bowg/vocabulary/vocabulary_io.h"
+#include "encoded_test_images.h"
+#include "feature_bytes.h"
 #include "seed_world.h"
 
 namespace {
@@ -46,7 +49,8 @@ int main(int argc, char** argv) {
   const std::string root = argv[1];
   try {
     makeDir(root);
-    for (const char* t : {"vocabulary", "database", "brief_pattern", "config", "ground_truth"}) {
+    for (const char* t : {"vocabulary", "database", "brief_pattern", "config", "ground_truth",
+                          "image", "features_message"}) {
       makeDir(root + "/" + t);
     }
     // Vocabularies: a small tree in every format; the first byte of a
@@ -88,6 +92,25 @@ int main(int argc, char** argv) {
     // Ground truth.
     writeAll(root + "/ground_truth/gt.txt",
              "# query: matches\n217: 0,1,2,3\n218: 0,1,2\n# comment\n300: 12\n");
+    // Images: every format read, grey and colour, and a JPEG cut short.
+    const cv::Mat grey = bowg::test::noiseImage(64, 48);
+    cv::Mat colour;
+    cv::merge(std::vector<cv::Mat>{grey, grey, grey}, colour);
+    for (const char* ext : {".png", ".jpg", ".bmp", ".pgm"}) {
+      const std::vector<std::uint8_t> bytes = bowg::test::encodeImage(grey, ext);
+      writeAll(root + "/image/grey" + ext, std::string(bytes.begin(), bytes.end()));
+    }
+    for (const char* ext : {".png", ".jpg", ".ppm"}) {
+      const std::vector<std::uint8_t> bytes = bowg::test::encodeImage(colour, ext);
+      writeAll(root + "/image/colour" + ext, std::string(bytes.begin(), bytes.end()));
+    }
+    const std::vector<std::uint8_t> cut = bowg::test::truncatedJpeg();
+    writeAll(root + "/image/truncated.jpg", std::string(cut.begin(), cut.end()));
+    // Upstream features: keyframes of the seed corridor.
+    for (int i : {0, 10}) {
+      writeAll(root + "/features_message/keyframe_" + std::to_string(i),
+               bowg::fuzz::featureBytes(bowg::fuzz::seedKeyframe(i).features));
+    }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "bowg_fuzz_seeds: %s\n", e.what());
     return 1;

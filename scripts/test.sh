@@ -41,25 +41,28 @@ echo "== ThreadSanitizer: the nodelet's threads (live tuning, persistence, servi
 tsan_failed=0
 bash "$repo/scripts/check_thread_sanitizer.sh" || tsan_failed=1
 
-echo "== AddressSanitizer/UBSan: file loaders and persistence on corrupt input"
+echo "== AddressSanitizer/UBSan: file loaders, persistence, image headers and upstream features on bad input"
 asan_dir="$ws/asan"
 cmake -S "$repo/engine" -B "$asan_dir" -DBOWG_SANITIZE=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DBOWG_ENGINE_BENCHMARKS=OFF -DCMAKE_CXX_STANDARD=14 > "$asan_dir.log" 2>&1 \
   || { cat "$asan_dir.log"; exit 1; }
 asan_tests=(bowg_vocabulary_io_test bowg_vocabulary_io_bad_input_test bowg_detector_file_test
-  bowg_detector_file_bad_input_test bowg_brief_pattern_test)
+  bowg_detector_file_bad_input_test bowg_brief_pattern_test bowg_image_header_test
+  bowg_image_decoding_test bowg_feature_arrays_test bowg_word_groups_test)
 make -C "$asan_dir" -j"${BOWG_JOBS:-$(nproc)}" "${asan_tests[@]}" >> "$asan_dir.log" 2>&1 \
   || { tail -n 50 "$asan_dir.log"; exit 1; }
 asan_failed=0
 for t in "${asan_tests[@]}"; do
-  if ASAN_OPTIONS=detect_leaks=1 "$asan_dir/$t" --gtest_brief=1 > "$asan_dir/$t.log" 2>&1; then
+  # UBSan stops at its first report, so that undefined behaviour fails the test.
+  if ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 \
+      "$asan_dir/$t" --gtest_brief=1 > "$asan_dir/$t.log" 2>&1; then
     echo "asan: $t ok"
   else
     echo "asan: $t FAILED"; tail -n 40 "$asan_dir/$t.log"; asan_failed=$((asan_failed + 1))
   fi
 done
 
-echo "== libFuzzer: every file loader, ${BOWG_FUZZ_SECONDS:-30} s each (scripts/fuzz.sh)"
+echo "== libFuzzer: every file loader, image decoding and the features input, ${BOWG_FUZZ_SECONDS:-30} s each (scripts/fuzz.sh)"
 fuzz_failed=0
 BOWG_SKIP_DEPS=1 BOWG_FUZZ_DIR="$ws/fuzz" bash "$repo/scripts/fuzz.sh" "${BOWG_FUZZ_SECONDS:-30}" \
   || fuzz_failed=1

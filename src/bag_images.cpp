@@ -18,23 +18,27 @@ namespace {
 
 }  // namespace
 
-BagImage readBagImage(const rosbag::MessageInstance& m, const std::string& bag_path) {
+BagImage readBagImage(const rosbag::MessageInstance& m, const std::string& bag_path,
+                      const bowg::FeatureOptions& options) {
   BagImage out;
   try {
     if (const sensor_msgs::Image::ConstPtr img = m.instantiate<sensor_msgs::Image>()) {
-      out.grey = greyFromImage(*img).clone();  // the message dies with this scope
       out.stamp = img->header.stamp;
+      out.grey = greyFromImage(*img, options).clone();  // the message dies with this scope
       return out;
     }
     if (const sensor_msgs::CompressedImage::ConstPtr c =
             m.instantiate<sensor_msgs::CompressedImage>()) {
-      out.grey = greyFromCompressed(*c);
       out.stamp = c->header.stamp;
+      out.grey = greyFromCompressed(*c, options);
       return out;
     }
   } catch (const BadImage& e) {
-    throw bowg::FormatError("bag '" + bag_path + "', topic " + m.getTopic() + " at " +
-                            std::to_string(m.getTime().toSec()) + ": " + e.what());
+    out.grey = cv::Mat();
+    out.check = bowg::imageRefusal(e.problem(), "bag '" + bag_path + "', topic " + m.getTopic() +
+                                                    " at " + std::to_string(m.getTime().toSec()) +
+                                                    ": " + e.check().detail);
+    return out;
   }
   notAnImage(m, bag_path);
 }

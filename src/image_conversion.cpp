@@ -1,8 +1,9 @@
 // Incoming image -> 8-bit grey (see image_conversion.h).
 #include "bowg_ros/image_conversion.h"
 
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+
+#include "bowg/features/image_decoding.h"
 
 namespace bowg_ros {
 namespace {
@@ -45,35 +46,56 @@ const std::string& supportedEncodings() {
   return list;
 }
 
-std::string imageLayoutProblem(std::uint32_t width, std::uint32_t height, std::uint32_t step,
-                               std::size_t data_size, const std::string& encoding) {
+bowg::ImageCheck checkImageLayout(std::uint32_t width, std::uint32_t height, std::uint32_t step,
+                                  std::size_t data_size, const std::string& encoding) {
   const EncodingInfo* e = find(encoding);
-  if (!e) return "unsupported encoding '" + encoding + "'";
-  if (width == 0 || height == 0) {
-    return "empty image (" + std::to_string(width) + " x " + std::to_string(height) + ")";
+  if (!e) {
+    return bowg::imageRefusal(bowg::ImageProblem::kUnsupportedFormat,
+                              "encoding '" + encoding + "' (supported: " + supportedEncodings() +
+                                  ")");
   }
-  const std::uint64_t row = std::uint64_t(width) * std::uint64_t(e->bytes);
-  if (step < row) {
-    return "step " + std::to_string(step) + " is shorter than a row of " + std::to_string(width) +
-           " " + encoding + " pixels (" + std::to_string(row) + " bytes)";
+  const int channel_bytes = e->type == CV_16UC1 ? 2 : 1;
+  return bowg::checkRawLayout(width, height, step, data_size, e->bytes, channel_bytes);
+}
+
+bowg::ImageCheck checkImage(const sensor_msgs::Image& msg, const bowg::FeatureOptions& options) {
+  bowg::ImageCheck check =
+      checkImageLayout(msg.width, msg.height, msg.step, msg.data.size(), msg.encoding);
+  if (!check.ok()) return check;
+  const std::string size = bowg::imageSizeProblem(msg.width, msg.height, options);
+  if (!size.empty()) check = bowg::imageRefusal(bowg::ImageProblem::kTooLarge, size);
+  return check;
+}
+
+namespace {
+
+// "<detail> (format 'jpeg', 1234 bytes)": the message's own description.
+bowg::ImageCheck namingFormat(bowg::ImageCheck check, const sensor_msgs::CompressedImage& msg) {
+  if (!check.ok()) {
+    check.detail += " (format '" + msg.format + "', " + std::to_string(msg.data.size()) + " bytes)";
   }
-  const std::uint64_t needed = std::uint64_t(height) * std::uint64_t(step);
-  if (data_size < needed) {
-    return "data holds " + std::to_string(data_size) + " bytes, height x step needs " +
-           std::to_string(needed);
-  }
-  return "";
+  return check;
+}
+
+}  // namespace
+
+bowg::ImageCheck checkCompressed(const sensor_msgs::CompressedImage& msg,
+                                 const bowg::FeatureOptions& options) {
+  return namingFormat(bowg::checkEncodedImage(msg.data.data(), msg.data.size(), options), msg);
 }
 
 cv::Mat toMono8(const cv::Mat& image, const std::string& encoding) {
   const EncodingInfo* e = find(encoding);
   if (!e) {
-    throw BadImage("unsupported image encoding '" + encoding +
-                   "' (supported: " + supportedEncodings() + ")");
+    throw BadImage(bowg::ImageProblem::kUnsupportedFormat,
+                   "encoding '" + encoding + "' (supported: " + supportedEncodings() + ")");
   }
-  if (image.empty()) throw BadImage("empty image with encoding '" + encoding + "'");
+  if (image.empty()) {
+    throw BadImage(bowg::ImageProblem::kEmpty, "empty image with encoding '" + encoding + "'");
+  }
   if (image.type() != e->type) {
-    throw BadImage("image data does not match its encoding '" + encoding + "'");
+    throw BadImage(bowg::ImageProblem::kMalformed,
+                   "image data does not match its encoding '" + encoding + "'");
   }
   if (e->type == CV_8UC1) return image;  // zero copy
   cv::Mat grey;
@@ -85,10 +107,9 @@ cv::Mat toMono8(const cv::Mat& image, const std::string& encoding) {
   return grey;
 }
 
-cv::Mat greyFromImage(const sensor_msgs::Image& msg) {
-  const std::string problem =
-      imageLayoutProblem(msg.width, msg.height, msg.step, msg.data.size(), msg.encoding);
-  if (!problem.empty()) throw BadImage("image message: " + problem);
+cv::Mat greyFromImage(const sensor_msgs::Image& msg, const bowg::FeatureOptions& options) {
+  const bowg::ImageCheck check = checkImage(msg, options);
+  if (!check.ok()) throw BadImage(check);
   const EncodingInfo* e = find(msg.encoding);
   // Wraps the message's buffer (checked above to hold height x step bytes).
   const cv::Mat view(static_cast<int>(msg.height), static_cast<int>(msg.width), e->type,
@@ -96,17 +117,11 @@ cv::Mat greyFromImage(const sensor_msgs::Image& msg) {
   return toMono8(view, msg.encoding);
 }
 
-cv::Mat greyFromCompressed(const sensor_msgs::CompressedImage& msg) {
-  cv::Mat grey;
-  if (!msg.data.empty()) {
-    const cv::Mat data(1, static_cast<int>(msg.data.size()), CV_8UC1,
-                       const_cast<std::uint8_t*>(msg.data.data()));
-    grey = cv::imdecode(data, cv::IMREAD_GRAYSCALE);
-  }
-  if (grey.empty()) {
-    throw BadImage("cannot decode the compressed image (" + std::to_string(msg.data.size()) +
-                   " bytes, format '" + msg.format + "')");
-  }
+cv::Mat greyFromCompressed(const sensor_msgs::CompressedImage& msg,
+                           const bowg::FeatureOptions& options) {
+  bowg::ImageCheck check;
+  const cv::Mat grey = bowg::decodeGreyImage(msg.data.data(), msg.data.size(), options, &check);
+  if (!check.ok()) throw BadImage(namingFormat(check, msg));
   return grey;
 }
 

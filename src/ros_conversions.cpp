@@ -1,6 +1,9 @@
 // Engine types <-> ROS messages (see ros_conversions.h).
 #include "bowg_ros/ros_conversions.h"
 
+#include "bowg/features/descriptor_conversion.h"
+#include "bowg/features/feature_arrays.h"
+
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
@@ -21,46 +24,21 @@ bowg::CameraIntrinsics toIntrinsics(const sensor_msgs::CameraInfo& info) {
   return k;
 }
 
-bowg::ImageFeatures fromMessage(const KeyframeFeatures& msg) {
-  const std::size_t n = msg.x.size();
-  if (msg.y.size() != n || msg.size.size() != n || msg.angle.size() != n ||
-      msg.response.size() != n || msg.octave.size() != n) {
-    throw std::invalid_argument(
-        "KeyframeFeatures: x, y, size, angle, response and octave must "
-        "have the same length (x has " +
-        std::to_string(n) + ")");
-  }
-  const std::size_t bytes = KeyframeFeatures::DESCRIPTOR_BYTES;
-  if (msg.descriptors.size() != n * bytes) {
-    throw std::invalid_argument("KeyframeFeatures: descriptors has " +
-                                std::to_string(msg.descriptors.size()) + " bytes, expected " +
-                                std::to_string(n) + " x " + std::to_string(bytes));
-  }
-  if (msg.image_width == 0 || msg.image_height == 0) {
-    throw std::invalid_argument("KeyframeFeatures: image_width and image_height must be > 0");
-  }
-  bowg::ImageFeatures f;
-  f.image_width = static_cast<int>(msg.image_width);
-  f.image_height = static_cast<int>(msg.image_height);
-  f.keypoints.resize(n);
-  f.descriptors.resize(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    bowg::Keypoint& k = f.keypoints[i];
-    k.x = msg.x[i];
-    k.y = msg.y[i];
-    k.size = msg.size[i];
-    k.angle = msg.angle[i];
-    k.response = msg.response[i];
-    k.octave = msg.octave[i];
-    // Byte j holds descriptor bits 8j..8j+7 (types.h): little-endian blocks.
-    const std::uint8_t* row = &msg.descriptors[i * bytes];
-    for (int b = 0; b < 4; ++b) {
-      std::uint64_t block = 0;
-      for (int j = 7; j >= 0; --j) block = (block << 8) | row[b * 8 + j];
-      f.descriptors[i].bits[b] = block;
-    }
-  }
-  return f;
+bowg::ImageFeatures fromMessage(const KeyframeFeatures& msg,
+                                const bowg::FeatureOptions& options) {
+  static_assert(KeyframeFeatures::DESCRIPTOR_BYTES == bowg::kDescriptorBytes,
+                "the message's descriptor rows are the engine's");
+  bowg::FeatureArrays a;
+  a.image_width = msg.image_width;
+  a.image_height = msg.image_height;
+  a.x = msg.x;
+  a.y = msg.y;
+  a.size = msg.size;
+  a.angle = msg.angle;
+  a.response = msg.response;
+  a.octave = msg.octave;
+  a.descriptors = msg.descriptors;
+  return bowg::featuresFromArrays(a, options);
 }
 
 KeyframeFeatures toMessage(const bowg::ImageFeatures& features, const std_msgs::Header& header) {
@@ -87,12 +65,7 @@ KeyframeFeatures toMessage(const bowg::ImageFeatures& features, const std_msgs::
     msg.angle.push_back(k.angle);
     msg.response.push_back(k.response);
     msg.octave.push_back(k.octave);
-    for (int b = 0; b < 4; ++b) {
-      for (int j = 0; j < 8; ++j) {
-        msg.descriptors[i * 32 + b * 8 + j] =
-            static_cast<std::uint8_t>(features.descriptors[i].bits[b] >> (8 * j));
-      }
-    }
+    bowg::descriptorToBytes(features.descriptors[i], &msg.descriptors[i * bowg::kDescriptorBytes]);
   }
   return msg;
 }

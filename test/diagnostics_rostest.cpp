@@ -63,6 +63,34 @@ TEST(Diagnostics, ADistanceGateWithoutOdometryWarnsUntilOdometryArrives) {
       << "level " << int(last.level) << ": " << last.message;
 }
 
+// Bad frames on the compressed topic are refused from their header before
+// decoding (a PNG declaring 30000 x 30000 pixels would take 900 MB) and
+// counted by the reason the offline tools give; the nodelet goes on.
+TEST(Diagnostics, BadCompressedFramesAreCountedByReason) {
+  DiagnosticsWatcher diagnostics;
+  Detector d("/badcompressed", {{"use_compressed", XmlRpc::XmlRpcValue(true)}});
+  ASSERT_TRUE(d.loaded());
+  d.publishCompressed(bowg::test::truncatedJpeg(), 200.0);
+  d.publishCompressed(bowg::test::pngDeclaring(30000, 30000), 200.1);
+  d.publishCompressed({}, 200.2);
+  const cv::Mat world = test::makeWorld(kViewWidth + 10 * kStep, kViewHeight, 5);
+  d.publishCompressed(bowg::test::encodeImage(test::viewAt(world, 0, kViewWidth), ".png"), 200.3);
+  EXPECT_TRUE(d.waitForStatuses(1, 20.0)) << "the good frame after the bad ones";
+  const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(15.0);
+  const auto count = [&](const char* reason) {
+    return diagnostics.value(d.name(), std::string("dropped images (") + reason + ")");
+  };
+  while (ros::WallTime::now() < end &&
+         !(count("truncated") == "1" && count("too_large") == "1" && count("empty") == "1")) {
+    ros::WallDuration(0.1).sleep();
+  }
+  EXPECT_EQ(count("truncated"), "1");
+  EXPECT_EQ(count("too_large"), "1");
+  EXPECT_EQ(count("empty"), "1");
+  EXPECT_EQ(count("undecodable"), "0");
+  EXPECT_EQ(diagnostics.value(d.name(), "keyframe errors"), "0");
+}
+
 // Silence on the image topic (a wrong topic, a compressed stream read as
 // raw) is a warning within the diagnostics window, naming the topic, and
 // saying what a camera_info arriving alone means; it clears when images come.
@@ -119,7 +147,7 @@ TEST(Diagnostics, AWarningClearsWhenItsCauseStopsForTheWindow) {
     running = diagnostics.waitFor(d.name(), DiagnosticStatus::OK, "running", 0.1, &last);
   }
   EXPECT_TRUE(running) << "level " << int(last.level) << ": " << last.message;
-  EXPECT_EQ(diagnostics.value(d.name(), "dropped frames (unsupported encoding)"), "1");
+  EXPECT_EQ(diagnostics.value(d.name(), "dropped images (unsupported_format)"), "1");
 }
 
 TEST(Diagnostics, StampsGoingBackAreAWarningThatSaysWhatToDo) {

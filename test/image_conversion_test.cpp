@@ -7,6 +7,8 @@
 #include <opencv2/imgcodecs.hpp>
 #include <vector>
 
+#include "encoded_test_images.h"
+
 namespace bowg_ros {
 namespace {
 
@@ -72,20 +74,31 @@ TEST(ImageConversion, DataThatDoesNotMatchItsEncodingIsRejected) {
 }
 
 // Hand-worked layouts: 4 x 3 bgr8 needs rows of 12 bytes and 3 rows.
-TEST(ImageConversion, LayoutsThatCannotBeReadSafelyAreNamed) {
-  EXPECT_EQ(imageLayoutProblem(4, 3, 12, 36, "bgr8"), "");
-  EXPECT_EQ(imageLayoutProblem(4, 3, 16, 48, "bgr8"), "");  // padded rows
-  EXPECT_EQ(imageLayoutProblem(4, 3, 11, 36, "bgr8"),
-            "step 11 is shorter than a row of 4 bgr8 pixels (12 bytes)");
-  EXPECT_EQ(imageLayoutProblem(4, 3, 12, 35, "bgr8"), "data holds 35 bytes, height x step needs 36");
-  EXPECT_EQ(imageLayoutProblem(4, 3, 0, 36, "bgr8"),
-            "step 0 is shorter than a row of 4 bgr8 pixels (12 bytes)");
-  EXPECT_EQ(imageLayoutProblem(0, 3, 12, 36, "bgr8"), "empty image (0 x 3)");
-  EXPECT_EQ(imageLayoutProblem(4, 3, 12, 36, "32FC1"), "unsupported encoding '32FC1'");
+TEST(ImageConversion, LayoutsThatCannotBeReadSafelyAreClassified) {
+  using P = bowg::ImageProblem;
+  EXPECT_TRUE(checkImageLayout(4, 3, 12, 36, "bgr8").ok());
+  EXPECT_TRUE(checkImageLayout(4, 3, 16, 48, "bgr8").ok());  // padded rows
+  EXPECT_EQ(checkImageLayout(4, 3, 11, 36, "bgr8").message(),
+            "malformed: step 11 is shorter than a row of 4 pixels (12 bytes)");
+  EXPECT_EQ(checkImageLayout(4, 3, 12, 35, "bgr8").message(),
+            "malformed: data holds 35 bytes, height x step needs 36");
+  EXPECT_EQ(checkImageLayout(4, 3, 0, 36, "bgr8").problem, P::kMalformed);
+  EXPECT_EQ(checkImageLayout(0, 3, 12, 36, "bgr8").message(), "bad_header: empty image (0 x 3)");
+  EXPECT_EQ(checkImageLayout(4, 3, 12, 36, "32FC1").problem, P::kUnsupportedFormat);
   // mono16: 2 bytes a pixel; no overflow with the largest values.
-  EXPECT_EQ(imageLayoutProblem(5, 2, 9, 18, "mono16"),
-            "step 9 is shorter than a row of 5 mono16 pixels (10 bytes)");
-  EXPECT_NE(imageLayoutProblem(0xffffffffu, 0xffffffffu, 0xffffffffu, 100, "rgba8"), "");
+  EXPECT_EQ(checkImageLayout(5, 2, 9, 18, "mono16").problem, P::kMalformed);
+  EXPECT_FALSE(checkImageLayout(0xffffffffu, 0xffffffffu, 0xffffffffu, 100, "rgba8").ok());
+}
+
+// OpenCV's Mat asserts that a 16-bit image's step is even: an odd step must
+// be refused as malformed before the buffer is wrapped, not fail in OpenCV.
+TEST(ImageConversion, Mono16WithAnOddStepIsMalformed) {
+  for (const char* encoding : {"mono16", "16UC1"}) {
+    const bowg::ImageCheck c = checkImageLayout(4, 3, 9, 27, encoding);
+    EXPECT_EQ(c.problem, bowg::ImageProblem::kMalformed) << encoding << ": " << c.message();
+  }
+  EXPECT_TRUE(checkImageLayout(4, 3, 10, 30, "mono16").ok());
+  EXPECT_TRUE(checkImageLayout(3, 3, 9, 27, "bgr8").ok());  // odd steps are fine for 8-bit
 }
 
 // An Image message of `rows` x `cols` pixels with `step` bytes per row.
@@ -117,6 +130,23 @@ TEST(ImageMessages, ColourAnd16BitMessagesAreConverted) {
   // byte 0x12 = 18 (0x1234 / 256 = 18.2).
   EXPECT_EQ(greyFromImage(message("16UC1", 1, 1, 2, {0x34, 0x12})).at<std::uint8_t>(0, 0), 18);
   EXPECT_EQ(greyFromImage(message("8UC1", 1, 1, 1, {200})).at<std::uint8_t>(0, 0), 200);
+}
+
+TEST(ImageMessages, Mono16MessagesWithAnOddStepAreRefusedAsMalformed) {
+  try {
+    greyFromImage(message("mono16", 3, 4, 9, std::vector<std::uint8_t>(27, 1)));
+    ADD_FAILURE() << "odd mono16 step accepted";
+  } catch (const BadImage& e) {
+    EXPECT_EQ(e.problem(), bowg::ImageProblem::kMalformed) << e.what();
+  }
+}
+
+TEST(ImageMessages, OversizeMessagesAreTooLarge) {
+  bowg::FeatureOptions o;
+  o.max_image_pixels = 4 * 3 - 1;
+  const sensor_msgs::Image msg = message("mono8", 3, 4, 4, std::vector<std::uint8_t>(12, 1));
+  EXPECT_TRUE(checkImage(msg, bowg::FeatureOptions()).ok());
+  EXPECT_EQ(checkImage(msg, o).problem, bowg::ImageProblem::kTooLarge);
 }
 
 TEST(ImageMessages, MalformedMessagesAreRefusedBeforeTheBufferIsRead) {
@@ -158,6 +188,43 @@ TEST(ImageMessages, UndecodableCompressedDataNamesItsFormat) {
   }
   msg.data.clear();
   EXPECT_THROW(greyFromCompressed(msg), BadImage);
+}
+
+sensor_msgs::CompressedImage compressed(const std::vector<std::uint8_t>& data) {
+  sensor_msgs::CompressedImage msg;
+  msg.format = "jpeg";
+  msg.data = data;
+  return msg;
+}
+
+bowg::ImageProblem problemOfDecoding(const sensor_msgs::CompressedImage& msg) {
+  try {
+    greyFromCompressed(msg);
+  } catch (const BadImage& e) {
+    return e.problem();
+  }
+  return bowg::ImageProblem::kNone;
+}
+
+// Each refusal has its reason; the header check alone gives the same one
+// (what the nodelet's callback counts before queuing the frame).
+TEST(ImageMessages, BadCompressedImagesAreClassifiedBeforeDecoding) {
+  using P = bowg::ImageProblem;
+  const bowg::FeatureOptions o;
+  const sensor_msgs::CompressedImage truncated = compressed(bowg::test::truncatedJpeg());
+  EXPECT_EQ(problemOfDecoding(truncated), P::kTruncated);
+  EXPECT_EQ(checkCompressed(truncated, o).problem, P::kTruncated);
+  const sensor_msgs::CompressedImage huge = compressed(bowg::test::pngDeclaring(30000, 30000));
+  EXPECT_EQ(problemOfDecoding(huge), P::kTooLarge);
+  const bowg::ImageCheck c = checkCompressed(huge, o);
+  EXPECT_EQ(c.problem, P::kTooLarge);
+  EXPECT_NE(c.detail.find("format 'jpeg'"), std::string::npos) << c.detail;
+  EXPECT_EQ(problemOfDecoding(compressed({})), P::kEmpty);
+  EXPECT_EQ(checkCompressed(compressed({}), o).problem, P::kEmpty);
+  const sensor_msgs::CompressedImage whole =
+      compressed(bowg::test::encodeImage(bowg::test::noiseImage(32, 24), ".jpg"));
+  EXPECT_TRUE(checkCompressed(whole, o).ok());
+  EXPECT_EQ(problemOfDecoding(whole), P::kNone);
 }
 
 }  // namespace

@@ -295,7 +295,8 @@ TEST(LoopDetectorNodelet, MalformedImagesAreReportedAndTheNodeletKeepsRunning) {
   bad.encoding = "mono8";
   bad.data.assign(100, 0);
   d.publishRaw(bad);
-  EXPECT_TRUE(log.waitFor("malformed image at 500.000000", 10.0)) << "no error for the image";
+  EXPECT_TRUE(log.waitFor("image at 500.000000 dropped: malformed: ", 10.0))
+      << "no error for the image";
   const cv::Mat world = test::makeWorld(kViewWidth + 10 * kStep, kViewHeight, 3);
   d.publish(test::viewAt(world, 0, kViewWidth), 501.0);
   EXPECT_TRUE(d.waitForStatuses(1, 20.0)) << "the nodelet stopped after a malformed image";
@@ -317,7 +318,7 @@ TEST(LoopDetectorNodelet, OversizeImagesAreDroppedCountedAndTheNodeletKeepsRunni
           }
           if (st.name.find("oversize/bowg") == std::string::npos) continue;
           for (const auto& kv : st.values) {
-            if (kv.key == "dropped frames (more than max_image_pixels)") {
+            if (kv.key == "dropped images (too_large)") {
               too_large = std::stoi(kv.value);
             }
           }
@@ -330,8 +331,8 @@ TEST(LoopDetectorNodelet, OversizeImagesAreDroppedCountedAndTheNodeletKeepsRunni
   const cv::Mat world = test::makeWorld(kViewWidth + 10 * kStep, kViewHeight, 3);
   d.publish(test::viewAt(world, 0, kViewWidth), 700.0);
   EXPECT_TRUE(
-      log.waitFor("image at 700.000000 too large: 320 x 240 = 76800 pixels, more than "
-                  "max_image_pixels 76799",
+      log.waitFor("image at 700.000000 dropped: too_large: 320 x 240 = 76800 pixels, more "
+                  "than max_image_pixels 76799",
                   10.0))
       << "no error for the image";
   const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(10.0);

@@ -39,6 +39,7 @@
 #include "bowg_ros/LoopClosure.h"
 #include "bowg_ros/SaveDatabase.h"
 #include "bowg_ros/ros_conversions.h"
+#include "encoded_test_images.h"
 #include "synthetic_world.h"
 #include "test_vocabulary.h"
 
@@ -70,8 +71,10 @@ class Detector {
       : ns_(ns), name_(ns + "/bowg") {
     if (!params.count("vocabulary_path")) params["vocabulary_path"] = vocabularyPath();
     if (!params.count("queue_size")) params["queue_size"] = 1000;  // no drops in tests
+    compressed_ = params.count("use_compressed") && bool(params["use_compressed"]);
     for (auto& p : params) ros::param::set(name_ + "/" + p.first, p.second);
     image_pub_ = nh_.advertise<sensor_msgs::Image>(ns + "/image", 200);
+    compressed_pub_ = nh_.advertise<sensor_msgs::CompressedImage>(ns + "/image/compressed", 200);
     info_pub_ = nh_.advertise<sensor_msgs::CameraInfo>(ns + "/camera_info", 200);
     odom_pub_ = nh_.advertise<nav_msgs::Odometry>(ns + "/odom", 200);
     loop_sub_ = nh_.subscribe(ns + "/loop_closure", 200, &Detector::onLoop, this);
@@ -85,7 +88,8 @@ class Detector {
     // Wait until the nodelet is connected both ways.
     const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(20);
     while (loaded_ && ros::WallTime::now() < end &&
-           (image_pub_.getNumSubscribers() == 0 || info_pub_.getNumSubscribers() == 0 ||
+           ((compressed_ ? compressed_pub_ : image_pub_).getNumSubscribers() == 0 ||
+            info_pub_.getNumSubscribers() == 0 ||
             odom_pub_.getNumSubscribers() == 0 || status_sub_.getNumPublishers() == 0 ||
             loop_sub_.getNumPublishers() == 0)) {
       ros::WallDuration(0.05).sleep();
@@ -111,6 +115,17 @@ class Detector {
   /// An image message as it comes, whatever its layout.
   void publishRaw(const sensor_msgs::Image& msg) {
     image_pub_.publish(msg);
+    ros::WallDuration(0.03).sleep();
+  }
+  /// A CompressedImage (on ns/image/compressed, for ~use_compressed) of
+  /// whatever bytes `data` holds.
+  void publishCompressed(const std::vector<std::uint8_t>& data, double stamp) {
+    sensor_msgs::CompressedImage msg;
+    msg.header.stamp = ros::Time(stamp);
+    msg.header.frame_id = kFrame;
+    msg.format = "png";
+    msg.data = data;
+    compressed_pub_.publish(msg);
     ros::WallDuration(0.03).sleep();
   }
   const std::string& name() const { return name_; }
@@ -202,7 +217,8 @@ class Detector {
   ros::NodeHandle nh_;
   std::string ns_, name_;
   bool loaded_ = false;
-  ros::Publisher image_pub_, info_pub_, odom_pub_;
+  bool compressed_ = false;  ///< ~use_compressed: images go to ns/image/compressed
+  ros::Publisher image_pub_, compressed_pub_, info_pub_, odom_pub_;
   ros::Subscriber loop_sub_, status_sub_;
   std::mutex mutex_;
   std::vector<KeyframeStatus> statuses_;

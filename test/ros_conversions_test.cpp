@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
+#include <string>
 
 namespace bowg_ros {
 namespace {
@@ -91,6 +93,30 @@ TEST(RosConversions, InconsistentKeyframeFeaturesAreRejected) {
   bowg::ImageFeatures f = twoFeatures();
   f.descriptors.pop_back();
   EXPECT_THROW(toMessage(f, std_msgs::Header()), std::invalid_argument);
+}
+
+// Values the later stages compute with are checked at the input, and the
+// image size against the same max_image_pixels as images.
+TEST(RosConversions, KeyframeFeaturesWithUnusableValuesAreRejected) {
+  const KeyframeFeatures good = toMessage(twoFeatures(), std_msgs::Header());
+  KeyframeFeatures m = good;
+  m.x[1] = std::numeric_limits<float>::quiet_NaN();
+  EXPECT_THROW(fromMessage(m), std::invalid_argument);
+  m = good;
+  m.size[0] = -1.f;
+  EXPECT_THROW(fromMessage(m), std::invalid_argument);
+  m = good;
+  m.response[0] = std::numeric_limits<float>::infinity();
+  EXPECT_THROW(fromMessage(m), std::invalid_argument);
+  m = good;
+  m.image_width = 30000;
+  m.image_height = 30000;
+  try {
+    fromMessage(m);
+    ADD_FAILURE() << "a 30000 x 30000 image accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("max_image_pixels"), std::string::npos) << e.what();
+  }
 }
 
 TEST(RosConversions, CovarianceMarksTheScaleUnobservable) {

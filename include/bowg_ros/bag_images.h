@@ -10,18 +10,27 @@
 #include <opencv2/core.hpp>
 #include <string>
 
+#include "bowg/features/feature_options.h"
+#include "bowg/features/image_check.h"
+
 namespace bowg_ros {
 
 /// One image of a bag: its grey image (owned: independent of the message)
-/// and its header stamp.
+/// and its header stamp; a refused image has an empty grey image and its
+/// reason in `check` (the same classification as the nodelet's).
 struct BagImage {
   cv::Mat grey;
   ros::Time stamp;
+  bowg::ImageCheck check;
 };
 
 /// Throws bowg::FormatError naming the bag and the topic when the message is
-/// neither an Image nor a CompressedImage, or cannot be converted.
-BagImage readBagImage(const rosbag::MessageInstance& message, const std::string& bag_path);
+/// neither an Image nor a CompressedImage. A bad image (empty, truncated,
+/// too large for `options`, ...) does not throw: its `check` says why, its
+/// detail naming the bag, topic and time, so that one bad frame skips that
+/// frame and not the run.
+BagImage readBagImage(const rosbag::MessageInstance& message, const std::string& bag_path,
+                      const bowg::FeatureOptions& options);
 
 /// The header stamp only (no decoding); same errors for other message types.
 ros::Time bagImageStamp(const rosbag::MessageInstance& message, const std::string& bag_path);

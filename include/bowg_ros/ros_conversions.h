@@ -7,6 +7,7 @@
 #include <std_msgs/Header.h>
 
 #include "bowg/core/types.h"
+#include "bowg/features/feature_options.h"
 #include "bowg/detection/loop_detector.h"
 #include "bowg_ros/KeyframeFeatures.h"
 #include "bowg_ros/KeyframeStatus.h"
@@ -18,9 +19,12 @@ namespace bowg_ros {
 /// fx/fy are not positive, as for an uncalibrated camera_info.
 bowg::CameraIntrinsics toIntrinsics(const sensor_msgs::CameraInfo& info);
 
-/// Throws std::invalid_argument when the arrays differ in length, the
-/// descriptor block is not N x 32 bytes, or the image size is zero.
-bowg::ImageFeatures fromMessage(const KeyframeFeatures& msg);
+/// Checked by bowg::featuresFromArrays: throws std::invalid_argument when
+/// the arrays differ in length, the descriptor block is not N x 32 bytes,
+/// the image size is zero or over options.max_image_pixels, or a keypoint
+/// holds a non-finite value or a negative size.
+bowg::ImageFeatures fromMessage(const KeyframeFeatures& msg,
+                                const bowg::FeatureOptions& options = bowg::FeatureOptions());
 KeyframeFeatures toMessage(const bowg::ImageFeatures& features, const std_msgs::Header& header);
 
 /// The covariance of LoopClosure.relative_pose (6x6 row-major, x y z rx ry rz):

@@ -147,7 +147,7 @@ void LoopDetectorNodelet::subscribeInputs(ros::NodeHandle& nh, ros::NodeHandle& 
                                  &LoopDetectorNodelet::featuresCallback, this);
   } else if (use_compressed_) {
     // Debian lacks the compressed image_transport plugin: subscribe to the
-    // CompressedImage topic directly and decode with cv::imdecode.
+    // CompressedImage topic directly and decode with greyFromCompressed.
     compressed_sub_ = nh.subscribe(publicName("image") + "/compressed", input_queue,
                                    &LoopDetectorNodelet::compressedCallback, this);
   } else {

@@ -35,6 +35,7 @@
 #include <std_srvs/Trigger.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <limits>
@@ -109,9 +110,12 @@ struct Stats {
   std::size_t metric_loops = 0;             ///< loops with a metric translation
   std::size_t metric_outside_odometry = 0;  ///< metric translations the odometry rules out
   std::size_t skipped_out_of_order = 0;
-  std::size_t bad_encoding = 0;
-  std::size_t malformed = 0;  ///< image messages whose layout cannot be read
-  std::size_t too_large = 0;  ///< images above max_image_pixels
+  /// Images refused, by reason (bowg/features/image_check.h): the same
+  /// reasons the offline tools count.
+  bowg::ImageProblemCounts bad_images;
+  /// When a refusal of each reason was last logged: each reason is logged
+  /// at most every 5 s, a burst of one does not hide another.
+  std::array<Clock::time_point, bowg::kImageProblemCount> bad_image_logged{};
   std::size_t errors = 0;
   std::size_t time_jump_resets = 0;
   std::string last_stamp_rejection;  ///< the latest stamp-order skip, for the diagnostics
@@ -189,9 +193,8 @@ class LoopDetectorNodelet : public nodelet::Nodelet {
   void diagnose(diagnostic_updater::DiagnosticStatusWrapper& status);
   void inputWarnings(std::size_t dropped, bool has_odometry, std::vector<std::string>* warnings);
   std::string silenceWarning(double seconds, bool camera_info) const;
-  /// False (counted, logged) when a width x height image exceeds
-  /// max_image_pixels.
-  bool imageSizeAccepted(std::uint32_t width, std::uint32_t height, const ros::Time& stamp);
+  /// Counts (by reason) and logs a refused image: the frame is dropped.
+  void dropBadImage(const bowg::ImageCheck& check, const ros::Time& stamp);
 
   // Parameters.
   std::string vocabulary_path_, database_load_path_, database_save_path_;

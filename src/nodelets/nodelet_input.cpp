@@ -58,58 +58,39 @@ bool LoopDetectorNodelet::offer(Frame frame) {
   return true;
 }
 
+// Images are checked here, where the drop is counted, from the message
+// header alone (layout and size, or the compressed data's own header); the
+// worker converts or decodes only what passed.
 void LoopDetectorNodelet::imageCallback(const sensor_msgs::ImageConstPtr& msg) {
-  if (!isSupportedEncoding(msg->encoding)) {
-    {
-      std::lock_guard<std::mutex> lock(stats_mutex_);
-      ++stats_.bad_encoding;
-      noteRejectedFrame();
-    }
-    NODELET_ERROR_THROTTLE(5.0, "unsupported image encoding '%s' (supported: %s): frame dropped",
-                           msg->encoding.c_str(), supportedEncodings().c_str());
-    return;
-  }
-  // The layout is checked here, where the drop is counted; the worker
-  // converts the message (greyFromImage), sharing its buffer for mono8.
-  const std::string problem =
-      imageLayoutProblem(msg->width, msg->height, msg->step, msg->data.size(), msg->encoding);
-  if (!problem.empty()) {
-    // Counted in the diagnostics whatever the throttled log shows.
-    {
-      std::lock_guard<std::mutex> lock(stats_mutex_);
-      ++stats_.malformed;
-      noteRejectedFrame();
-    }
-    NODELET_ERROR_THROTTLE(5.0, "malformed image at %.6f (encoding '%s'): %s: frame dropped",
-                           msg->header.stamp.toSec(), msg->encoding.c_str(), problem.c_str());
-    return;
-  }
-  if (!imageSizeAccepted(msg->width, msg->height, msg->header.stamp)) return;
+  const bowg::ImageCheck check = checkImage(*msg, size_limit_);
+  if (!check.ok()) return dropBadImage(check, msg->header.stamp);
   Frame frame;
   frame.header = msg->header;
   frame.image = msg;
   offer(std::move(frame));
 }
 
-bool LoopDetectorNodelet::imageSizeAccepted(std::uint32_t width, std::uint32_t height,
-                                            const ros::Time& stamp) {
-  const std::string problem = bowg::imageSizeProblem(width, height, size_limit_);
-  if (problem.empty()) return true;
-  {
-    std::lock_guard<std::mutex> lock(stats_mutex_);
-    ++stats_.too_large;
-    noteRejectedFrame();
-  }
-  NODELET_ERROR_THROTTLE(5.0, "image at %.6f too large: %s: frame dropped", stamp.toSec(),
-                         problem.c_str());
-  return false;
-}
-
 void LoopDetectorNodelet::compressedCallback(const sensor_msgs::CompressedImageConstPtr& msg) {
+  const bowg::ImageCheck check = checkCompressed(*msg, size_limit_);
+  if (!check.ok()) return dropBadImage(check, msg->header.stamp);
   Frame frame;
   frame.header = msg->header;
   frame.compressed = msg;
   offer(std::move(frame));
+}
+
+void LoopDetectorNodelet::dropBadImage(const bowg::ImageCheck& check, const ros::Time& stamp) {
+  bool log;
+  {
+    // Counted in the diagnostics whatever the throttled log shows.
+    std::lock_guard<std::mutex> lock(stats_mutex_);
+    stats_.bad_images.add(check.problem);
+    noteRejectedFrame();
+    Clock::time_point& logged = stats_.bad_image_logged[static_cast<std::size_t>(check.problem)];
+    log = stats_.last_frame - logged >= std::chrono::seconds(5);
+    if (log) logged = stats_.last_frame;
+  }
+  if (log) NODELET_ERROR("image at %.6f dropped: %s", stamp.toSec(), check.message().c_str());
 }
 
 void LoopDetectorNodelet::featuresCallback(const KeyframeFeatures::ConstPtr& msg) {

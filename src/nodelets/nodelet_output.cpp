@@ -97,11 +97,10 @@ void LoopDetectorNodelet::inputWarnings(std::size_t dropped, bool has_odometry,
   }
   char window[48];
   std::snprintf(window, sizeof window, " in the last %.0f s", diagnostics_window_);
-  const bool rejected = s.bad_encoding > 0 || s.malformed > 0 || s.too_large > 0;
+  const bool rejected = s.bad_images.total() > 0;
   if (recent(rejected, s.last_rejected) || recent(s.errors > 0, s.last_error)) {
     warnings->push_back(std::string("frames rejected") + window +
-                        " (unsupported encoding, malformed or too large images, or processing "
-                        "errors)");
+                        " (bad images: see \"dropped images (...)\", or processing errors)");
   }
   if (recent(s.skipped_out_of_order > 0, s.last_stamp_skip)) {
     warnings->push_back(std::to_string(s.skipped_out_of_order) +
@@ -182,9 +181,12 @@ void LoopDetectorNodelet::diagnose(diagnostic_updater::DiagnosticStatusWrapper& 
   status.add("skipped frames (stamp order)", s.skipped_out_of_order);
   if (!s.last_stamp_rejection.empty()) status.add("last stamp-order skip", s.last_stamp_rejection);
   status.add("new runs (time jumped back)", s.time_jump_resets);
-  status.add("dropped frames (unsupported encoding)", s.bad_encoding);
-  status.add("dropped frames (malformed image)", s.malformed);
-  status.add("dropped frames (more than max_image_pixels)", s.too_large);
+  // One value per reason of bowg::ImageProblem, named as the tools name them.
+  for (std::size_t i = 1; i < bowg::kImageProblemCount; ++i) {
+    const auto reason = static_cast<bowg::ImageProblem>(i);
+    status.add(std::string("dropped images (") + bowg::imageProblemName(reason) + ")",
+               s.bad_images.count(reason));
+  }
   status.add("keyframe errors", s.errors);
   status.add("camera intrinsics known", has_intrinsics);
   status.add("odometry received", has_odometry);

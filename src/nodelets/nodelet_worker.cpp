@@ -41,13 +41,15 @@ void LoopDetectorNodelet::processFrame(const Frame& frame) {
   // 1. Grey image (shared for mono8) or upstream features.
   auto t0 = Clock::now();
   cv::Mat grey;
-  if (frame.image) {
-    grey = greyFromImage(*frame.image);
-  } else if (frame.compressed) {
-    // The size is known after decoding only (OpenCV's decoder has its own
-    // limit of 2^30 pixels).
-    grey = greyFromCompressed(*frame.compressed);
-    if (!imageSizeAccepted(grey.cols, grey.rows, frame.header.stamp)) return;
+  try {
+    if (frame.image) {
+      grey = greyFromImage(*frame.image, size_limit_);
+    } else if (frame.compressed) {
+      // Its header passed the callback; the data past it may still fail.
+      grey = greyFromCompressed(*frame.compressed, size_limit_);
+    }
+  } catch (const BadImage& e) {
+    return dropBadImage(e.check(), frame.header.stamp);
   }
   const double convert_ms = msSince(t0);
 
@@ -77,7 +79,7 @@ void LoopDetectorNodelet::processFrame(const Frame& frame) {
   }
   t0 = Clock::now();
   if (frame.features) {
-    input.features = fromMessage(*frame.features);
+    input.features = fromMessage(*frame.features, size_limit_);
   } else {
     input.features = extractor_->extract(grey);
   }

@@ -15,6 +15,7 @@
 #include "bowg/features/brief_descriptor.h"
 #include "bowg/features/brief_pattern.h"
 #include "bowg/features/descriptor_conversion.h"
+#include "bowg/features/image_decoding.h"
 #include "bowg/features/orb_descriptor.h"
 #include "bowg/features/orientation.h"
 
@@ -26,16 +27,22 @@ namespace {
 const int kGfttGradientSize = 3;
 const double kHarrisK = 0.04;
 
-// Usable pixels = non-zero in any channel, as 0/255 CV_8UC1.
-cv::Mat loadMask(const std::string& path) {
-  // Opened and bounded like every input (a FIFO never blocks, a huge or
-  // special file is refused before it is read), then decoded from memory.
+// Usable pixels = non-zero in any channel, as 0/255 CV_8UC1. Read like any
+// input image: BoundedFile (no FIFO, device or huge file), then the header
+// check (format, truncation, max_image_pixels) before decoding.
+cv::Mat loadMask(const std::string& path, const FeatureOptions& options) {
   const std::string bytes = readBoundedFile(path, FileKind::kImage, "feature mask image");
-  const cv::Mat raw =
-      bytes.empty() ? cv::Mat()
-                    : cv::imdecode(cv::Mat(1, static_cast<int>(bytes.size()), CV_8U,
-                                           const_cast<char*>(bytes.data())),
-                                   cv::IMREAD_UNCHANGED);
+  const auto* data = reinterpret_cast<const std::uint8_t*>(bytes.data());
+  const ImageCheck check = checkEncodedImage(data, bytes.size(), options);
+  if (!check.ok()) throw FormatError("feature mask " + path + ": " + check.message());
+  const cv::Mat encoded(1, static_cast<int>(bytes.size()), CV_8UC1,
+                        const_cast<std::uint8_t*>(data));
+  cv::Mat raw;
+  try {
+    raw = cv::imdecode(encoded, cv::IMREAD_UNCHANGED);
+  } catch (const cv::Exception&) {
+    raw = cv::Mat();
+  }
   if (raw.empty()) {
     throw FormatError("feature mask " + path + " is not an image OpenCV can decode");
   }
@@ -125,7 +132,7 @@ FeatureExtractor::FeatureExtractor(const FeatureOptions& options) : options_(opt
   if (options_.descriptor == FeatureOptions::DescriptorType::kBrief) {
     brief_pattern_ = loadBriefPattern(options_.brief_pattern_path);
   }
-  if (!options_.mask_path.empty()) mask_ = loadMask(options_.mask_path);
+  if (!options_.mask_path.empty()) mask_ = loadMask(options_.mask_path, options_);
 }
 
 ImageFeatures FeatureExtractor::extract(const cv::Mat& image) const {

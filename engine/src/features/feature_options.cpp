@@ -47,8 +47,10 @@ void FeatureOptions::validate() const {
 }
 
 std::string imageSizeProblem(long long width, long long height, const FeatureOptions& options) {
-  const long long pixels = width * height;
-  if (pixels <= options.max_image_pixels) return "";
+  // Header fields reach 2^32 each: divide rather than multiply to compare.
+  if (width <= 0 || height <= 0 || width <= options.max_image_pixels / height) return "";
+  const unsigned long long pixels =
+      static_cast<unsigned long long>(width) * static_cast<unsigned long long>(height);
   return std::to_string(width) + " x " + std::to_string(height) + " = " + std::to_string(pixels) +
          " pixels, more than max_image_pixels " + std::to_string(options.max_image_pixels);
 }

@@ -158,8 +158,11 @@ class PointGrid {
   }
 
   std::int64_t coord(double v, double origin, std::int64_t count) const {
-    const std::int64_t c = static_cast<std::int64_t>(std::floor((v - origin) / cell_));
-    return std::min(std::max<std::int64_t>(c, 0), count - 1);  // clamp to the grid
+    // Clamped to the grid in double: a far point's cell number may not fit
+    // an integer (converting it would be undefined).
+    const double c = std::floor((v - origin) / cell_);
+    if (!(c > 0.0)) return 0;
+    return c >= static_cast<double>(count - 1) ? count - 1 : static_cast<std::int64_t>(c);
   }
   std::int64_t index(std::int64_t gx, std::int64_t gy) const { return gy * nx_ + gx; }
 

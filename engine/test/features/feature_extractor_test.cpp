@@ -3,6 +3,7 @@
 #include "bowg/features/feature_extractor.h"
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <cmath>
 #include <fstream>
@@ -18,6 +19,7 @@
 #include "bowg/features/brief_pattern.h"
 #include "bowg/features/descriptor_conversion.h"
 #include "bowg/features/orb_descriptor.h"
+#include "encoded_test_images.h"
 #include "feature_test_images.h"
 
 namespace bowg {
@@ -356,6 +358,12 @@ TEST(FeatureExtractor, BadMaskAndPatternFilesNameThePath) {
   o.mask_path = outPath("corrupt_mask.png");
   std::ofstream(o.mask_path) << "not a png";
   expectThrowContaining<FormatError>([&] { FeatureExtractor{o}; }, o.mask_path);
+  o.mask_path = outPath("mask_cut.jpg");  // a JPEG cut short: refused from its header
+  test::writeBytes(o.mask_path, test::truncatedJpeg());
+  expectThrowContaining<FormatError>([&] { FeatureExtractor{o}; }, "truncated");
+  o.mask_path = outPath("mask_dir.png");  // a directory: refused without reading
+  ::mkdir(o.mask_path.c_str(), 0755);
+  expectThrowContaining<IoError>([&] { FeatureExtractor{o}; }, o.mask_path);
   o.mask_path = outPath("mask_16bit.png");
   ASSERT_TRUE(cv::imwrite(o.mask_path, cv::Mat(240, 320, CV_16UC1, cv::Scalar(1000))));
   expectThrowContaining<FormatError>([&] { FeatureExtractor{o}; }, o.mask_path);

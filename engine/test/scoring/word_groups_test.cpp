@@ -123,6 +123,18 @@ TEST(WordGroups, BadKeypointsThrow) {
   EXPECT_THROW(buildWordGroups(fourKeypoints(), {1, 2, 3, 4}, bad), std::invalid_argument);
 }
 
+// A keypoint of a huge (finite) size, from a bad upstream feature, reaches
+// far past the grid of the others' small cells: its reach must be clamped
+// to the grid before it becomes a cell number (which would not fit an
+// integer: undefined behaviour, caught by the UBSan build of the tests).
+TEST(WordGroups, AHugeNeighbourhoodIsClampedToTheGrid) {
+  const std::vector<Keypoint> kps{kp(0, 0, 4), kp(1, 0, 4), kp(2, 1, 4), kp(3, 3, 1e26f),
+                                  kp(300, 200, 4)};
+  const std::vector<WordId> words{1, 2, 3, 4, 5};
+  const GroupVector g = buildWordGroups(kps, words, WordGroupOptions());
+  EXPECT_EQ(g, bruteForceGroups(kps, words, 1.0));
+}
+
 TEST(WordGroups, GridSearchMatchesAllPairs) {
   // 600 keypoints of mixed sizes in a 640x480 image, a few words repeated.
   std::mt19937 rng(42);

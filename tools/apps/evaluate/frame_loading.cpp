@@ -16,7 +16,7 @@
 #include <string>
 
 #include "bowg/core/errors.h"
-#include "bowg_evaluation/image_file.h"
+#include "bowg/features/image_decoding.h"
 #include "bowg_evaluation/intrinsics_file.h"
 #include "bowg_evaluation/odometry_file.h"
 #include "bowg_ros/bag_images.h"
@@ -51,6 +51,20 @@ std::vector<std::string> listImages(const std::string& dir) {
   return files;
 }
 
+// A refused image is kept as a frame without features, so that frame i
+// stays image i of the folder or bag (the ground truth's numbering).
+void skipImage(const std::string& what, const ImageCheck& check, ImageProblemCounts* skipped) {
+  std::fprintf(stderr, "\nwarning: %s skipped (%s): a frame without features\n", what.c_str(),
+               check.message().c_str());
+  skipped->add(check.problem);
+}
+
+void reportSkipped(const ImageProblemCounts& skipped, std::size_t images) {
+  if (skipped.total() == 0) return;
+  std::fprintf(stderr, "warning: %zu of %zu images skipped (%s)\n", skipped.total(), images,
+               skipped.summary().c_str());
+}
+
 }  // namespace
 
 std::vector<FrameInput> loadFrames(const Args& a, const FeatureExtractor& extractor) {
@@ -74,25 +88,16 @@ std::vector<FrameInput> loadFrames(const Args& a, const FeatureExtractor& extrac
     std::vector<std::string> files = listImages(a.images);
     if (a.max_frames > 0 && files.size() > static_cast<std::size_t>(a.max_frames))
       files.resize(a.max_frames);
-    std::size_t skipped = 0;
+    ImageProblemCounts skipped;
     for (std::size_t i = 0; i < files.size(); ++i) {
-      std::string why;
-      const cv::Mat grey = eval::readGreyImage(files[i], extractor.options(), &why);
-      if (grey.empty()) {
-        // Kept as a frame without features, so that frame i stays image i
-        // of the folder (the ground truth's numbering).
-        std::fprintf(stderr, "\nwarning: image %s skipped (%s): a frame without features\n",
-                     files[i].c_str(), why.c_str());
-        ++skipped;
-      }
+      ImageCheck check;
+      const cv::Mat grey = readGreyImageFile(files[i], extractor.options(), &check);
+      if (!check.ok()) skipImage(files[i], check, &skipped);
       add(grey, i / a.rate, intrinsics);
       bar(i + 1, files.size());
     }
-    if (skipped > 0) {
-      std::fprintf(stderr, "warning: %zu of %zu images skipped (unreadable)\n", skipped,
-                   files.size());
-    }
-    if (skipped == files.size()) throw FormatError("no readable image in " + a.images);
+    reportSkipped(skipped, files.size());
+    if (skipped.total() == files.size()) throw FormatError("no readable image in " + a.images);
     return frames;
   }
   rosbag::Bag bag;
@@ -113,7 +118,7 @@ std::vector<FrameInput> loadFrames(const Args& a, const FeatureExtractor& extrac
   if (total == 0) throw FormatError("the bag " + a.bag + " has no messages on " + a.image_topic);
   if (a.max_frames > 0) total = std::min<std::size_t>(total, a.max_frames);
   CameraIntrinsics intrinsics;
-  std::size_t too_large = 0;  // images above max_image_pixels
+  ImageProblemCounts skipped;
   for (const rosbag::MessageInstance& m : view) {
     if (frames.size() >= total) break;
     if (m.getTopic() == a.info_topic) {
@@ -132,24 +137,15 @@ std::vector<FrameInput> loadFrames(const Args& a, const FeatureExtractor& extrac
       last_reading = reading->data;
       continue;
     }
-    const bowg_ros::BagImage image = bowg_ros::readBagImage(m, a.bag);
-    // Folder images are checked by readGreyImage; a bag's here. A frame
-    // without features keeps the frame numbering (ground truth).
-    const std::string size =
-        imageSizeProblem(image.grey.cols, image.grey.rows, extractor.options());
-    if (!size.empty()) {
-      std::fprintf(stderr, "\nwarning: frame %zu skipped (%s): a frame without features\n",
-                   frames.size(), size.c_str());
-      ++too_large;
+    const bowg_ros::BagImage image = bowg_ros::readBagImage(m, a.bag, extractor.options());
+    if (!image.check.ok()) {
+      skipImage("frame " + std::to_string(frames.size()), image.check, &skipped);
     }
-    add(size.empty() ? image.grey : cv::Mat(), image.stamp.toSec(), intrinsics);
+    add(image.grey, image.stamp.toSec(), intrinsics);
     frames.back().odometer = odometer;
     bar(frames.size(), total);
   }
-  if (too_large > 0) {
-    std::fprintf(stderr, "warning: %zu of %zu images skipped (more than max_image_pixels)\n",
-                 too_large, frames.size());
-  }
+  reportSkipped(skipped, frames.size());
   return frames;
 }
 

@@ -1,13 +1,18 @@
 // End-to-end tests of the bowg_evaluate command line: the configured
 // min_score is always a point of the exact PR sweep, the sweep's result does
 // not depend on how many threads ran it, and bad options are refused with a
-// message and a non-zero exit code.
+// message and a non-zero exit code; bad images in a folder or a bag are
+// skipped and counted by reason without ending the run.
 #include <gtest/gtest.h>
+#include <rosbag/bag.h>
+#include <sensor_msgs/CompressedImage.h>
 
+#include <cstdio>
 #include <fstream>
 #include <sstream>
 #include <string>
 
+#include "encoded_test_images.h"
 #include "shell_command.h"
 
 namespace bowg {
@@ -89,28 +94,81 @@ TEST_F(EvaluateCli, TheSweepDoesNotDependOnTheNumberOfThreads) {
   EXPECT_EQ(loops, readAll(kDir + "/two_threads/detections_bowg.csv"));
 }
 
-TEST_F(EvaluateCli, UnreadableImagesAreSkippedCountedAndKeepTheirFrameNumber) {
-  // A copy of the first 40 frames with frame 5 emptied and frame 9 replaced
-  // by garbage: the run goes on, says which images it skipped and why, and
-  // frame 10 is still frame 10 (a frame without features stands in).
+TEST_F(EvaluateCli, BadImagesAreSkippedCountedByReasonAndKeepTheirFrameNumber) {
+  // A copy of the first 40 frames with frame 5 emptied, frame 9 replaced by
+  // garbage, frame 12 by a JPEG cut short, frame 15 by a directory, frame 20
+  // by a FIFO nobody writes (opening it would block) and frame 25 by a link
+  // to /dev/zero (endless): the run goes on, says which images it skipped
+  // and why, and frame 10 is still frame 10 (a frame without features).
   const std::string dir = kDir + "/damaged";
   copyFirstFrames(dir, 40);
+  test::writeBytes(dir + "/frame_000012.png", test::truncatedJpeg());
   // In a subshell: run() redirects the command's output.
-  ASSERT_EQ(
-      run("(: > " + dir + "/frame_000005.png && echo garbage > " + dir + "/frame_000009.png)"), 0);
+  ASSERT_EQ(run("(: > " + dir + "/frame_000005.png && echo garbage > " + dir +
+                "/frame_000009.png && cd " + dir +
+                " && rm frame_000015.png frame_000020.png frame_000025.png && mkdir "
+                "frame_000015.png && mkfifo frame_000020.png && ln -s /dev/zero "
+                "frame_000025.png)"),
+            0);
   const std::string out = kDir + "/damaged_out";
   const std::string cmd = evaluateFolder(dir, kDir + "/config.yaml", out);
-  ASSERT_EQ(run(cmd, kDir + "/damaged.log"), 0) << readAll(kDir + "/damaged.log");
+  ASSERT_EQ(run("timeout 300 " + cmd, kDir + "/damaged.log"), 0) << readAll(kDir + "/damaged.log");
   const std::string log = readAll(kDir + "/damaged.log");
-  EXPECT_NE(log.find("frame_000005.png skipped (the file is empty)"), std::string::npos) << log;
-  EXPECT_NE(log.find("frame_000009.png skipped (not an image OpenCV can decode)"),
-            std::string::npos)
-      << log;
-  EXPECT_NE(log.find("2 of 40 images skipped"), std::string::npos) << log;
+  for (const char* expected :
+       {"frame_000005.png skipped (empty: the file is empty)",
+        "frame_000009.png skipped (unsupported_format: not a PNG, JPEG, BMP or binary PNM",
+        "frame_000012.png skipped (truncated: JPEG without its end-of-image marker",
+        "frame_000015.png skipped (file_refused: ", "frame_000020.png skipped (file_refused: ",
+        "frame_000025.png skipped (file_refused: ",
+        "6 of 40 images skipped (1 empty, 3 file_refused, 1 unsupported_format, 1 truncated)"}) {
+    EXPECT_NE(log.find(expected), std::string::npos) << expected << "\n" << log;
+  }
   const std::string keyframes = readAll(out + "/keyframes_bowg.csv");
-  EXPECT_NE(keyframes.find("\n5,5.000000,no_features,"), std::string::npos) << keyframes;
-  EXPECT_NE(keyframes.find("\n9,9.000000,no_features,"), std::string::npos) << keyframes;
+  for (const char* row : {"\n5,5.000000,no_features,", "\n9,9.000000,no_features,",
+                          "\n12,12.000000,no_features,", "\n25,25.000000,no_features,"}) {
+    EXPECT_NE(keyframes.find(row), std::string::npos) << row << keyframes;
+  }
   EXPECT_NE(keyframes.find("\n39,"), std::string::npos) << keyframes;
+}
+
+// The same bad images in a bag's CompressedImage messages are skipped with
+// the same reasons as in a folder; an empty message does not end the run.
+TEST_F(EvaluateCli, BadCompressedBagImagesAreSkippedWithTheFolderReasons) {
+  const std::string bag_path = kDir + "/damaged.bag";
+  {
+    rosbag::Bag bag(bag_path, rosbag::bagmode::Write);
+    for (int i = 0; i < 20; ++i) {
+      sensor_msgs::CompressedImage msg;
+      msg.header.stamp = ros::Time(100 + i, 0);
+      msg.format = "mono8; png compressed";
+      char name[64];
+      std::snprintf(name, sizeof name, "/frames/frame_%06d.png", i);
+      const std::string png = readAll(kDir + name);
+      msg.data.assign(png.begin(), png.end());
+      if (i == 5) msg.data.clear();
+      if (i == 9) msg.data = test::truncatedJpeg();
+      if (i == 12) msg.data = test::pngDeclaring(30000, 30000);
+      bag.write("/camera/image_raw/compressed", msg.header.stamp, msg);
+    }
+  }
+  const std::string out = kDir + "/damaged_bag_out";
+  const std::string cmd = kEvaluate + " --quiet --bag " + bag_path +
+                          " --image-topic /camera/image_raw/compressed --vocabulary " +
+                          BOWG_DEFAULT_VOCABULARY + " --config " + kDir +
+                          "/config.yaml --thresholds 0.7 --output " + out;
+  ASSERT_EQ(run("timeout 300 " + cmd, kDir + "/damaged_bag.log"), 0)
+      << readAll(kDir + "/damaged_bag.log");
+  const std::string log = readAll(kDir + "/damaged_bag.log");
+  for (const char* expected :
+       {"frame 5 skipped (empty: bag '", "frame 9 skipped (truncated: bag '",
+        "at 109.000000: JPEG without its end-of-image marker", "frame 12 skipped (too_large: bag '",
+        "at 112.000000: PNG 30000 x 30000 = 900000000 pixels",
+        "3 of 20 images skipped (1 empty, 1 truncated, 1 too_large)"}) {
+    EXPECT_NE(log.find(expected), std::string::npos) << expected << "\n" << log;
+  }
+  const std::string keyframes = readAll(out + "/keyframes_bowg.csv");
+  EXPECT_NE(keyframes.find("\n9,109.000000,no_features,"), std::string::npos) << keyframes;
+  EXPECT_NE(keyframes.find("\n19,"), std::string::npos) << keyframes;
 }
 
 TEST_F(EvaluateCli, ImagesAboveMaxImagePixelsAreSkippedAndKeepTheirFrameNumber) {
@@ -131,12 +189,12 @@ TEST_F(EvaluateCli, ImagesAboveMaxImagePixelsAreSkippedAndKeepTheirFrameNumber) 
   const std::string cmd = evaluateFolder(dir, kDir + "/small_limit.yaml", out);
   ASSERT_EQ(run(cmd, kDir + "/oversize.log"), 0) << readAll(kDir + "/oversize.log");
   const std::string log = readAll(kDir + "/oversize.log");
-  // Refused by OpenCV's header check (the limit is passed on to it) or by
-  // the check after decoding: either way the reason names the limit.
-  const std::size_t at = log.find("frame_000007.png skipped (");
-  ASSERT_NE(at, std::string::npos) << log;
-  EXPECT_NE(log.find("max_image_pixels 76800", at), std::string::npos) << log;
-  EXPECT_NE(log.find("1 of 20 images skipped"), std::string::npos) << log;
+  // Refused from the PNG header, before decoding.
+  EXPECT_NE(log.find("frame_000007.png skipped (too_large: PNG 321 x 240 = 77040 pixels, more "
+                     "than max_image_pixels 76800)"),
+            std::string::npos)
+      << log;
+  EXPECT_NE(log.find("1 of 20 images skipped (1 too_large)"), std::string::npos) << log;
   const std::string keyframes = readAll(out + "/keyframes_bowg.csv");
   EXPECT_NE(keyframes.find("\n7,7.000000,no_features,"), std::string::npos) << keyframes;
   EXPECT_EQ(keyframes.find("\n6,6.000000,no_features,"), std::string::npos) << keyframes;

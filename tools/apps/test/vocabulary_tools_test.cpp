@@ -18,6 +18,7 @@
 
 #include "bowg/vocabulary/vocabulary.h"
 #include "bowg/vocabulary/vocabulary_io.h"
+#include "encoded_test_images.h"
 #include "feature_test_images.h"
 #include "shell_command.h"
 
@@ -145,6 +146,40 @@ TEST_F(VocabularyTools, EveryNthBagMessageAndFoldersPlusBagsCombine) {
   ASSERT_EQ(run(train(both, "--every 2 --bag " + kDir + "/images.bag")), 0);
   ASSERT_EQ(run(train(folder)), 0);
   EXPECT_NE(loadVocabulary(both).fingerprint(), loadVocabulary(folder).fingerprint());
+}
+
+// Bad CompressedImage messages (empty, a JPEG cut short, a PNG declaring
+// 30000 x 30000 pixels) are skipped and counted by reason, as in a folder;
+// the training goes on with the good ones.
+TEST_F(VocabularyTools, BadBagImagesAreSkippedAndCountedByReason) {
+  const std::string bag_path = kDir + "/damaged.bag";
+  {
+    rosbag::Bag bag(bag_path, rosbag::bagmode::Write);
+    for (int i = 0; i < 9; ++i) {
+      sensor_msgs::CompressedImage msg;
+      msg.header.stamp = ros::Time(10 + i, 0);
+      msg.format = "mono8; png compressed";
+      if (i < 6) cv::imencode(".png", test::texturedImage(320, 240, 200, 100 + i), msg.data);
+      if (i == 7) msg.data = test::truncatedJpeg();
+      if (i == 8) msg.data = test::pngDeclaring(30000, 30000);
+      bag.write("/camera/image_raw/compressed", msg.header.stamp, msg);
+    }
+  }
+  const std::string out = kDir + "/damaged.bowgvoc";
+  const std::string log = kDir + "/damaged.log";
+  ASSERT_EQ(run(std::string(BOWG_TRAIN_VOCABULARY_BIN) + " --output " + out +
+                    " --k 4 --L 3 --seed 7 --threads 1 --image-topic /camera/image_raw/compressed"
+                    " --bag " + bag_path,
+                log),
+            0)
+      << readAll(log);
+  const std::string text = readAll(log);
+  for (const char* expected :
+       {"#6 of ", "skipped (empty: ", "#7 of ", "skipped (truncated: ", "#8 of ",
+        "skipped (too_large: ", "PNG 30000 x 30000 = 900000000 pixels",
+        "6 images (3 skipped: 1 empty, 1 truncated, 1 too_large)"}) {
+    EXPECT_NE(text.find(expected), std::string::npos) << expected << "\n" << text;
+  }
 }
 
 TEST_F(VocabularyTools, BadBagInputsFailClearly) {

@@ -14,7 +14,7 @@
 
 #include "bowg/core/errors.h"
 #include "bowg/features/feature_extractor.h"
-#include "bowg_evaluation/image_file.h"
+#include "bowg/features/image_decoding.h"
 #include "bowg_ros/bag_images.h"
 #include "progress_bar.h"
 
@@ -30,12 +30,12 @@ class DescriptorCollector {
 
   const FeatureOptions& features() const { return extractor_.options(); }
 
-  /// `source` names the image in the warning when it is too large.
-  void add(const cv::Mat& image, const std::string& source) {
-    const std::string size = imageSizeProblem(image.cols, image.rows, extractor_.options());
-    if (!size.empty()) {
-      std::fprintf(stderr, "\nwarning: image %s skipped (%s)\n", source.c_str(), size.c_str());
-      ++result_.unreadable;
+  /// The image of `source` (named in the warning), or its refusal.
+  void add(const cv::Mat& image, const ImageCheck& check, const std::string& source) {
+    if (!check.ok()) {
+      std::fprintf(stderr, "\nwarning: image %s skipped (%s)\n", source.c_str(),
+                   check.message().c_str());
+      result_.skipped.add(check.problem);
       return;
     }
     ImageFeatures f = extractor_.extract(image);
@@ -54,8 +54,6 @@ class DescriptorCollector {
     result_.total += result_.per_image.back().size();
   }
 
-  void skipUnreadable() { ++result_.unreadable; }
-
   TrainingDescriptors& result() { return result_; }
 
  private:
@@ -65,14 +63,9 @@ class DescriptorCollector {
 };
 
 void addFile(const std::string& path, DescriptorCollector* collector) {
-  std::string why;
-  const cv::Mat image = eval::readGreyImage(path, collector->features(), &why);
-  if (image.empty()) {
-    std::fprintf(stderr, "\nwarning: image '%s' skipped (%s)\n", path.c_str(), why.c_str());
-    collector->skipUnreadable();
-  } else {
-    collector->add(image, "'" + path + "'");
-  }
+  ImageCheck check;
+  const cv::Mat image = readGreyImageFile(path, collector->features(), &check);
+  collector->add(image, check, "'" + path + "'");
 }
 
 /// The run of sources from images[*i] on that are messages of the same bag,
@@ -86,8 +79,8 @@ void addBagRun(const std::vector<ImageSource>& images, std::size_t* i, const Arg
   for (const rosbag::MessageInstance& m : view) {
     if (*i >= images.size() || images[*i].bag != b) break;
     if (index++ != images[*i].index) continue;
-    collector->add(bowg_ros::readBagImage(m, a.bags[b]).grey,
-                   "#" + std::to_string(index - 1) + " of " + a.bags[b]);
+    const bowg_ros::BagImage image = bowg_ros::readBagImage(m, a.bags[b], collector->features());
+    collector->add(image.grey, image.check, "#" + std::to_string(index - 1) + " of " + a.bags[b]);
     ++*i;
     progressBar(0.2 * *i / images.size(), "extracting features");
   }

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "bowg/core/types.h"
+#include "bowg/features/image_check.h"
 #include "image_sources.h"
 #include "trainer_args.h"
 
@@ -17,11 +18,12 @@ namespace train_vocabulary_app {
 struct TrainingDescriptors {
   std::vector<std::vector<Descriptor>> per_image;  ///< one entry per image read
   std::size_t total = 0;                           ///< descriptors in all images
-  std::size_t unreadable = 0;                      ///< image files skipped
+  ImageProblemCounts skipped;                      ///< images refused, by reason
 };
 
 /// Reads `images` in order (each bag once, front to back) with the feature
-/// options of `a`; unreadable files are skipped with a warning. Shows the
+/// options of `a`; refused images (bowg/features/image_check.h) are
+/// skipped with a warning and counted. Shows the
 /// first 20 % of the progress bar.
 TrainingDescriptors extractDescriptors(const std::vector<ImageSource>& images, const Args& a);
 

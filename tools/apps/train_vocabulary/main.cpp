@@ -37,8 +37,9 @@ int train(const Args& a) {
   }
   images = pickEvenly(std::move(images), a.max_images);
   const TrainingDescriptors d = extractDescriptors(images, a);
-  std::fprintf(stderr, "\n%zu images (%zu unreadable), %zu descriptors\n", d.per_image.size(),
-               d.unreadable, d.total);
+  std::fprintf(stderr, "\n%zu images (%zu skipped%s%s), %zu descriptors\n", d.per_image.size(),
+               d.skipped.total(), d.skipped.total() > 0 ? ": " : "",
+               d.skipped.summary().c_str(), d.total);
   const Vocabulary v = trainVocabulary(
       d.per_image, a.training,
       [](double f, const std::string& stage) { progressBar(0.2 + 0.8 * f, stage); });
