@@ -130,6 +130,8 @@ void LoopDetector::save(const std::string& path) const {
   saveDetectorFile(path, *database_, *state_);
 }
 
+std::string LoopDetector::serialize() const { return encodeDetectorFile(*database_, *state_); }
+
 SavedDetector::SavedDetector() = default;
 SavedDetector::SavedDetector(SavedDetector&&) noexcept = default;
 SavedDetector& SavedDetector::operator=(SavedDetector&&) noexcept = default;

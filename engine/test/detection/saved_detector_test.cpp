@@ -1,6 +1,8 @@
 // A load in two halves (LoopDetector::read, then adopt): reading touches no
 // detector, a failed read changes nothing, adopt swaps the read file in and
-// the detector then runs as one that load()ed it.
+// the detector then runs as one that load()ed it. A save's bytes
+// (serialize) apart from their writing.
+#include "bowg/core/atomic_file.h"
 #include "detector_file_runs.h"
 
 namespace bowg {
@@ -107,6 +109,25 @@ TEST(SavedDetector, OptionsChangedBetweenReadAndAdoptApply) {
     testing::expectSameCandidates(running, loaded);
   }
   std::remove(path.c_str());
+}
+
+// serialize() is save() without the file: the same bytes, written later.
+TEST(SavedDetector, SerializeGivesTheBytesSaveWrites) {
+  const auto voc = vocabulary();
+  const auto kfs = keyframes();
+  LoopDetector a(voc, options());
+  for (int i = 0; i < 45; ++i) a.process(kfs[i]);
+  const std::string saved = outPath("serialize_saved.bowgdb");
+  a.save(saved);
+  const std::string bytes = a.serialize();
+  EXPECT_EQ(bytes, testing::readBytes(saved));
+  const std::string written = outPath("serialize_written.bowgdb");
+  writeFileAtomically(written, bytes);
+  LoopDetector b(voc, options());
+  b.load(written);
+  EXPECT_EQ(b.database().size(), 45u);
+  std::remove(saved.c_str());
+  std::remove(written.c_str());
 }
 
 }  // namespace

@@ -158,6 +158,10 @@ class LoopDetector {
   /// Atomic save (temporary file + rename) of the database and the detector
   /// state; throws IoError.
   void save(const std::string& path) const;
+  /// What save() writes, without writing it: a caller that serialises
+  /// process() with a lock takes the bytes under it and writes them
+  /// (writeFileAtomically, atomic_file.h) after releasing it.
+  std::string serialize() const;
   /// Loads a saved file: adopt(read(path, vocabulary(), options())). Throws
   /// FormatError/IoError and leaves the current state untouched on any error
   /// (other vocabulary, corrupt, truncated).
