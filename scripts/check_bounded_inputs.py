@@ -6,9 +6,11 @@ prints a table: case | program | outcome | seconds | peak MB over baseline.
 Run by scripts/check_bounded_inputs.sh (which puts the workspace's ROS
 environment in place): python3 check_bounded_inputs.py WORKSPACE REPO.
 
-Each program's baseline is the same program refusing a missing file: its
-seconds and peak resident memory are the cost of starting it, which the
-limits below do not count. A case fails when it is accepted, hangs (no
+Each program's baseline is the same program refusing a missing file (for
+the image case: the evaluator on a folder of one small image; for
+~load_database: the node answering for a missing file, and the memory it had
+before the call): its seconds and peak resident memory are the cost of
+starting it, which the limits below do not count. A case fails when it is accepted, hangs (no
 answer within the timeout), crashes, is refused without naming the file,
 takes more than 1 s over the baseline or peaks more than 100 MB over it."""
 
@@ -59,8 +61,9 @@ def run(cmd, env, stop_on=None, timeout=TIMEOUT_S):
     its exit: "exit 0", "exit N" or "crashed" (a signal, a sanitizer abort);
     "hog" when it grows past HOG_KB."""
     start = time.monotonic()
+    # In the scratch folder: the evaluator writes its outputs there.
     proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, env=env,
-                            start_new_session=True)
+                            start_new_session=True, cwd=env["BOWG_SCRATCH"])
     lines, started = [], threading.Event()
 
     def read():
@@ -128,10 +131,10 @@ class Table:
             for line in r.output.strip().splitlines()[-3:]:
                 print("      | " + line[:200])
 
-    def baseline(self, program, r):
+    def baseline(self, program, r, case="missing file"):
         """The cost of starting `program` (peak: its whole peak memory)."""
         print("  %-28s %-24s %-9s %7.2f s %8.1f MB  (baseline)"
-              % ("missing file", program, r.outcome, r.seconds, r.peak_kb / 1024.0), flush=True)
+              % (case, program, r.outcome, r.seconds, r.peak_kb / 1024.0), flush=True)
 
 
 def free_port():
@@ -145,6 +148,7 @@ def free_port():
 def start_master(env):
     port = free_port()
     env["ROS_MASTER_URI"] = "http://127.0.0.1:%d" % port
+    os.environ["ROS_MASTER_URI"] = env["ROS_MASTER_URI"]  # for rospy, in this process
     master = subprocess.Popen(["roscore", "-p", str(port)], stdout=subprocess.DEVNULL,
                               stderr=subprocess.DEVNULL, env=env, start_new_session=True)
     deadline = time.monotonic() + 30
@@ -157,6 +161,16 @@ def start_master(env):
             time.sleep(0.2)
     stop(master)
     raise SystemExit("check_bounded_inputs: roscore did not start")
+
+
+def stop_master(master):
+    """SIGINT: roscore shuts its rosmaster and rosout down (a kill would
+    leave them running)."""
+    master.send_signal(signal.SIGINT)
+    try:
+        master.wait(15)
+    except subprocess.TimeoutExpired:
+        stop(master)
 
 
 def unblock_fifo(path):
@@ -184,7 +198,7 @@ def tools_cases(table, bins, env, vocabulary, small_images, huge_images, tmp, vo
                 unblock_fifo(path)
     # An image too large to decode: refused, or skipped with its name logged.
     base = run(evaluate_voc(vocabulary), env)
-    table.baseline("bowg_evaluate, 1 image", base)
+    table.baseline("bowg_evaluate", base, "one 64x64 image")
     for case, folder in huge_images:
         image = os.path.join(folder, sorted(os.listdir(folder))[0])
         r = run([bins["bowg_evaluate"], "--images", folder, "--vocabulary", vocabulary, "--quiet"],
@@ -193,7 +207,8 @@ def tools_cases(table, bins, env, vocabulary, small_images, huge_images, tmp, vo
 
 
 def node_cmd(bins, params):
-    cmd = [bins["loop_detector_node"], "__name:=bowg_replay"]
+    # Line-buffered: the node's "ready" line must arrive while it runs.
+    cmd = ["stdbuf", "-oL", "-eL", bins["loop_detector_node"], "__name:=bowg_replay"]
     return cmd + ["_%s:=%s" % kv for kv in params.items()]
 
 
@@ -246,7 +261,6 @@ def call_load(path, pid):
 
 def node_service_cases(table, bins, env, vocabulary, tmp, databases):
     import rospy
-    os.environ.update(env)
     proc = None
     missing = os.path.join(tmp, "missing.bowgdb")
     for case, path in [("missing file", missing)] + databases:
@@ -268,7 +282,8 @@ def node_service_cases(table, bins, env, vocabulary, tmp, databases):
         r = Run(outcome, seconds, peak, message)
         if case == "missing file":
             base_seconds = seconds
-            table.baseline("node ~load_database", Run(outcome, seconds, peak - before, message))
+            table.baseline("node ~load_database", Run(outcome, seconds, peak - before, message),
+                           "missing file (growth)")
             continue
         # Memory over what the running node had before the call.
         table.add(case, "node ~load_database", judge(r, path), r,
@@ -292,7 +307,7 @@ def main():
                              % (name, path))
     vocabulary = os.path.join(repo, "data", "default_vocabulary.bowgvoc")
     tmp = tempfile.mkdtemp(prefix="bowg_bounded_inputs.")
-    env = dict(os.environ, ROS_LOG_DIR=os.path.join(tmp, "ros_log"))
+    env = dict(os.environ, ROS_LOG_DIR=os.path.join(tmp, "ros_log"), BOWG_SCRATCH=tmp)
     master = None
     try:
         print("-- cases in %s" % tmp, flush=True)
@@ -310,7 +325,7 @@ def main():
         return 1 if table.failures else 0
     finally:
         if master is not None:
-            stop(master)
+            stop_master(master)
         shutil.rmtree(tmp, ignore_errors=True)
 
 
