@@ -206,35 +206,43 @@ def tools_cases(table, bins, env, vocabulary, small_images, huge_images, tmp, vo
         table.add(case, "bowg_evaluate", judge(r, image, accept_marker=re.escape(image)), r, base)
 
 
+_node_runs = [0]
+
+
 def node_cmd(bins, params):
+    """A node of a name of its own: private parameters of earlier runs stay
+    on the parameter server and must not reach it. Returns (cmd, name)."""
+    _node_runs[0] += 1
+    name = "bowg_replay_%d" % _node_runs[0]
     # Line-buffered: the node's "ready" line must arrive while it runs.
-    cmd = ["stdbuf", "-oL", "-eL", bins["loop_detector_node"], "__name:=bowg_replay"]
-    return cmd + ["_%s:=%s" % kv for kv in params.items()]
+    cmd = ["stdbuf", "-oL", "-eL", bins["loop_detector_node"], "__name:=" + name]
+    return cmd + ["_%s:=%s" % kv for kv in params.items()], "/" + name
 
 
 def node_startup_cases(table, bins, env, vocabulary, tmp, vocabularies, databases):
     ready = r"bowg_ros ready"
     missing = os.path.join(tmp, "missing.bowgvoc")
-    base = run(node_cmd(bins, {"vocabulary_path": missing}), env, stop_on=ready)
+    base = run(node_cmd(bins, {"vocabulary_path": missing})[0], env, stop_on=ready)
     table.baseline("node vocabulary:=", base)
     for case, path in vocabularies:
-        r = run(node_cmd(bins, {"vocabulary_path": path}), env, stop_on=ready)
+        r = run(node_cmd(bins, {"vocabulary_path": path})[0], env, stop_on=ready)
         table.add(case, "node vocabulary:=", judge(r, path), r, base)
         unblock_fifo(path)
     # A database that cannot be loaded at start-up: an error naming it, and
     # the node starts with an empty database.
     missing_db = os.path.join(tmp, "missing.bowgdb")
     params = {"vocabulary_path": vocabulary}
-    base = run(node_cmd(bins, dict(params, database_load_path=missing_db)), env, stop_on=ready)
+    base = run(node_cmd(bins, dict(params, database_load_path=missing_db))[0], env,
+               stop_on=ready)
     table.baseline("node database_load_path", base)
     for case, path in databases:
-        r = run(node_cmd(bins, dict(params, database_load_path=path)), env, stop_on=ready)
+        r = run(node_cmd(bins, dict(params, database_load_path=path))[0], env, stop_on=ready)
         table.add(case, "node database_load_path", judge(r, path, "could not load"), r, base)
         unblock_fifo(path)
 
 
-def call_load(path, pid):
-    """~load_database of /bowg_replay (process `pid`) on a thread of its own:
+def call_load(node, path, pid):
+    """~load_database of `node` (process `pid`) on a thread of its own:
     (outcome so far: None = answered, "hung" or "hog"; the answer; seconds)."""
     import rospy
     from bowg_ros.srv import LoadDatabase
@@ -242,7 +250,7 @@ def call_load(path, pid):
 
     def call():
         try:
-            box["response"] = rospy.ServiceProxy("/bowg_replay/load_database", LoadDatabase)(path)
+            box["response"] = rospy.ServiceProxy(node + "/load_database", LoadDatabase)(path)
         except Exception as e:  # noqa: BLE001 - a dead node is an outcome
             box["error"] = str(e)
 
@@ -265,12 +273,12 @@ def node_service_cases(table, bins, env, vocabulary, tmp, databases):
     missing = os.path.join(tmp, "missing.bowgdb")
     for case, path in [("missing file", missing)] + databases:
         if proc is None or proc.poll() is not None:
-            proc = subprocess.Popen(node_cmd(bins, {"vocabulary_path": vocabulary}),
-                                    stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, env=env,
-                                    start_new_session=True)
-            rospy.wait_for_service("/bowg_replay/load_database", 30)
+            cmd, node = node_cmd(bins, {"vocabulary_path": vocabulary})
+            proc = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+                                    env=env, start_new_session=True)
+            rospy.wait_for_service(node + "/load_database", 30)
         before = vm_hwm_kb(proc.pid)
-        stuck, box, seconds = call_load(path, proc.pid)
+        stuck, box, seconds = call_load(node, path, proc.pid)
         peak = vm_hwm_kb(proc.pid) or before
         if stuck:
             outcome = stuck

@@ -12,8 +12,10 @@
 # or 100 MB over the program refusing a missing file
 # (scripts/check_bounded_inputs.py says exactly how).
 #   scripts/check_bounded_inputs.sh [WORKSPACE]     (default <repo>/.ws)
-# Builds nothing: the workspace must hold the three programs
-# (scripts/build.sh bowg_convert_vocabulary bowg_evaluate loop_detector_node).
+# Builds nothing: the workspace must hold the three programs and the
+# package's Python service types, as a full scripts/build.sh leaves it
+# (or: scripts/build.sh bowg_convert_vocabulary bowg_evaluate
+# loop_detector_node bowg_ros_nodelet bowg_ros_generate_messages_py).
 set -euo pipefail
 repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 ws="${1:-${BOWG_WS:-$repo/.ws}}"
