@@ -268,6 +268,16 @@ def call_load(node, path, pid):
 
 
 def node_service_cases(table, bins, env, vocabulary, tmp, databases):
+    started = []  # every node started, stopped whatever happens
+    try:
+        _service_cases(table, bins, env, vocabulary, tmp, databases, started)
+    finally:
+        for proc in started:
+            if proc.poll() is None:
+                stop(proc)
+
+
+def _service_cases(table, bins, env, vocabulary, tmp, databases, started):
     import rospy
     proc = None
     missing = os.path.join(tmp, "missing.bowgdb")
@@ -276,6 +286,7 @@ def node_service_cases(table, bins, env, vocabulary, tmp, databases):
             cmd, node = node_cmd(bins, {"vocabulary_path": vocabulary})
             proc = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
                                     env=env, start_new_session=True)
+            started.append(proc)
             rospy.wait_for_service(node + "/load_database", 30)
         before = vm_hwm_kb(proc.pid)
         stuck, box, seconds = call_load(node, path, proc.pid)
@@ -300,8 +311,6 @@ def node_service_cases(table, bins, env, vocabulary, tmp, databases):
             unblock_fifo(path)
             stop(proc)
             proc = None
-    if proc is not None:
-        stop(proc)
 
 
 def main():
