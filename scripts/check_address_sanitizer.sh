@@ -11,9 +11,14 @@
 # Prints "asan: <test> ok (<n> tests)" per test program and a count; exits
 # non-zero when one fails.
 # Not run here: bowg_tools_bag_agreement_test (a played bag through the
-# nodelet, ~5 min in a release build), and the tests of scripts and Python
-# helpers only (peer_ratios, benchmark_table, install_deps: nothing
-# instrumented runs in them).
+# nodelet, ~5 min in a release build); bowg_tools_robustness_suite_test (it
+# passes, but takes ~5 min instrumented against ~1 min, and runs the
+# evaluator and the generator that evaluate_cli and generate_pipe_sequence
+# run); bowg_tools_startup_test (it loads the nodelet into Debian's nodelet
+# manager, which is not instrumented: the ASan runtime cannot enter it
+# unless preloaded, as scripts/check_thread_sanitizer.sh does for TSan); and
+# the tests of scripts and Python helpers only (peer_ratios,
+# benchmark_table, install_deps: nothing instrumented runs in them).
 # Environment: BOWG_WS (workspace; the ASan one is its asan_ros/ folder),
 # BOWG_JOBS (build jobs).
 set -euo pipefail
@@ -24,8 +29,7 @@ export PATH="/usr/bin:$PATH"
 
 ros_tests=(bounded_queue cfg_matches_table debug_image image_conversion keyframe_gate
   keyframe_thumbnails live_parameters parameter_docs ros_conversions)
-tool_tests=(vocabulary_tools evaluate_cli generate_pipe_sequence robustness_suite startup
-  pose_graph_cli)
+tool_tests=(vocabulary_tools evaluate_cli generate_pipe_sequence pose_graph_cli)
 targets=()
 for t in "${ros_tests[@]}"; do targets+=("bowg_ros_${t}_test"); done
 for t in "${tool_tests[@]}"; do targets+=("bowg_tools_${t}_test"); done
