@@ -48,7 +48,8 @@ cmake -S "$repo/engine" -B "$asan_dir" -DBOWG_SANITIZE=ON -DCMAKE_BUILD_TYPE=Rel
   || { cat "$asan_dir.log"; exit 1; }
 asan_tests=(bowg_vocabulary_io_test bowg_vocabulary_io_bad_input_test bowg_detector_file_test
   bowg_detector_file_bad_input_test bowg_brief_pattern_test bowg_image_header_test
-  bowg_image_decoding_test bowg_feature_arrays_test bowg_word_groups_test)
+  bowg_image_decoding_test bowg_feature_arrays_test bowg_word_groups_test bowg_saved_detector_test
+  bowg_atomic_file_test)
 make -C "$asan_dir" -j"${BOWG_JOBS:-$(nproc)}" "${asan_tests[@]}" >> "$asan_dir.log" 2>&1 \
   || { tail -n 50 "$asan_dir.log"; exit 1; }
 asan_failed=0
@@ -61,6 +62,10 @@ for t in "${asan_tests[@]}"; do
     echo "asan: $t FAILED"; tail -n 40 "$asan_dir/$t.log"; asan_failed=$((asan_failed + 1))
   fi
 done
+
+echo "== AddressSanitizer/UBSan: the ROS layer's gtests and the tools' end-to-end tests"
+asan_ros_failed=0
+bash "$repo/scripts/check_address_sanitizer.sh" || asan_ros_failed=1
 
 echo "== libFuzzer: every file loader, image decoding and the features input, ${BOWG_FUZZ_SECONDS:-30} s each (scripts/fuzz.sh)"
 fuzz_failed=0
@@ -82,12 +87,14 @@ if [ -z "$tests" ] || [ "$tests" -eq 0 ]; then
   echo "FAIL: no test ran" >&2
   exit 1
 fi
-# Besides catkin's tests: the asan tests, the fuzz run, the workspace, the
-# install space and the ThreadSanitizer checks.
-bad=$(( ${errors:-0} + ${failures:-0} + asan_failed + fuzz_failed + link_failed + install_failed
-  + tsan_failed ))
-echo "$(( tests + ${#asan_tests[@]} + 4 - bad - ${skipped:-0} )) passed, $bad failed, ${skipped:-0} skipped"
+# Besides catkin's tests: the asan tests, the ROS layer's and tools' ASan
+# check, the fuzz run, the workspace, the install space and the
+# ThreadSanitizer checks.
+bad=$(( ${errors:-0} + ${failures:-0} + asan_failed + asan_ros_failed + fuzz_failed + link_failed
+  + install_failed + tsan_failed ))
+echo "$(( tests + ${#asan_tests[@]} + 5 - bad - ${skipped:-0} )) passed, $bad failed, ${skipped:-0} skipped"
 [ "$asan_failed" -eq 0 ] || exit 1
+[ "$asan_ros_failed" -eq 0 ] || exit 1
 [ "$fuzz_failed" -eq 0 ] || exit 1
 [ "$link_failed" -eq 0 ] || exit 1
 [ "$install_failed" -eq 0 ] || exit 1

@@ -79,7 +79,9 @@ TEST(LiveParameters, TheValuesInForceGoBackToTheClient) {
   dynamic_reconfigure::Config msg;
   BoWGConfig::__getDefault__().__toMessage__(msg);
   writeLiveConfig(options, &msg);
-  BoWGConfig config;
+  // Initialised: the generated __fromMessage__ reads each field before it
+  // sets it (UBSan reports an indeterminate bool otherwise).
+  BoWGConfig config = BoWGConfig::__getDefault__();
   config.__fromMessage__(msg);
   EXPECT_EQ(config.lambda_1, 0.25);
   EXPECT_EQ(config.min_inliers, 33);
@@ -206,7 +208,7 @@ TEST(LiveParameters, TheLiveConfigCarriesTheCfgParametersOnly) {
   bowg::PipelineOptions options;
   options.detector.islands.min_score = 0.7;
   dynamic_reconfigure::Config msg = liveConfig(options);
-  BoWGConfig config;
+  BoWGConfig config = BoWGConfig::__getDefault__();  // read before set (see above)
   EXPECT_TRUE(config.__fromMessage__(msg));  // a typed client reads it without complaint
   EXPECT_EQ(config.min_score, 0.7);
 }

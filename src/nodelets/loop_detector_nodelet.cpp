@@ -5,15 +5,38 @@
 #include <opencv2/core/version.hpp>
 #include <pluginlib/class_list_macros.hpp>
 
+#include <sys/stat.h>
+
+#include <cerrno>
+#include <cstring>
+
+#include "bowg/core/atomic_file.h"
+#include "bowg/core/bounded_file.h"
 #include "bowg/detection/geometric_verification.h"
 #include "bowg_ros/startup_status.h"
 
 namespace bowg_ros {
+namespace {
+
+// The size of the file at `path`, or what it is instead of a regular file,
+// without opening it (stat() never waits on a FIFO or a device).
+std::string describeFileSize(const std::string& path) {
+  struct stat st;
+  if (::stat(path.c_str(), &st) != 0) return std::string("cannot stat: ") + std::strerror(errno);
+  if (S_ISREG(st.st_mode)) return bowg::formatBytes(static_cast<std::uint64_t>(st.st_size));
+  if (S_ISDIR(st.st_mode)) return "a directory";
+  if (S_ISFIFO(st.st_mode)) return "a FIFO";
+  if (S_ISCHR(st.st_mode) || S_ISBLK(st.st_mode)) return "a device";
+  return "not a regular file";
+}
+
+}  // namespace
 
 LoopDetectorNodelet::~LoopDetectorNodelet() {
   // Stop the services (waiting for one that runs), the inputs and the timer
   // first, then the worker, then save.
   if (service_spinner_) service_spinner_->stop();
+  if (load_spinner_) load_spinner_->stop();
   save_srv_.shutdown();
   load_srv_.shutdown();
   reset_srv_.shutdown();
@@ -44,6 +67,10 @@ bool LoopDetectorNodelet::startEngine() {
         "(.bowgvoc, DBoW2/DBoW3 YAML, DBoW3 binary, ORBvoc.txt or VINS .bin)");
   }
   try {
+    // Before the load, which may take seconds (a 145 MB ORBvoc.txt): a slow
+    // start is never silent.
+    NODELET_INFO("loading vocabulary %s (%s)", vocabulary_path_.c_str(),
+                 describeFileSize(vocabulary_path_).c_str());
     const auto t0 = Clock::now();
     vocabulary_ = std::make_shared<const bowg::Vocabulary>(bowg::loadVocabulary(vocabulary_path_));
     NODELET_INFO("vocabulary %s: k=%d L=%d, %zu words (%.0f ms)", vocabulary_path_.c_str(),
@@ -66,6 +93,16 @@ bool LoopDetectorNodelet::startEngine() {
     detector_.reset(new bowg::LoopDetector(vocabulary_, options_.detector));
   } catch (const std::exception& e) {
     return fatal(e.what());
+  }
+  // Partial copies that saves to these paths left when they were killed
+  // (atomic_file.h): the next save would remove them too, but a robot that
+  // only loads would keep them for ever.
+  for (const std::string& path : {database_save_path_, database_load_path_}) {
+    const std::size_t removed = bowg::removeStaleTemporariesOf(path);
+    if (removed > 0) {
+      NODELET_INFO("removed %zu partial temporary file(s) of an interrupted save of %s", removed,
+                   path.c_str());
+    }
   }
   if (!database_load_path_.empty()) {
     try {
@@ -120,11 +157,14 @@ void LoopDetectorNodelet::advertiseInterfaces(ros::NodeHandle& nh, ros::NodeHand
   service_pnh.setCallbackQueue(&service_queue_);
   save_srv_ =
       service_pnh.advertiseService("save_database", &LoopDetectorNodelet::saveDatabase, this);
-  load_srv_ =
-      service_pnh.advertiseService("load_database", &LoopDetectorNodelet::loadDatabase, this);
   reset_srv_ = service_pnh.advertiseService("reset", &LoopDetectorNodelet::resetDatabase, this);
   service_spinner_.reset(new ros::AsyncSpinner(1, &service_queue_));
   service_spinner_->start();
+  ros::NodeHandle load_pnh(pnh);
+  load_pnh.setCallbackQueue(&load_queue_);
+  load_srv_ = load_pnh.advertiseService("load_database", &LoopDetectorNodelet::loadDatabase, this);
+  load_spinner_.reset(new ros::AsyncSpinner(1, &load_queue_));
+  load_spinner_->start();
 
   // Diagnostics: updated from a wall timer (update() rate-limits itself).
   startDiagnostics(nh, pnh);

@@ -10,7 +10,9 @@
 //     -> loop_closure, ~keyframe_status, ~debug_image (lazy), diagnostics
 //
 // dynamic_reconfigure, the services and the worker share the detector through
-// one mutex, so an option swap or a database load happens between keyframes.
+// one mutex, so an option swap or a database load happens between keyframes;
+// nothing that reads or waits for a file holds it (a load reads and checks
+// the file first, then swaps it in under the mutex).
 //
 // One class, its member functions grouped by job: loop_detector_nodelet.cpp
 // (start-up and shutdown), nodelet_parameters.cpp (private parameters),
@@ -251,6 +253,11 @@ class LoopDetectorNodelet : public nodelet::Nodelet {
   // queue outlives them.
   ros::CallbackQueue service_queue_;
   std::unique_ptr<ros::AsyncSpinner> service_spinner_;
+  // ~load_database on a queue and a thread of its own: reading a file may
+  // take long (and, for a file that never ends, until it is refused), and
+  // neither save nor reset waits for it.
+  ros::CallbackQueue load_queue_;
+  std::unique_ptr<ros::AsyncSpinner> load_spinner_;
   ros::ServiceServer save_srv_, load_srv_, reset_srv_;
   std::unique_ptr<LiveTuningServer> reconfigure_server_;
   std::unique_ptr<diagnostic_updater::Updater> updater_;

@@ -2,6 +2,8 @@
 // parameter table) and the database services (save, load, reset).
 #include "loop_detector_nodelet.h"
 
+#include "bowg/core/atomic_file.h"
+
 namespace bowg_ros {
 
 dynamic_reconfigure::Config LoopDetectorNodelet::reconfigure(
@@ -34,11 +36,19 @@ bool LoopDetectorNodelet::saveDatabase(SaveDatabase::Request& req, SaveDatabase:
     res.message = "no path given and ~database_save_path is not set";
     return true;
   }
-  std::lock_guard<std::mutex> lock(detector_mutex_);
   try {
-    detector_->save(path);
+    // The bytes under the detector lock, the file (written, synced,
+    // renamed) after it: a slow disk does not hold up the frames.
+    std::string bytes;
+    std::size_t keyframes = 0;
+    {
+      std::lock_guard<std::mutex> lock(detector_mutex_);
+      bytes = detector_->serialize();
+      keyframes = detector_->database().size();
+    }
+    bowg::writeFileAtomically(path, bytes);
     res.success = true;
-    res.message = "saved " + std::to_string(detector_->database().size()) + " keyframes to " + path;
+    res.message = "saved " + std::to_string(keyframes) + " keyframes to " + path;
     NODELET_INFO("%s", res.message.c_str());
   } catch (const std::exception& e) {
     res.success = false;
@@ -55,9 +65,19 @@ bool LoopDetectorNodelet::loadDatabase(LoadDatabase::Request& req, LoadDatabase:
     res.message = "no path given and ~database_load_path is not set";
     return true;
   }
-  std::lock_guard<std::mutex> lock(detector_mutex_);
+  bowg::LoopDetectorOptions options;
+  {
+    std::lock_guard<std::mutex> lock(detector_mutex_);
+    options = detector_->options();
+  }
   try {
-    detector_->load(path);   // keeps the running database on any error
+    // Read and checked without the detector lock (a large file takes
+    // seconds; a bad one may take its time to refuse): frames keep being
+    // processed and the other services keep answering. The lock is held for
+    // the swap only, which keeps the running database on any error.
+    bowg::SavedDetector saved = bowg::LoopDetector::read(path, vocabulary_, options);
+    std::lock_guard<std::mutex> lock(detector_mutex_);
+    detector_->adopt(std::move(saved));
     forgetKeyframeImages();  // the loaded keyframes' images are not in the file
     {
       // Stamps restart from the loaded database's; let the gate follow

@@ -47,35 +47,49 @@ void fsyncPath(const std::string& path, int flags, const std::string& what) {
   if (rc != 0) throw IoError("cannot sync " + what + " '" + path + "': " + err);
 }
 
-// Temporary files of `base` left in `dir` by writers that died before their
-// commit (kill -9, power loss): ".tmp-<pid>-<n>-<base>" whose process no
-// longer exists. Removed so that a crashed save does not leave a copy of a
-// database behind for ever; a live writer's file (its pid exists) is kept.
-void removeStaleTemporaries(const std::string& dir, const std::string& base) {
-  DIR* d = ::opendir(dir.c_str());
-  if (d == nullptr) return;  // the write itself will report the directory
+// "<pid>" when `name` is ".tmp-<pid>-<n>-<base>" (the writer's naming,
+// uniqueTag()), else 0.
+long writerPidOf(const std::string& name, const std::string& base) {
   const std::string suffix = "-" + base;
+  if (name.compare(0, 5, ".tmp-") != 0 || name.size() <= 5 + suffix.size() ||
+      name.compare(name.size() - suffix.size(), suffix.size(), suffix) != 0) {
+    return 0;
+  }
+  // "<pid>-<n>" between the prefix and the suffix.
+  const std::string tag = name.substr(5, name.size() - 5 - suffix.size());
+  const std::size_t dash = tag.find('-');
+  if (dash == 0 || dash == std::string::npos || dash > 9 ||
+      tag.find_first_not_of("0123456789", 0) != dash ||
+      tag.find_first_not_of("0123456789", dash + 1) != std::string::npos ||
+      dash + 1 == tag.size()) {
+    return 0;
+  }
+  return std::strtol(tag.substr(0, dash).c_str(), nullptr, 10);
+}
+
+// A temporary is removed only when everything says this program's writer made
+// it: the writer's naming for this destination, a dead writer (a live pid,
+// even a reused one, keeps it), a regular file (not a link, directory or
+// FIFO someone gave that name) owned by our user. Its content is not
+// checked: a save killed early leaves an empty or short file, shorter than
+// any magic, and the YAML and gzip writers have no magic of their own.
+std::size_t removeStaleTemporaries(const std::string& dir, const std::string& base) {
+  DIR* d = ::opendir(dir.c_str());
+  if (d == nullptr) return 0;  // the write itself will report the directory
+  std::size_t removed = 0;
   while (const dirent* e = ::readdir(d)) {
     const std::string name = e->d_name;
-    if (name.compare(0, 5, ".tmp-") != 0 || name.size() <= 5 + suffix.size() ||
-        name.compare(name.size() - suffix.size(), suffix.size(), suffix) != 0) {
+    const long pid = writerPidOf(name, base);
+    if (pid <= 0 || ::kill(static_cast<pid_t>(pid), 0) == 0 || errno != ESRCH) continue;
+    struct stat st;
+    if (::fstatat(::dirfd(d), name.c_str(), &st, AT_SYMLINK_NOFOLLOW) != 0 ||
+        !S_ISREG(st.st_mode) || st.st_uid != ::geteuid()) {
       continue;
     }
-    // "<pid>-<n>" between the prefix and the suffix.
-    const std::string tag = name.substr(5, name.size() - 5 - suffix.size());
-    const std::size_t dash = tag.find('-');
-    if (dash == 0 || dash == std::string::npos || dash > 9 ||
-        tag.find_first_not_of("0123456789", 0) != dash ||
-        tag.find_first_not_of("0123456789", dash + 1) != std::string::npos ||
-        dash + 1 == tag.size()) {
-      continue;
-    }
-    const long pid = std::strtol(tag.substr(0, dash).c_str(), nullptr, 10);
-    if (pid <= 0 || (::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH)) {
-      ::unlink((dir + "/" + name).c_str());
-    }
+    if (::unlinkat(::dirfd(d), name.c_str(), 0) == 0) ++removed;
   }
   ::closedir(d);
+  return removed;
 }
 
 }  // namespace
@@ -142,6 +156,12 @@ void writeFileAtomically(const std::string& path, const void* data, std::size_t 
   }
   if (::close(fd) != 0) throw IoError("cannot close '" + path + "': " + systemError());
   writer.commit();
+}
+
+std::size_t removeStaleTemporariesOf(const std::string& path) {
+  const std::string base = baseNameOf(path);
+  if (path.empty() || base.empty() || base == "." || base == "..") return 0;
+  return removeStaleTemporaries(directoryOf(path), base);
 }
 
 }  // namespace bowg

@@ -26,6 +26,10 @@ void writeIsland(Writer* w, const Island& i) {
 
 void saveDetectorFile(const std::string& path, const Database& database,
                       const DetectorState& state) {
+  writeFileAtomically(path, encodeDetectorFile(database, state));
+}
+
+std::string encodeDetectorFile(const Database& database, const DetectorState& state) {
   Writer w;
   w.bytes(kMagic, 8);
   w.u32(kVersion);
@@ -106,7 +110,7 @@ void saveDetectorFile(const std::string& path, const Database& database,
     bytes[payload_start - 8 + i] = static_cast<char>((payload >> (8 * i)) & 0xff);
   }
   w.u64(checksum64(bytes.data(), bytes.size()));
-  writeFileAtomically(path, bytes);
+  return std::move(bytes);
 }
 
 }  // namespace bowg

@@ -131,18 +131,44 @@ void LoopDetector::save(const std::string& path) const {
   saveDetectorFile(path, *database_, *state_);
 }
 
-void LoopDetector::load(const std::string& path) {
-  // Built aside; swapped in only when the whole file was read and checked.
-  DetectorState loaded_state;
-  std::unique_ptr<Database> loaded =
-      loadDetectorFile(path, vocabulary_, options_.scoring, options_.geometric.direct_index_level,
-                       options_.distribution.fan_bins, &loaded_state);
+std::string LoopDetector::serialize() const { return encodeDetectorFile(*database_, *state_); }
+
+SavedDetector::SavedDetector() = default;
+SavedDetector::SavedDetector(SavedDetector&&) noexcept = default;
+SavedDetector& SavedDetector::operator=(SavedDetector&&) noexcept = default;
+SavedDetector::~SavedDetector() = default;
+std::size_t SavedDetector::size() const { return database_ ? database_->size() : 0; }
+
+void LoopDetector::load(const std::string& path) { adopt(read(path, vocabulary_, options_)); }
+
+SavedDetector LoopDetector::read(const std::string& path,
+                                 std::shared_ptr<const Vocabulary> vocabulary,
+                                 const LoopDetectorOptions& options) {
+  SavedDetector saved;
+  saved.state_.reset(new DetectorState);
+  saved.database_ =
+      loadDetectorFile(path, vocabulary, options.scoring, options.geometric.direct_index_level,
+                       options.distribution.fan_bins, saved.state_.get());
+  saved.vocabulary_ = std::move(vocabulary);
+  return saved;
+}
+
+void LoopDetector::adopt(SavedDetector saved) {
+  if (!saved.database_ || saved.vocabulary_ != vocabulary_) {
+    throw InvalidParameter(
+        "LoopDetector::adopt: the database was read for another vocabulary (or already adopted)");
+  }
   std::unique_ptr<State> new_state(new State);
-  static_cast<DetectorState&>(*new_state) = std::move(loaded_state);
+  static_cast<DetectorState&>(*new_state) = std::move(*saved.state_);
   // The loaded entries' odometry positions are in the frame of the run that
   // saved them; the keyframes that follow come from a new one.
   ++new_state->odometry_run;
-  database_.swap(loaded);
+  // Options changed since read() (live tuning) apply to the loaded database
+  // too; unchanged ones cost nothing (see Database).
+  saved.database_->setScoring(options_.scoring);
+  saved.database_->setDirectLevel(options_.geometric.direct_index_level);
+  saved.database_->setFanBins(options_.distribution.fan_bins);
+  database_.swap(saved.database_);
   state_.swap(new_state);
   last_candidates_.clear();
 }

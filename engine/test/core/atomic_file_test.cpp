@@ -4,6 +4,7 @@
 
 #include <dirent.h>
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cstdlib>
@@ -107,6 +108,49 @@ TEST(AtomicFile, TemporariesOfDeadWritersAreRemovedOthersKept) {
   EXPECT_TRUE(std::ifstream(d + "/.tmp-999999999-0-other.bowgdb").good());
   EXPECT_TRUE(std::ifstream(d + "/.tmp-x-0-db.bowgdb").good());
   EXPECT_EQ(countTemporaries(d), 3);
+}
+
+TEST(AtomicFile, StaleTemporariesOfAPathAreRemovedWithoutAWrite) {
+  const std::string d = dir() + "/stale_of";
+  ASSERT_EQ(std::system(("rm -rf '" + d + "' && mkdir -p '" + d + "'").c_str()), 0);
+  const auto touch = [&](const std::string& name) { std::ofstream(d + "/" + name) << "x"; };
+  const auto exists = [&](const std::string& name) {
+    struct stat st;
+    return ::lstat((d + "/" + name).c_str(), &st) == 0;
+  };
+  const std::string dead = ".tmp-999999999-";  // above any pid_max: no such process
+  const std::string alive = ".tmp-" + std::to_string(static_cast<long>(::getpid())) + "-";
+  touch(dead + "0-db.bowgdb");        // a save killed mid-write: removed
+  std::ofstream(d + "/" + dead + "1-db.bowgdb").close();  // killed before writing: removed
+  touch(alive + "7-db.bowgdb");       // a live writer's: kept
+  touch(dead + "0-other.bowgdb");     // another destination's: kept
+  touch(".tmp-x-0-db.bowgdb");        // not the writer's naming: kept
+  ASSERT_EQ(::mkdir((d + "/" + dead + "2-db.bowgdb").c_str(), 0755), 0);   // a directory: kept
+  ASSERT_EQ(::mkfifo((d + "/" + dead + "3-db.bowgdb").c_str(), 0644), 0);  // a FIFO: kept
+  // A link of that name to a file of ours: neither it nor its target goes.
+  touch("target");
+  ASSERT_EQ(::symlink((d + "/target").c_str(), (d + "/" + dead + "4-db.bowgdb").c_str()), 0);
+  // Another user's file (testable when the test may give a file away).
+  touch(dead + "5-db.bowgdb");
+  const bool foreign = ::chown((d + "/" + dead + "5-db.bowgdb").c_str(), 65534, 65534) == 0;
+  if (!foreign) ::unlink((d + "/" + dead + "5-db.bowgdb").c_str());
+
+  EXPECT_EQ(removeStaleTemporariesOf(d + "/db.bowgdb"), 2u);
+  EXPECT_FALSE(exists(dead + "0-db.bowgdb"));
+  EXPECT_FALSE(exists(dead + "1-db.bowgdb"));
+  EXPECT_TRUE(exists(alive + "7-db.bowgdb"));
+  EXPECT_TRUE(exists(dead + "0-other.bowgdb"));
+  EXPECT_TRUE(exists(".tmp-x-0-db.bowgdb"));
+  EXPECT_TRUE(exists(dead + "2-db.bowgdb"));
+  EXPECT_TRUE(exists(dead + "3-db.bowgdb"));
+  EXPECT_TRUE(exists(dead + "4-db.bowgdb"));
+  EXPECT_TRUE(exists("target"));
+  if (foreign) EXPECT_TRUE(exists(dead + "5-db.bowgdb"));
+  // Nothing to do, and paths without a file name, are no error.
+  EXPECT_EQ(removeStaleTemporariesOf(d + "/db.bowgdb"), 0u);
+  EXPECT_EQ(removeStaleTemporariesOf(d + "/missing_dir/db.bowgdb"), 0u);
+  EXPECT_EQ(removeStaleTemporariesOf(""), 0u);
+  EXPECT_EQ(removeStaleTemporariesOf(d + "/"), 0u);
 }
 
 TEST(AtomicFile, FailuresNameThePath) {

@@ -43,4 +43,15 @@ inline void writeFileAtomically(const std::string& path, const std::string& byte
   writeFileAtomically(path, bytes.data(), bytes.size());
 }
 
+/// Removes the temporary files that writers of `path` (AtomicFileWriter,
+/// writeFileAtomically) left in its directory when they died before their
+/// commit (kill -9, power loss): ".tmp-<pid>-<n>-<base name>" whose process no
+/// longer exists, and only regular files owned by this process's user, so that
+/// nothing another user or program made is touched. Called by every new
+/// writer of `path`, and by programs when they open a path they will save to,
+/// so that an interrupted save does not leave its partial copy behind until
+/// the next save. Returns how many were removed; never throws (an unreadable
+/// directory is reported by the write itself).
+std::size_t removeStaleTemporariesOf(const std::string& path);
+
 }  // namespace bowg

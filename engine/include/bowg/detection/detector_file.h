@@ -26,6 +26,9 @@ class Vocabulary;
 /// loading detector's options. Written atomically (atomic_file.h).
 void saveDetectorFile(const std::string& path, const Database& database,
                       const DetectorState& state);
+/// The bytes saveDetectorFile() writes: taken under a lock that serialises
+/// the detector, written (writeFileAtomically) after it is released.
+std::string encodeDetectorFile(const Database& database, const DetectorState& state);
 /// Reads and checks a file written by saveDetectorFile() into a NEW database
 /// (nothing shared with any existing one). Throws IoError (unreadable) or
 /// FormatError (bad magic/version, truncated, checksum mismatch, sizes

@@ -23,6 +23,26 @@ namespace bowg {
 
 class Vocabulary;
 class Database;
+struct DetectorState;
+
+/// A detector file read and checked (LoopDetector::read), not yet in use: the
+/// slow half of a load, kept apart so that it can run while another thread
+/// keeps calling process(); LoopDetector::adopt() puts it in use.
+class SavedDetector {
+ public:
+  SavedDetector(SavedDetector&&) noexcept;
+  SavedDetector& operator=(SavedDetector&&) noexcept;
+  ~SavedDetector();
+  /// Keyframes in the file.
+  std::size_t size() const;
+
+ private:
+  friend class LoopDetector;
+  SavedDetector();
+  std::shared_ptr<const Vocabulary> vocabulary_;
+  std::unique_ptr<Database> database_;
+  std::unique_ptr<DetectorState> state_;
+};
 
 /// Wall-clock milliseconds spent per stage for one keyframe.
 struct StageTimings {
@@ -138,9 +158,25 @@ class LoopDetector {
   /// Atomic save (temporary file + rename) of the database and the detector
   /// state; throws IoError.
   void save(const std::string& path) const;
-  /// Loads a saved file. Throws FormatError/IoError and leaves the current
-  /// state untouched on any error (other vocabulary, corrupt, truncated).
+  /// What save() writes, without writing it: a caller that serialises
+  /// process() with a lock takes the bytes under it and writes them
+  /// (writeFileAtomically, atomic_file.h) after releasing it.
+  std::string serialize() const;
+  /// Loads a saved file: adopt(read(path, vocabulary(), options())). Throws
+  /// FormatError/IoError and leaves the current state untouched on any error
+  /// (other vocabulary, corrupt, truncated).
   void load(const std::string& path);
+  /// Reads and checks a file written by save() for a detector of
+  /// `vocabulary` and `options`, touching no detector: a caller that
+  /// serialises process() with a lock reads without holding it (a large
+  /// file takes seconds) and holds it for adopt() only. Throws as load().
+  static SavedDetector read(const std::string& path, std::shared_ptr<const Vocabulary> vocabulary,
+                            const LoopDetectorOptions& options);
+  /// Puts a read file in use in place of the database and the memory of
+  /// previous queries (cheap: no file access; the options in force now
+  /// apply). Throws InvalidParameter, keeping the current state, when
+  /// `saved` was read for another vocabulary.
+  void adopt(SavedDetector saved);
   /// Forgets every keyframe.
   void reset();
 
