@@ -9,9 +9,11 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <limits>
 #include <string>
 
@@ -32,7 +34,7 @@ namespace {
 
 std::vector<std::string> listImages(const std::string& dir) {
   DIR* d = ::opendir(dir.c_str());
-  if (!d) throw IoError("cannot open the image folder " + dir);
+  if (!d) throw IoError("cannot open the image folder " + dir + ": " + std::strerror(errno));
   std::vector<std::string> files;
   while (dirent* e = ::readdir(d)) {
     std::string name = e->d_name, lower = name;

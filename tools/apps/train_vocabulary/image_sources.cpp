@@ -3,14 +3,15 @@
 #include "image_sources.h"
 
 #include <dirent.h>
+#include <rosbag/view.h>
 #include <sys/stat.h>
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
+#include <cstring>
 #include <string>
 #include <vector>
-
-#include <rosbag/view.h>
 
 #include "bowg/core/errors.h"
 
@@ -33,7 +34,8 @@ bool isImage(const std::string& name) {
 void findImages(const std::string& dir, std::vector<std::string>* out, int depth = 0) {
   if (depth > 64) return;  // symlink loops
   DIR* d = ::opendir(dir.c_str());
-  if (d == nullptr) throw bowg::IoError("cannot open folder '" + dir + "'");
+  if (d == nullptr)
+    throw bowg::IoError("cannot open folder '" + dir + "': " + std::strerror(errno));
   std::vector<std::string> entries;
   while (dirent* e = ::readdir(d)) {
     const std::string name = e->d_name;

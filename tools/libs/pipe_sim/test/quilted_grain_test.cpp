@@ -1,6 +1,7 @@
 #include "bowg_pipe_sim/quilted_grain.h"
 
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <fstream>
@@ -86,6 +87,31 @@ TEST(QuiltedGrainTest, LoadErrorsNameTheFolderOrFile) {
   cv::imwrite(small + "/s.png", cv::Mat(60, 60, CV_8U, cv::Scalar(9)));
   EXPECT_THROW(loadGrainImages(small, 0.15), std::runtime_error);  // 42 rows left
   EXPECT_THROW(loadGrainImages(small, 0.5), std::invalid_argument);
+}
+
+// A FIFO, a folder or a huge sparse file named as an image is refused by
+// name at once, never opened by OpenCV (a FIFO would hold the generator).
+TEST(QuiltedGrainTest, SpecialAndHugeFilesAreRefusedBeforeOpening) {
+  const std::string dir = freshDir("quilt_special");
+  ASSERT_EQ(::mkfifo((dir + "/fifo.png").c_str(), 0600), 0);
+  const auto refusal = [&dir]() -> std::string {
+    try {
+      loadGrainImages(dir, 0.15);
+    } catch (const std::runtime_error& e) {
+      return e.what();
+    }
+    return "";
+  };
+  EXPECT_NE(refusal().find("fifo.png: it is not a regular file"), std::string::npos) << refusal();
+  ::unlink((dir + "/fifo.png").c_str());
+  ASSERT_EQ(::mkdir((dir + "/folder.jpg").c_str(), 0755), 0);
+  EXPECT_NE(refusal().find("folder.jpg: it is not a regular file"), std::string::npos);
+  ::rmdir((dir + "/folder.jpg").c_str());
+  std::ofstream(dir + "/huge.png").put('x');
+  ASSERT_EQ(::truncate((dir + "/huge.png").c_str(), 1ll << 30), 0);
+  EXPECT_NE(refusal().find("huge.png is 1024 MiB, more than 64 MiB"), std::string::npos)
+      << refusal();
+  ::unlink((dir + "/huge.png").c_str());
 }
 
 TEST(QuiltedGrainTest, FieldIsNormalisedDeterministicAndFromTheImages) {
