@@ -29,6 +29,10 @@ bash "$repo/scripts/build.sh" tests
 # catkin_test_results below.
 bash "$repo/scripts/build.sh" run_tests -j1 || true
 
+echo "== bounded inputs: special files, huge files and bombs against the converter, the evaluator and the node"
+bounded_failed=0
+bash "$repo/scripts/check_bounded_inputs.sh" "$ws" || bounded_failed=1
+
 echo "== workspace: the package as a directory of links, rosrun without a file system loop"
 link_failed=0
 bash "$repo/scripts/check_workspace_link.sh" || link_failed=1
@@ -88,15 +92,16 @@ if [ -z "$tests" ] || [ "$tests" -eq 0 ]; then
   exit 1
 fi
 # Besides catkin's tests: the asan tests, the ROS layer's and tools' ASan
-# check, the fuzz run, the workspace, the install space and the
-# ThreadSanitizer checks.
-bad=$(( ${errors:-0} + ${failures:-0} + asan_failed + asan_ros_failed + fuzz_failed + link_failed
-  + install_failed + tsan_failed ))
-echo "$(( tests + ${#asan_tests[@]} + 5 - bad - ${skipped:-0} )) passed, $bad failed, ${skipped:-0} skipped"
+# check, the bounded-inputs replay, the fuzz run, the workspace, the install
+# space and the ThreadSanitizer checks.
+bad=$(( ${errors:-0} + ${failures:-0} + asan_failed + asan_ros_failed + bounded_failed
+  + fuzz_failed + link_failed + install_failed + tsan_failed ))
+echo "$(( tests + ${#asan_tests[@]} + 6 - bad - ${skipped:-0} )) passed, $bad failed, ${skipped:-0} skipped"
 [ "$asan_failed" -eq 0 ] || exit 1
 [ "$asan_ros_failed" -eq 0 ] || exit 1
 [ "$fuzz_failed" -eq 0 ] || exit 1
 [ "$link_failed" -eq 0 ] || exit 1
 [ "$install_failed" -eq 0 ] || exit 1
 [ "$tsan_failed" -eq 0 ] || exit 1
+[ "$bounded_failed" -eq 0 ] || exit 1
 exit $status
