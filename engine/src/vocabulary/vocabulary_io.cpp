@@ -28,7 +28,8 @@ std::string readVocabularyFile(const std::string& path) {
 void checkText(const std::string& path, const char* data, std::size_t size, std::uint64_t offset) {
   const void* nul = std::memchr(data, '\0', size);
   if (nul != nullptr) {
-    const std::uint64_t at = offset + static_cast<std::uint64_t>(static_cast<const char*>(nul) - data);
+    const std::uint64_t at =
+        offset + static_cast<std::uint64_t>(static_cast<const char*>(nul) - data);
     fail(path, "a NUL byte at offset " + std::to_string(at) +
                    ": not text (a binary, zero-filled or sparse file)");
   }
@@ -47,9 +48,14 @@ std::string readTextRest(BoundedFile* file, std::string text) {
 
 void checkHeader(const std::string& path, std::int64_t k, std::int64_t L, std::int64_t scoring,
                  std::int64_t weighting) {
-  if (k < 2 || k > 1000)
-    fail(path, "branching factor k = " + std::to_string(k) + " out of range [2, 1000]");
-  if (L < 1 || L > 100) fail(path, "depth L = " + std::to_string(L) + " out of range [1, 100]");
+  if (k < 2 || k > kMaxBranching) {
+    fail(path, "branching factor k = " + std::to_string(k) + " out of range [2, " +
+                   std::to_string(kMaxBranching) + "]");
+  }
+  if (L < 1 || L > kMaxDepth) {
+    fail(path,
+         "depth L = " + std::to_string(L) + " out of range [1, " + std::to_string(kMaxDepth) + "]");
+  }
   if (scoring < 0 || scoring > 5) fail(path, "unknown scoring type " + std::to_string(scoring));
   if (weighting < 0 || weighting > 3)
     fail(path, "unknown weighting type " + std::to_string(weighting));
@@ -348,12 +354,12 @@ void saveVocabulary(const Vocabulary& vocabulary, const std::string& path,
                     VocabularyFormat format) {
   if (vocabulary.empty()) throw std::invalid_argument("saveVocabulary: the vocabulary is empty");
   // What every loader refuses is never written.
-  if (vocabulary.branching() < 2 || vocabulary.branching() > 1000 || vocabulary.depth() < 1 ||
-      vocabulary.depth() > 100) {
-    throw std::invalid_argument("saveVocabulary: '" + path + "': k = " +
-                                std::to_string(vocabulary.branching()) + ", L = " +
-                                std::to_string(vocabulary.depth()) +
-                                " outside the loadable ranges k in [2, 1000], L in [1, 100]");
+  if (vocabulary.branching() < 2 || vocabulary.branching() > kMaxBranching ||
+      vocabulary.depth() < 1 || vocabulary.depth() > kMaxDepth) {
+    throw std::invalid_argument(
+        "saveVocabulary: '" + path + "': k = " + std::to_string(vocabulary.branching()) +
+        ", L = " + std::to_string(vocabulary.depth()) + " outside the loadable ranges k in [2, " +
+        std::to_string(kMaxBranching) + "], L in [1, " + std::to_string(kMaxDepth) + "]");
   }
   switch (format) {
     case VocabularyFormat::kBowg:

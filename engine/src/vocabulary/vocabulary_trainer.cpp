@@ -28,7 +28,10 @@ void TrainingOptions::validate() const {
   if (L < 1) throw InvalidParameter("training.L: must be >= 1, got " + std::to_string(L));
   if (L > 64) throw InvalidParameter("training.L: must be <= 64, got " + std::to_string(L));
   // The largest k every vocabulary format's loader accepts.
-  if (k > 1000) throw InvalidParameter("training.k: must be <= 1000, got " + std::to_string(k));
+  if (k > kMaxBranching) {
+    throw InvalidParameter("training.k: must be <= " + std::to_string(kMaxBranching) + ", got " +
+                           std::to_string(k));
+  }
   if (max_iterations < 1) {
     throw InvalidParameter("training.max_iterations: must be >= 1, got " +
                            std::to_string(max_iterations));

@@ -88,7 +88,7 @@ bool setTreeOption(const std::string& arg, ArgReader* r, Args* a) {
   } else if (arg == "--format") {
     a->format = r->value(arg);
   } else if (arg == "--k") {
-    training.k = static_cast<int>(parseInteger(arg, r->value(arg), 2, 1000));
+    training.k = static_cast<int>(parseInteger(arg, r->value(arg), 2, kMaxBranching));
   } else if (arg == "--L") {
     training.L = static_cast<int>(parseInteger(arg, r->value(arg), 1, 64));
   } else if (arg == "--weighting") {

@@ -17,6 +17,12 @@
 
 namespace bowg {
 
+/// The largest branching factor k and depth L that every vocabulary file
+/// format's loader accepts; the writers and the trainer refuse more, so that
+/// nothing they make is unloadable.
+constexpr int kMaxBranching = 1000;
+constexpr int kMaxDepth = 100;
+
 class Vocabulary {
  public:
   static constexpr WordId kNoWord = 0xffffffffu;
