@@ -97,6 +97,14 @@ void checkKeyframe(const KeyframeInput& keyframe, const Database& database) {
   }
 }
 
+// The database options of `options` applied to `database`; only what
+// depends on a changed value is rebuilt (see Database).
+void applyDatabaseOptions(const LoopDetectorOptions& options, Database* database) {
+  database->setScoring(options.scoring);
+  database->setDirectLevel(options.geometric.direct_index_level);
+  database->setFanBins(options.distribution.fan_bins);
+}
+
 }  // namespace
 
 // The detector's memory (saved with it) and what only speeds it up.
@@ -121,10 +129,7 @@ LoopDetector::~LoopDetector() = default;
 void LoopDetector::setOptions(const LoopDetectorOptions& options) {
   options.validate();
   options_ = options;
-  // Only what depends on a changed value is rebuilt (see Database).
-  database_->setScoring(options_.scoring);
-  database_->setDirectLevel(options_.geometric.direct_index_level);
-  database_->setFanBins(options_.distribution.fan_bins);
+  applyDatabaseOptions(options_, database_.get());
 }
 
 void LoopDetector::save(const std::string& path) const {
@@ -165,9 +170,7 @@ void LoopDetector::adopt(SavedDetector saved) {
   ++new_state->odometry_run;
   // Options changed since read() (live tuning) apply to the loaded database
   // too; unchanged ones cost nothing (see Database).
-  saved.database_->setScoring(options_.scoring);
-  saved.database_->setDirectLevel(options_.geometric.direct_index_level);
-  saved.database_->setFanBins(options_.distribution.fan_bins);
+  applyDatabaseOptions(options_, saved.database_.get());
   database_.swap(saved.database_);
   state_.swap(new_state);
   last_candidates_.clear();
