@@ -36,7 +36,7 @@
 #include "bowg_evaluation/stamp_index.h"
 #include "bowg_ros/KeyframeStatus.h"
 #include "bowg_ros/LoopClosure.h"
-#include "bowg_ros/bag_images.h"
+#include "bowg_bag_reading/bag_images.h"
 
 namespace {
 
@@ -53,7 +53,7 @@ std::vector<std::int64_t> imageStamps(const std::string& path, const std::string
   rosbag::View view(bag, rosbag::TopicQuery(topic));
   std::vector<std::int64_t> stamps;
   for (const rosbag::MessageInstance& m : view) {
-    const ros::Time stamp = bowg_ros::bagImageStamp(m, path);
+    const ros::Time stamp = bowg::bag::bagImageStamp(m, path);
     stamps.push_back(static_cast<std::int64_t>(stamp.toNSec()));
   }
   if (stamps.empty()) throw bowg::FormatError("the bag " + path + " has no message on " + topic);

@@ -21,7 +21,7 @@
 #include "bowg/features/image_decoding.h"
 #include "bowg_evaluation/intrinsics_file.h"
 #include "bowg_evaluation/odometry_file.h"
-#include "bowg_ros/bag_images.h"
+#include "bowg_bag_reading/bag_images.h"
 #include "bowg_ros/ros_conversions.h"
 #include "console_output.h"
 
@@ -139,7 +139,7 @@ std::vector<FrameInput> loadFrames(const Args& a, const FeatureExtractor& extrac
       last_reading = reading->data;
       continue;
     }
-    const bowg_ros::BagImage image = bowg_ros::readBagImage(m, a.bag, extractor.options());
+    const bowg::bag::BagImage image = bowg::bag::readBagImage(m, a.bag, extractor.options());
     if (!image.check.ok()) {
       skipImage("frame " + std::to_string(frames.size()), image.check, &skipped);
     }

@@ -15,7 +15,7 @@
 #include "bowg/core/errors.h"
 #include "bowg/features/feature_extractor.h"
 #include "bowg/features/image_decoding.h"
-#include "bowg_ros/bag_images.h"
+#include "bowg_bag_reading/bag_images.h"
 #include "progress_bar.h"
 
 namespace bowg {
@@ -79,7 +79,7 @@ void addBagRun(const std::vector<ImageSource>& images, std::size_t* i, const Arg
   for (const rosbag::MessageInstance& m : view) {
     if (*i >= images.size() || images[*i].bag != b) break;
     if (index++ != images[*i].index) continue;
-    const bowg_ros::BagImage image = bowg_ros::readBagImage(m, a.bags[b], collector->features());
+    const bowg::bag::BagImage image = bowg::bag::readBagImage(m, a.bags[b], collector->features());
     collector->add(image.grey, image.check, "#" + std::to_string(index - 1) + " of " + a.bags[b]);
     ++*i;
     progressBar(0.2 * *i / images.size(), "extracting features");

@@ -1,5 +1,5 @@
 // Images of a rosbag (see bag_images.h).
-#include "bowg_ros/bag_images.h"
+#include "bowg_bag_reading/bag_images.h"
 
 #include <sensor_msgs/CompressedImage.h>
 #include <sensor_msgs/Image.h>
@@ -7,37 +7,38 @@
 #include "bowg/core/errors.h"
 #include "bowg_ros/image_conversion.h"
 
-namespace bowg_ros {
+namespace bowg {
+namespace bag {
 namespace {
 
 [[noreturn]] void notAnImage(const rosbag::MessageInstance& m, const std::string& bag_path) {
-  throw bowg::FormatError("bag '" + bag_path + "', topic " + m.getTopic() + " holds " +
-                          m.getDataType() +
-                          ", not sensor_msgs/Image or sensor_msgs/CompressedImage");
+  throw FormatError("bag '" + bag_path + "', topic " + m.getTopic() + " holds " + m.getDataType() +
+                    ", not sensor_msgs/Image or sensor_msgs/CompressedImage");
 }
 
 }  // namespace
 
 BagImage readBagImage(const rosbag::MessageInstance& m, const std::string& bag_path,
-                      const bowg::FeatureOptions& options) {
+                      const FeatureOptions& options) {
   BagImage out;
   try {
     if (const sensor_msgs::Image::ConstPtr img = m.instantiate<sensor_msgs::Image>()) {
       out.stamp = img->header.stamp;
-      out.grey = greyFromImage(*img, options).clone();  // the message dies with this scope
+      // Cloned: the message dies with this scope.
+      out.grey = bowg_ros::greyFromImage(*img, options).clone();
       return out;
     }
     if (const sensor_msgs::CompressedImage::ConstPtr c =
             m.instantiate<sensor_msgs::CompressedImage>()) {
       out.stamp = c->header.stamp;
-      out.grey = greyFromCompressed(*c, options);
+      out.grey = bowg_ros::greyFromCompressed(*c, options);
       return out;
     }
   } catch (const BadImage& e) {
     out.grey = cv::Mat();
-    out.check = bowg::imageRefusal(e.problem(), "bag '" + bag_path + "', topic " + m.getTopic() +
-                                                    " at " + std::to_string(m.getTime().toSec()) +
-                                                    ": " + e.check().detail);
+    out.check = imageRefusal(e.problem(), "bag '" + bag_path + "', topic " + m.getTopic() + " at " +
+                                              std::to_string(m.getTime().toSec()) + ": " +
+                                              e.check().detail);
     return out;
   }
   notAnImage(m, bag_path);
@@ -54,4 +55,5 @@ ros::Time bagImageStamp(const rosbag::MessageInstance& m, const std::string& bag
   notAnImage(m, bag_path);
 }
 
-}  // namespace bowg_ros
+}  // namespace bag
+}  // namespace bowg

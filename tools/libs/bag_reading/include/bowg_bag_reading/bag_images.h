@@ -1,6 +1,6 @@
 // Images read from a rosbag (sensor_msgs/Image or sensor_msgs/CompressedImage
 // on one topic), converted exactly as the nodelet converts its input
-// (image_conversion.h). Used by the offline evaluator, the bag evaluator and
+// (bowg_ros/image_conversion.h). Used by the offline evaluator, the bag evaluator and
 // the vocabulary trainer.
 #pragma once
 
@@ -13,7 +13,8 @@
 #include "bowg/features/feature_options.h"
 #include "bowg/features/image_check.h"
 
-namespace bowg_ros {
+namespace bowg {
+namespace bag {
 
 /// One image of a bag: its grey image (owned: independent of the message)
 /// and its header stamp; a refused image has an empty grey image and its
@@ -21,7 +22,7 @@ namespace bowg_ros {
 struct BagImage {
   cv::Mat grey;
   ros::Time stamp;
-  bowg::ImageCheck check;
+  ImageCheck check;
 };
 
 /// Throws bowg::FormatError naming the bag and the topic when the message is
@@ -30,9 +31,10 @@ struct BagImage {
 /// detail naming the bag, topic and time, so that one bad frame skips that
 /// frame and not the run.
 BagImage readBagImage(const rosbag::MessageInstance& message, const std::string& bag_path,
-                      const bowg::FeatureOptions& options);
+                      const FeatureOptions& options);
 
 /// The header stamp only (no decoding); same errors for other message types.
 ros::Time bagImageStamp(const rosbag::MessageInstance& message, const std::string& bag_path);
 
-}  // namespace bowg_ros
+}  // namespace bag
+}  // namespace bowg
