@@ -1,5 +1,5 @@
 // The features bowg_train_vocabulary trains on: every image source read
-// (files as grey images, bag messages through the ROS layer, bag_images.h,
+// (files as grey images, bag messages through libs/bag_reading, bag_images.h,
 // as the nodelet reads them) and its descriptors extracted, the strongest
 // --max-features-per-image of them kept.
 #pragma once

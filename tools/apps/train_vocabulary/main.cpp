@@ -2,7 +2,7 @@
 // images of folders and/or rosbags (sensor_msgs/Image or CompressedImage on
 // one topic). Gathering the images and extracting their features live here;
 // the training itself is the engine's bowg::trainVocabulary(). Bag images
-// are read through the ROS layer (bag_images.h), as the nodelet reads them.
+// are read through libs/bag_reading (bag_images.h), as the nodelet reads them.
 //
 // The pieces: trainer_args (command line), image_sources (which images),
 // descriptor_extraction (their features), progress_bar; here the training,
