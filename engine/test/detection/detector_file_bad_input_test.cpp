@@ -103,6 +103,12 @@ TEST(DatabaseIo, SaveToAnUnwritablePathThrowsIoError) {
   EXPECT_THROW(a.save("/nonexistent_dir_bowg/x.bowgdb"), IoError);
 }
 
+// A file whose checksum is right but whose content no run can produce (a
+// forged or buggy writer): refused by name, the detector untouched. Offsets
+// from the layout (detector_file.cpp): header 28 bytes, u32 scoring, u32 entry
+// count, then entry 0: stamp, centre x, y (f64), intrinsics valid (u8), fx,
+// fy, cx, cy (f64), u32 feature count, feature 0: x, y, size, angle,
+// response (f32), ...
 TEST(DatabaseIo, ForgedContentIsRefusedByName) {
   const auto voc = vocabulary();
   auto kfs = keyframes();
