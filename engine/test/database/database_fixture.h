@@ -53,8 +53,9 @@ struct CountedEntry {
 };
 
 // Fills `db` with 30 corridor keyframes 0.5 m apart (overlapping views share
-// words) and returns a query keyframe's entry over the first ones. The raw
-// groups each entry was added with go to `added` when given.
+// words) and returns a query keyframe's entry over the first ones, its raw
+// groups counted into the table (the entry not added). The raw groups each
+// entry was added with go to `added` when given.
 inline CountedEntry fill(Database* db, BowVector* query_bow,
                          std::vector<GroupVector>* added = nullptr) {
   const testing::Corridor c = testing::makeCorridor(30, 50, 21);
