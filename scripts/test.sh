@@ -51,10 +51,9 @@ cmake -S "$repo/engine" -B "$asan_dir" -DBOWG_SANITIZE=ON -DCMAKE_BUILD_TYPE=Rel
   -DBOWG_ENGINE_BENCHMARKS=OFF -DCMAKE_CXX_STANDARD=14 > "$asan_dir.log" 2>&1 \
   || { cat "$asan_dir.log"; exit 1; }
 asan_tests=(bowg_vocabulary_io_test bowg_vocabulary_io_bad_input_test bowg_detector_file_test
-  bowg_detector_file_bad_input_test bowg_detector_file_forged_test bowg_brief_pattern_test
-  bowg_image_header_test
-  bowg_image_decoding_test bowg_feature_arrays_test bowg_word_groups_test bowg_saved_detector_test
-  bowg_atomic_file_test)
+  bowg_detector_file_versions_test bowg_detector_file_bad_input_test bowg_detector_file_forged_test
+  bowg_brief_pattern_test bowg_image_header_test bowg_image_decoding_test bowg_feature_arrays_test
+  bowg_word_groups_test bowg_word_group_scores_test bowg_saved_detector_test bowg_atomic_file_test)
 make -C "$asan_dir" -j"${BOWG_JOBS:-$(nproc)}" "${asan_tests[@]}" >> "$asan_dir.log" 2>&1 \
   || { tail -n 50 "$asan_dir.log"; exit 1; }
 asan_failed=0

@@ -137,19 +137,41 @@ GroupVector Database::rawGroups(EntryId id) const {
   return index_.rawGroups(id, e.searchable, e.words);
 }
 
-EntryId Database::add(DatabaseEntry e, const GroupVector& raw_groups,
-                      const std::vector<double>& distribution) {
-  return addEntry(std::move(e), raw_groups, distribution, nullptr);
+CountedGroups Database::addToGroupTable(GroupVector raw) {
+  if (!raw.empty()) group_table_.add(raw);
+  return CountedGroups(this, std::move(raw));
 }
 
-EntryId Database::add(DatabaseEntry e, const GroupVector& raw_groups,
-                      const DatabaseQuery& queried) {
+void Database::checkCounted(const CountedGroups& counted, const char* function, bool to_add) const {
+  const char* problem = nullptr;
+  if (counted.owner_ == nullptr) {
+    problem = ": the word groups were moved from";
+  } else if (counted.owner_ != this) {
+    problem = ": the word groups were counted by another database";
+  } else if (to_add && counted.added_) {
+    problem = ": the word groups were added already (one entry per counting)";
+  }
+  if (problem != nullptr) throw std::logic_error(std::string(function) + problem);
+}
+
+EntryId Database::add(DatabaseEntry e, CountedGroups&& counted,
+                      const std::vector<double>& distribution) {
+  checkCounted(counted, "Database::add", true);
+  const EntryId id = addEntry(std::move(e), counted.raw_, distribution, nullptr);
+  counted.added_ = true;
+  return id;
+}
+
+EntryId Database::add(DatabaseEntry e, CountedGroups&& counted, const DatabaseQuery& queried) {
+  checkCounted(counted, "Database::add", true);
   if (queried.scoring != scoring_) {
     throw std::invalid_argument("Database::add: the query's BoW vector is normalised for " +
                                 toString(queried.scoring) + ", the database scores " +
                                 toString(scoring_));
   }
-  return addEntry(std::move(e), raw_groups, queried.distribution, &queried.bow);
+  const EntryId id = addEntry(std::move(e), counted.raw_, queried.distribution, &queried.bow);
+  counted.added_ = true;
+  return id;
 }
 
 void Database::checkEntry(const DatabaseEntry& e, const std::vector<WordId>& words,
@@ -221,9 +243,11 @@ EntryId Database::addEntry(DatabaseEntry e, const GroupVector& raw_groups,
   return id;
 }
 
-DatabaseQuery Database::makeQuery(BowVector bow, const GroupVector& raw_groups,
+DatabaseQuery Database::makeQuery(BowVector bow, const CountedGroups& counted,
                                   const std::vector<ImagePoint>& points, double centre_x,
                                   double centre_y, bool with_distribution) const {
+  checkCounted(counted, "Database::makeQuery", false);
+  const GroupVector& raw_groups = counted.raw_;
   DatabaseQuery q;
   q.bow = std::move(bow);
   normaliseBowVector(scoring_, &q.bow);

@@ -404,8 +404,7 @@ std::unique_ptr<Database> loadDetectorFile(const std::string& path,
     if (version >= 7) readOdometryPositions(&p, &entries, state);
     if (version >= 8) readSearchable(&p, &entries);
     for (std::size_t i = 0; i < n; ++i) {
-      db->addToGroupTable(raw_groups[i]);
-      db->add(std::move(entries[i]), raw_groups[i]);
+      db->add(std::move(entries[i]), db->addToGroupTable(std::move(raw_groups[i])));
     }
     restoreChain(&p, *db, &chain, state);
   } catch (const std::invalid_argument& e) {

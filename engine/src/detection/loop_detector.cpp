@@ -205,7 +205,7 @@ LoopResult LoopDetector::process(const KeyframeInput& keyframe) {
 
   if (f.empty()) {
     // Added anyway so that entry ids stay aligned with keyframe indices.
-    database_->add(std::move(entry), GroupVector());
+    database_->add(std::move(entry), database_->addToGroupTable(GroupVector()));
     query_steps::recordUnscoredQuery(options_, state_.get());
     ChainQuery unmatched;
     unmatched.query = r.query_id;
@@ -228,12 +228,12 @@ LoopResult LoopDetector::process(const KeyframeInput& keyframe) {
   // off so that switching them on later finds every entry grouped; 3. they
   // join the table BEFORE eq. 1 is applied to the query (finite IDF for the
   // query's own groups); 4. refined weights.
-  const GroupVector raw_groups = buildWordGroups(f.keypoints, words, options_.word_groups);
-  database_->addToGroupTable(raw_groups);
+  CountedGroups counted =
+      database_->addToGroupTable(buildWordGroups(f.keypoints, words, options_.word_groups));
   const bool with_groups = options_.word_groups.enabled;
   const bool with_distribution = options_.distribution.enabled;
   // The entry keeps its words; the database rebuilds its BoW from them.
-  const DatabaseQuery q = database_->makeQuery(std::move(bow), raw_groups, imagePoints(f.keypoints),
+  const DatabaseQuery q = database_->makeQuery(std::move(bow), counted, imagePoints(f.keypoints),
                                                entry.centre_x, entry.centre_y, with_distribution);
   const auto t2 = Clock::now();
   r.timings.word_groups_ms = msBetween(t1, t2);
@@ -246,7 +246,7 @@ LoopResult LoopDetector::process(const KeyframeInput& keyframe) {
   } catch (...) {
     // The raw groups are already in the table: add the entry anyway so that
     // the table, the indexes and the keyframe ids stay consistent.
-    database_->add(std::move(entry), raw_groups, q);
+    database_->add(std::move(entry), std::move(counted), q);
     throw;
   }
   // A keyframe whose loop made its place larger than indexed_per_place
@@ -258,7 +258,7 @@ LoopResult LoopDetector::process(const KeyframeInput& keyframe) {
       state_->place_links.placeSize(r.query_id) <= static_cast<std::size_t>(per_place);
   // The query's BoW and distribution vectors are the entry's: not computed
   // twice.
-  database_->add(std::move(entry), raw_groups, q);
+  database_->add(std::move(entry), std::move(counted), q);
   r.timings.total_ms = msBetween(t0, Clock::now());
   return r;
 }

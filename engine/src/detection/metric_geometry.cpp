@@ -205,92 +205,123 @@ void jointResiduals(const JointPoint& p, double rho, const cv::Matx33d& K, const
   r[3] = b.y;
 }
 
+// Sum of the squared joint residuals at the query pose (rv, tv) and depths
+// rho; infinite when a depth is not positive.
+double jointCost(const std::vector<JointPoint>& points, const cv::Matx33d& K, const cv::Matx33d& Kq,
+                 const cv::Vec3d& rv, const cv::Vec3d& tv, const std::vector<double>& rho) {
+  cv::Matx33d R;
+  cv::Rodrigues(rv, R);
+  double c = 0, r[4];
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    if (!(rho[i] > 0)) return std::numeric_limits<double>::infinity();
+    jointResiduals(points[i], rho[i], K, Kq, R, tv, r);
+    c += r[0] * r[0] + r[1] * r[1] + r[2] * r[2] + r[3] * r[3];
+  }
+  return c;
+}
+
+// The Gauss-Newton system at one pose and set of depths (numeric Jacobians):
+// the pose block S and its gradient g, and per point the depth's diagonal
+// term h_rr, its gradient g_r and its coupling with the pose h_pr.
+struct JointSystem {
+  cv::Matx66d S = cv::Matx66d::zeros();
+  cv::Vec6d g = cv::Vec6d(0, 0, 0, 0, 0, 0);
+  std::vector<double> h_rr, g_r;
+  std::vector<cv::Vec6d> h_pr;
+};
+
+JointSystem lineariseJointly(const std::vector<JointPoint>& points, const cv::Matx33d& K,
+                             const cv::Matx33d& Kq, const cv::Vec3d& rvec, const cv::Vec3d& tvec,
+                             const std::vector<double>& rho) {
+  cv::Matx33d R;
+  cv::Rodrigues(rvec, R);
+  JointSystem s;
+  s.h_rr.resize(rho.size());
+  s.g_r.resize(rho.size());
+  s.h_pr.resize(rho.size());
+  // The pose perturbed along each of its 6 coordinates (numeric Jacobian).
+  const double h = 1e-7;
+  cv::Matx33d Rk[6];
+  cv::Vec3d tk[6];
+  for (int k = 0; k < 6; ++k) {
+    cv::Vec3d rv = rvec;
+    tk[k] = tvec;
+    if (k < 3)
+      rv[k] += h;
+    else
+      tk[k][k - 3] += h;
+    cv::Rodrigues(rv, Rk[k]);
+  }
+  for (std::size_t i = 0; i < rho.size(); ++i) {
+    const JointPoint& p = points[i];
+    double r[4], d[4];
+    jointResiduals(p, rho[i], K, Kq, R, tvec, r);
+    const double hr = 1e-6 * rho[i];
+    jointResiduals(p, rho[i] + hr, K, Kq, R, tvec, d);
+    double Jr[4];
+    for (int k = 0; k < 4; ++k) Jr[k] = (d[k] - r[k]) / hr;
+    // The pose moves the query's residuals (2, 3) only.
+    double Jp[2][6];
+    for (int k = 0; k < 6; ++k) {
+      jointResiduals(p, rho[i], K, Kq, Rk[k], tk[k], d);
+      Jp[0][k] = (d[2] - r[2]) / h;
+      Jp[1][k] = (d[3] - r[3]) / h;
+    }
+    s.h_rr[i] = Jr[0] * Jr[0] + Jr[1] * Jr[1] + Jr[2] * Jr[2] + Jr[3] * Jr[3];
+    s.g_r[i] = Jr[0] * r[0] + Jr[1] * r[1] + Jr[2] * r[2] + Jr[3] * r[3];
+    for (int a = 0; a < 6; ++a) {
+      s.g[a] += Jp[0][a] * r[2] + Jp[1][a] * r[3];
+      s.h_pr[i][a] = Jp[0][a] * Jr[2] + Jp[1][a] * Jr[3];
+      for (int b = 0; b < 6; ++b) s.S(a, b) += Jp[0][a] * Jp[0][b] + Jp[1][a] * Jp[1][b];
+    }
+  }
+  return s;
+}
+
+// The damped normal equations of `s` (damping lambda), the depths eliminated
+// (Schur complement): the pose step `dp` and the depths after it, `rho_t`.
+// False when the reduced pose system cannot be solved.
+bool dampedJointStep(const JointSystem& s, const std::vector<double>& rho, double lambda,
+                     cv::Vec6d* dp, std::vector<double>* rho_t) {
+  cv::Matx66d A = s.S;
+  cv::Vec6d b = s.g;
+  for (int a = 0; a < 6; ++a) A(a, a) *= 1 + lambda;
+  std::vector<double> hd(rho.size());
+  for (std::size_t i = 0; i < rho.size(); ++i) {
+    hd[i] = s.h_rr[i] * (1 + lambda) + 1e-12;
+    A -= s.h_pr[i] * s.h_pr[i].t() * (1.0 / hd[i]);
+    b -= s.h_pr[i] * (s.g_r[i] / hd[i]);
+  }
+  if (!cv::solve(A, -b, *dp, cv::DECOMP_CHOLESKY)) return false;
+  rho_t->resize(rho.size());
+  for (std::size_t i = 0; i < rho.size(); ++i) {
+    (*rho_t)[i] = rho[i] - (s.g_r[i] + s.h_pr[i].dot(*dp)) / hd[i];
+  }
+  return true;
+}
+
 }  // namespace
 
 bool refineJointly(std::vector<JointPoint>* points, const cv::Matx33d& K, const cv::Matx33d& Kq,
                    cv::Vec3d* rvec, cv::Vec3d* tvec) {
-  const auto total = [&](const cv::Vec3d& rv, const cv::Vec3d& tv, const std::vector<double>& rho) {
-    cv::Matx33d R;
-    cv::Rodrigues(rv, R);
-    double c = 0, r[4];
-    for (std::size_t i = 0; i < points->size(); ++i) {
-      if (!(rho[i] > 0)) return std::numeric_limits<double>::infinity();
-      jointResiduals((*points)[i], rho[i], K, Kq, R, tv, r);
-      c += r[0] * r[0] + r[1] * r[1] + r[2] * r[2] + r[3] * r[3];
-    }
-    return c;
-  };
   std::vector<double> rho(points->size());
   for (std::size_t i = 0; i < rho.size(); ++i) rho[i] = (*points)[i].rho;
-  double cost = total(*rvec, *tvec, rho), lambda = 1e-4;
+  double cost = jointCost(*points, K, Kq, *rvec, *tvec, rho), lambda = 1e-4;
   if (!std::isfinite(cost)) return false;
   for (int iteration = 0; iteration < 10; ++iteration) {
-    cv::Matx33d R;
-    cv::Rodrigues(*rvec, R);
-    cv::Matx66d S = cv::Matx66d::zeros();
-    cv::Vec6d g(0, 0, 0, 0, 0, 0);
-    std::vector<double> h_rr(rho.size()), g_r(rho.size());
-    std::vector<cv::Vec6d> h_pr(rho.size());
-    // The pose perturbed along each of its 6 coordinates (numeric Jacobian).
-    const double h = 1e-7;
-    cv::Matx33d Rk[6];
-    cv::Vec3d tk[6];
-    for (int k = 0; k < 6; ++k) {
-      cv::Vec3d rv = *rvec;
-      tk[k] = *tvec;
-      if (k < 3)
-        rv[k] += h;
-      else
-        tk[k][k - 3] += h;
-      cv::Rodrigues(rv, Rk[k]);
-    }
-    for (std::size_t i = 0; i < rho.size(); ++i) {
-      const JointPoint& p = (*points)[i];
-      double r[4], d[4];
-      jointResiduals(p, rho[i], K, Kq, R, *tvec, r);
-      const double hr = 1e-6 * rho[i];
-      jointResiduals(p, rho[i] + hr, K, Kq, R, *tvec, d);
-      double Jr[4];
-      for (int k = 0; k < 4; ++k) Jr[k] = (d[k] - r[k]) / hr;
-      // The pose moves the query's residuals (2, 3) only.
-      double Jp[2][6];
-      for (int k = 0; k < 6; ++k) {
-        jointResiduals(p, rho[i], K, Kq, Rk[k], tk[k], d);
-        Jp[0][k] = (d[2] - r[2]) / h;
-        Jp[1][k] = (d[3] - r[3]) / h;
-      }
-      h_rr[i] = Jr[0] * Jr[0] + Jr[1] * Jr[1] + Jr[2] * Jr[2] + Jr[3] * Jr[3];
-      g_r[i] = Jr[0] * r[0] + Jr[1] * r[1] + Jr[2] * r[2] + Jr[3] * r[3];
-      for (int a = 0; a < 6; ++a) {
-        g[a] += Jp[0][a] * r[2] + Jp[1][a] * r[3];
-        h_pr[i][a] = Jp[0][a] * Jr[2] + Jp[1][a] * Jr[3];
-        for (int b = 0; b < 6; ++b) S(a, b) += Jp[0][a] * Jp[0][b] + Jp[1][a] * Jp[1][b];
-      }
-    }
+    const JointSystem s = lineariseJointly(*points, K, Kq, *rvec, *tvec, rho);
+    // Levenberg-Marquardt: the damping grows until a step lowers the cost.
     bool improved = false;
     while (lambda < 1e8) {
-      // Damped normal equations, the depths eliminated (Schur complement).
-      cv::Matx66d A = S;
-      cv::Vec6d b = g;
-      for (int a = 0; a < 6; ++a) A(a, a) *= 1 + lambda;
-      std::vector<double> hd(rho.size());
-      for (std::size_t i = 0; i < rho.size(); ++i) {
-        hd[i] = h_rr[i] * (1 + lambda) + 1e-12;
-        A -= h_pr[i] * h_pr[i].t() * (1.0 / hd[i]);
-        b -= h_pr[i] * (g_r[i] / hd[i]);
-      }
       cv::Vec6d dp;
-      if (!cv::solve(A, -b, dp, cv::DECOMP_CHOLESKY)) {
+      std::vector<double> rho_t;
+      if (!dampedJointStep(s, rho, lambda, &dp, &rho_t)) {
         lambda *= 10;
         continue;
       }
-      std::vector<double> rho_t(rho.size());
-      for (std::size_t i = 0; i < rho.size(); ++i) {
-        rho_t[i] = rho[i] - (g_r[i] + h_pr[i].dot(dp)) / hd[i];
-      }
       const cv::Vec3d rv = *rvec + cv::Vec3d(dp[0], dp[1], dp[2]);
       const cv::Vec3d tv = *tvec + cv::Vec3d(dp[3], dp[4], dp[5]);
-      const double c1 = total(rv, tv, rho_t);
+      const double c1 = jointCost(*points, K, Kq, rv, tv, rho_t);
       if (c1 < cost) {
         improved = cost - c1 > 1e-10 * cost;
         cost = c1;

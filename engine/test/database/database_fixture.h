@@ -46,31 +46,37 @@ inline BuiltEntry entryFromKeyframe(const Vocabulary& voc, const KeyframeInput& 
   return b;
 }
 
+// A query keyframe's entry and its raw groups, counted into the table.
+struct CountedEntry {
+  DatabaseEntry entry;
+  CountedGroups counted;
+};
+
 // Fills `db` with 30 corridor keyframes 0.5 m apart (overlapping views share
-// words) and returns a query keyframe's entry over the first ones. The raw
-// groups each entry was added with go to `added` when given.
-inline BuiltEntry fill(Database* db, BowVector* query_bow,
-                       std::vector<GroupVector>* added = nullptr) {
+// words) and returns a query keyframe's entry over the first ones, its raw
+// groups counted into the table (the entry not added). The raw groups each
+// entry was added with go to `added` when given.
+inline CountedEntry fill(Database* db, BowVector* query_bow,
+                         std::vector<GroupVector>* added = nullptr) {
   const testing::Corridor c = testing::makeCorridor(30, 50, 21);
   std::mt19937_64 rng(4);
   for (int i = 0; i < 30; ++i) {
     BowVector bow;
     BuiltEntry b = entryFromKeyframe(db->vocabulary(),
                                      testing::observeCorridor(c, 0.5 * i, 1.0 + i, rng, 2), &bow);
-    db->addToGroupTable(b.raw_groups);
+    CountedGroups counted = db->addToGroupTable(b.raw_groups);
     if (added) added->push_back(b.raw_groups);
-    db->add(std::move(b.entry), b.raw_groups);
+    db->add(std::move(b.entry), std::move(counted));
   }
   BuiltEntry q = entryFromKeyframe(db->vocabulary(),
                                    testing::observeCorridor(c, 3.2, 100.0, rng, 2), query_bow);
-  db->addToGroupTable(q.raw_groups);
-  return q;
+  CountedGroups counted = db->addToGroupTable(std::move(q.raw_groups));
+  return CountedEntry{std::move(q.entry), std::move(counted)};
 }
 
 // An entry of groups only: one feature per group, with the group's word (an
-// image's groups are among its words), added to the table and then the
-// database. Returns its id.
-inline EntryId addGroups(Database* db, double stamp, const GroupVector& raw) {
+// image's groups are among its words).
+inline DatabaseEntry entryOfGroups(const GroupVector& raw, double stamp) {
   DatabaseEntry e;
   e.stamp = stamp;
   std::vector<WordId> words;
@@ -78,8 +84,12 @@ inline EntryId addGroups(Database* db, double stamp, const GroupVector& raw) {
   e.words = PackedWords(words);
   e.points = PackedPoints(std::vector<ImagePoint>(raw.size()), 0.f);
   e.descriptors.resize(raw.size());
-  db->addToGroupTable(raw);
-  return db->add(e, raw);
+  return e;
+}
+
+// entryOfGroups(), added to the table and then the database. Returns its id.
+inline EntryId addGroups(Database* db, double stamp, const GroupVector& raw) {
+  return db->add(entryOfGroups(raw, stamp), db->addToGroupTable(raw));
 }
 
 }  // namespace database_fixture

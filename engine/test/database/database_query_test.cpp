@@ -35,9 +35,8 @@ TEST_P(DatabaseScoring, InverseIndexWordScoreEqualsScoreBowVectors) {
   const ScoringType s = GetParam();
   Database db(vocabulary(), s, 2, 8);
   BowVector qbow;
-  const BuiltEntry qe = fill(&db, &qbow);
-  const DatabaseQuery q =
-      db.makeQuery(qbow, qe.raw_groups, qe.entry.points.unpack(), 320, 240, false);
+  const CountedEntry qe = fill(&db, &qbow);
+  const DatabaseQuery q = db.makeQuery(qbow, qe.counted, qe.entry.points.unpack(), 320, 240, false);
   const EntryId limit = 25;
   const std::vector<EntryScores> scores = db.query(q, limit, /*with_groups=*/false);
   // Exactly the entries < limit that share a word with the query.
@@ -73,9 +72,8 @@ TEST(Database, InverseIndexGroupScoreEqualsDirectEq3WithCurrentIdf) {
   Database db(vocabulary(), ScoringType::kL1, 2, 8);
   BowVector qbow;
   std::vector<GroupVector> added;
-  const BuiltEntry qe = fill(&db, &qbow, &added);
-  const DatabaseQuery q =
-      db.makeQuery(qbow, qe.raw_groups, qe.entry.points.unpack(), 320, 240, false);
+  const CountedEntry qe = fill(&db, &qbow, &added);
+  const DatabaseQuery q = db.makeQuery(qbow, qe.counted, qe.entry.points.unpack(), 320, 240, false);
   const std::vector<EntryScores> scores = db.query(q, 30, true);
   int with_groups = 0;
   for (const EntryScores& e : scores) {
@@ -94,8 +92,8 @@ TEST(Database, QueryIdfsAreReusedOnlyWhileTheTableStands) {
   Database db(vocabulary(), ScoringType::kL1, 2, 8);
   BowVector qbow;
   std::vector<GroupVector> added;
-  const BuiltEntry qe = fill(&db, &qbow, &added);
-  DatabaseQuery q = db.makeQuery(qbow, qe.raw_groups, qe.entry.points.unpack(), 320, 240, false);
+  const CountedEntry qe = fill(&db, &qbow, &added);
+  DatabaseQuery q = db.makeQuery(qbow, qe.counted, qe.entry.points.unpack(), 320, 240, false);
   ASSERT_EQ(q.group_idf.size(), q.refined_groups.size());
   ASSERT_FALSE(q.group_idf.empty());
   for (std::size_t i = 0; i < q.group_idf.size(); ++i)
@@ -141,8 +139,8 @@ TEST(Database, HandWorkedGroupScores) {
   EXPECT_EQ(addGroups(&db, 1, {{0, 2}, {1, 2}}), 0u);
   EXPECT_EQ(addGroups(&db, 2, {{1, 1}, {2, 3}}), 1u);
   const GroupVector q_raw{{1, 2}, {2, 2}};
-  db.addToGroupTable(q_raw);
-  DatabaseQuery q = db.makeQuery({}, q_raw, {}, 0, 0, false);
+  const CountedGroups q_counted = db.addToGroupTable(q_raw);
+  DatabaseQuery q = db.makeQuery({}, q_counted, {}, 0, 0, false);
   const double l24 = std::log(2.4);
   std::vector<EntryScores> s = db.query(q, 2, true);
   ASSERT_EQ(s.size(), 2u);
@@ -159,7 +157,7 @@ TEST(Database, HandWorkedGroupScores) {
   EXPECT_TRUE(db.query(q, 2, false).empty());
 
   addGroups(&db, 3, {{0, 4}});
-  q = db.makeQuery({}, q_raw, {}, 0, 0, false);
+  q = db.makeQuery({}, q_counted, {}, 0, 0, false);
   const double l32 = std::log(3.2);
   s = db.query(q, 3, true);
   ASSERT_EQ(s.size(), 2u);  // C shares no group with the query
@@ -178,8 +176,7 @@ TEST(Database, GroupCountsBeyondAPostingsByteScoreAsSmallOnes) {
   addGroups(&db, 1, a);
   addGroups(&db, 2, b);
   const GroupVector q_raw{{1, 600}, {2, 600}};
-  db.addToGroupTable(q_raw);
-  const DatabaseQuery q = db.makeQuery({}, q_raw, {}, 0, 0, false);
+  const DatabaseQuery q = db.makeQuery({}, db.addToGroupTable(q_raw), {}, 0, 0, false);
   const double l24 = std::log(2.4);
   const std::vector<EntryScores> s = db.query(q, 2, true);
   ASSERT_EQ(s.size(), 2u);
@@ -215,21 +212,21 @@ TEST(Database, QueriesSkipEntriesOutOfTheIndexAndNothingElse) {
     BowVector bow;
     BuiltEntry b = entryFromKeyframe(all.vocabulary(),
                                      testing::observeCorridor(c, 0.5 * i, 1.0 + i, rng, 2), &bow);
-    all.addToGroupTable(b.raw_groups);
-    some.addToGroupTable(b.raw_groups);
-    all.add(b.entry, b.raw_groups);
+    CountedGroups in_all = all.addToGroupTable(b.raw_groups);
+    CountedGroups in_some = some.addToGroupTable(b.raw_groups);
+    all.add(b.entry, std::move(in_all));
     b.entry.searchable = i % 3 != 1;
-    some.add(std::move(b.entry), b.raw_groups);
+    some.add(std::move(b.entry), std::move(in_some));
   }
   EXPECT_EQ(some.searchableCount(), 20u);
   BowVector qbow;
   const BuiltEntry qe =
       entryFromKeyframe(all.vocabulary(), testing::observeCorridor(c, 3.2, 100.0, rng, 2), &qbow);
-  all.addToGroupTable(qe.raw_groups);
-  some.addToGroupTable(qe.raw_groups);
+  const CountedGroups in_all = all.addToGroupTable(qe.raw_groups);
+  const CountedGroups in_some = some.addToGroupTable(qe.raw_groups);
   const std::vector<ImagePoint> points = qe.entry.points.unpack();
-  const DatabaseQuery qa = all.makeQuery(qbow, qe.raw_groups, points, 320, 240, true);
-  const DatabaseQuery qs = some.makeQuery(qbow, qe.raw_groups, points, 320, 240, true);
+  const DatabaseQuery qa = all.makeQuery(qbow, in_all, points, 320, 240, true);
+  const DatabaseQuery qs = some.makeQuery(qbow, in_some, points, 320, 240, true);
   std::vector<EntryScores> expected;
   for (const EntryScores& e : all.query(qa, 30, true)) {
     if (e.entry % 3 != 1) expected.push_back(e);
@@ -277,10 +274,10 @@ TEST(Database, FewTouchedEntriesComeOutInAscendingOrder) {
     e.words = PackedWords({words[i == 30 ? 0 : i == 0 ? 30 : i]});
     e.points = PackedPoints(std::vector<ImagePoint>(1), 0.f);
     e.descriptors.resize(1);
-    db.add(e, {});
+    db.add(e, db.addToGroupTable({}));
   }
   const BowVector qbow = voc.bowFromWords({words[0], words[5]});
-  const DatabaseQuery q = db.makeQuery(qbow, {}, {}, 0, 0, false);
+  const DatabaseQuery q = db.makeQuery(qbow, db.addToGroupTable({}), {}, 0, 0, false);
   const std::vector<EntryScores> s = db.query(q, 40, false);
   ASSERT_EQ(s.size(), 2u);
   EXPECT_EQ(s[0].entry, 5u);
@@ -290,10 +287,9 @@ TEST(Database, FewTouchedEntriesComeOutInAscendingOrder) {
 TEST(Database, ScoringChangeRenormalisesAndReindexes) {
   Database db(vocabulary(), ScoringType::kL1, 2, 8);
   BowVector qbow;
-  const BuiltEntry qe = fill(&db, &qbow);
+  const CountedEntry qe = fill(&db, &qbow);
   db.setScoring(ScoringType::kL2);
-  const DatabaseQuery q =
-      db.makeQuery(qbow, qe.raw_groups, qe.entry.points.unpack(), 320, 240, false);
+  const DatabaseQuery q = db.makeQuery(qbow, qe.counted, qe.entry.points.unpack(), 320, 240, false);
   std::size_t scored = 0;
   for (const EntryScores& e : db.query(q, 30, false)) {
     BowVector a = qbow, b = db.bow(e.entry);
@@ -316,21 +312,18 @@ TEST(Database, AReusedQueryScratchScoresAsAFreshOne) {
     BowVector bow;
     BuiltEntry b = entryFromKeyframe(big.vocabulary(),
                                      testing::observeCorridor(c, 0.5 * i, 1.0 + i, rng, 2), &bow);
-    big.addToGroupTable(b.raw_groups);
-    if (i < 12) {
-      small.addToGroupTable(b.raw_groups);
-      small.add(b.entry, b.raw_groups);
-    }
-    big.add(std::move(b.entry), b.raw_groups);
+    CountedGroups in_big = big.addToGroupTable(b.raw_groups);
+    if (i < 12) small.add(b.entry, small.addToGroupTable(b.raw_groups));
+    big.add(std::move(b.entry), std::move(in_big));
   }
   BowVector qbow;
   const BuiltEntry qe =
       entryFromKeyframe(big.vocabulary(), testing::observeCorridor(c, 3.2, 100.0, rng, 2), &qbow);
-  big.addToGroupTable(qe.raw_groups);
-  small.addToGroupTable(qe.raw_groups);
+  const CountedGroups in_big = big.addToGroupTable(qe.raw_groups);
+  const CountedGroups in_small = small.addToGroupTable(qe.raw_groups);
   const std::vector<ImagePoint> points = qe.entry.points.unpack();
-  const DatabaseQuery qb = big.makeQuery(qbow, qe.raw_groups, points, 320, 240, true);
-  const DatabaseQuery qs = small.makeQuery(qbow, qe.raw_groups, points, 320, 240, true);
+  const DatabaseQuery qb = big.makeQuery(qbow, in_big, points, 320, 240, true);
+  const DatabaseQuery qs = small.makeQuery(qbow, in_small, points, 320, 240, true);
   QueryScratch scratch;
   const auto same = [](const std::vector<EntryScores>& a, const std::vector<EntryScores>& b) {
     if (a.size() != b.size() || a.empty()) return false;

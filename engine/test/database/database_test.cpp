@@ -34,15 +34,15 @@ TEST(Database, AddingTheQueriedKeyframeTakesItsVectorsAsBuiltFromTheWords) {
     for (const bool searchable : {true, false}) {
       Database a(vocabulary(), s, 2, 8), b(vocabulary(), s, 2, 8);
       BowVector qbow;
-      const BuiltEntry qe = fill(&a, &qbow);
+      CountedEntry qe = fill(&a, &qbow);
       BowVector unused;
-      fill(&b, &unused);
+      CountedEntry qe_b = fill(&b, &unused);
       const DatabaseQuery q =
-          a.makeQuery(qbow, qe.raw_groups, qe.entry.points.unpack(), 320, 240, true);
+          a.makeQuery(qbow, qe.counted, qe.entry.points.unpack(), 320, 240, true);
       DatabaseEntry ea = qe.entry, eb = qe.entry;
       ea.searchable = eb.searchable = searchable;
-      const EntryId ia = a.add(std::move(ea), qe.raw_groups, q);
-      const EntryId ib = b.add(std::move(eb), qe.raw_groups);
+      const EntryId ia = a.add(std::move(ea), std::move(qe.counted), q);
+      const EntryId ib = b.add(std::move(eb), std::move(qe_b.counted));
       ASSERT_EQ(ia, ib);
       EXPECT_EQ(a.bow(ia), b.bow(ib)) << toString(s);
       EXPECT_EQ(a.bow(ia), q.bow) << toString(s);
@@ -50,7 +50,7 @@ TEST(Database, AddingTheQueriedKeyframeTakesItsVectorsAsBuiltFromTheWords) {
       EXPECT_LE(a.memoryBytes(), b.memoryBytes());  // the copy kept is no larger
       // A later query scores the new entry the same in both.
       const DatabaseQuery later =
-          a.makeQuery(qbow, qe.raw_groups, qe.entry.points.unpack(), 320, 240, true);
+          a.makeQuery(qbow, qe.counted, qe.entry.points.unpack(), 320, 240, true);
       const std::vector<EntryScores> sa = a.query(later, ia + 1, true);
       const std::vector<EntryScores> sb = b.query(later, ib + 1, true);
       ASSERT_EQ(sa.size(), sb.size());
@@ -68,12 +68,11 @@ TEST(Database, AddingTheQueriedKeyframeTakesItsVectorsAsBuiltFromTheWords) {
 TEST(Database, AddingTheQueriedKeyframeRefusesAForeignQuery) {
   Database db(vocabulary(), ScoringType::kL1, 2, 8);
   BowVector qbow;
-  const BuiltEntry qe = fill(&db, &qbow);
-  const DatabaseQuery q =
-      db.makeQuery(qbow, qe.raw_groups, qe.entry.points.unpack(), 320, 240, true);
+  CountedEntry qe = fill(&db, &qbow);
+  const DatabaseQuery q = db.makeQuery(qbow, qe.counted, qe.entry.points.unpack(), 320, 240, true);
   DatabaseQuery other_scoring = q;
   other_scoring.scoring = ScoringType::kL2;
-  EXPECT_THROW(db.add(qe.entry, qe.raw_groups, other_scoring), std::invalid_argument);
+  EXPECT_THROW(db.add(qe.entry, std::move(qe.counted), other_scoring), std::invalid_argument);
   DatabaseQuery foreign_word = q;
   const std::vector<WordId> words = qe.entry.words.unpack();
   WordId absent = 0;
@@ -81,12 +80,12 @@ TEST(Database, AddingTheQueriedKeyframeRefusesAForeignQuery) {
   foreign_word.bow.insert(
       std::lower_bound(foreign_word.bow.begin(), foreign_word.bow.end(), BowEntry{absent, 0.0}),
       BowEntry{absent, 0.1});
-  EXPECT_THROW(db.add(qe.entry, qe.raw_groups, foreign_word), std::invalid_argument);
+  EXPECT_THROW(db.add(qe.entry, std::move(qe.counted), foreign_word), std::invalid_argument);
   DatabaseQuery wrong_bins = q;
   wrong_bins.distribution.pop_back();
-  EXPECT_THROW(db.add(qe.entry, qe.raw_groups, wrong_bins), std::invalid_argument);
+  EXPECT_THROW(db.add(qe.entry, std::move(qe.counted), wrong_bins), std::invalid_argument);
   EXPECT_EQ(db.size(), 30u);  // nothing half-added
-  EXPECT_EQ(db.add(qe.entry, qe.raw_groups, q), 30u);
+  EXPECT_EQ(db.add(qe.entry, std::move(qe.counted), q), 30u);
 }
 
 // The entries keep no raw groups: the database reads them back from its
@@ -124,17 +123,16 @@ TEST(Database, EntriesOutOfTheIndexScoreButAreNeverCandidates) {
   e.points = PackedPoints(std::vector<ImagePoint>(2), 0.f);
   e.descriptors.resize(2);
   e.searchable = false;
-  db.addToGroupTable(b);
-  EXPECT_EQ(db.add(e, b), 1u);
+  EXPECT_EQ(db.add(e, db.addToGroupTable(b)), 1u);
   EXPECT_EQ(db.size(), 2u);
   EXPECT_EQ(db.searchableCount(), 1u);
   EXPECT_FALSE(db.entry(1).searchable);
   EXPECT_EQ(db.rawGroups(1), b);
   EXPECT_EQ(db.rawGroups(0), a);
   const GroupVector q_raw{{1, 2}, {2, 2}};
-  db.addToGroupTable(q_raw);
+  const CountedGroups q_counted = db.addToGroupTable(q_raw);
   // The query's words are B's: A shares word 1 with it.
-  const DatabaseQuery q = db.makeQuery(db.bow(1), q_raw, {}, 0, 0, false);
+  const DatabaseQuery q = db.makeQuery(db.bow(1), q_counted, {}, 0, 0, false);
   const double l1 = std::log(1208.0 / 304.0), l2 = std::log(1208.0 / 902.0);
   std::vector<EntryScores> s = db.query(q, 2, true);
   ASSERT_EQ(s.size(), 1u);
@@ -147,7 +145,7 @@ TEST(Database, EntriesOutOfTheIndexScoreButAreNeverCandidates) {
   EXPECT_NEAR(sb.s_w, 1.0, 1e-12);  // the query's BoW is B's own
   // A scoring change rewrites the postings of the indexed entries only.
   db.setScoring(ScoringType::kL2);
-  s = db.query(db.makeQuery(db.bow(1), q_raw, {}, 0, 0, false), 2, true);
+  s = db.query(db.makeQuery(db.bow(1), q_counted, {}, 0, 0, false), 2, true);
   ASSERT_EQ(s.size(), 1u);
   EXPECT_EQ(s[0].entry, 0u);
   EXPECT_EQ(db.rawGroups(1), b);
@@ -164,10 +162,9 @@ TEST(Database, EntriesOutOfTheIndexScoreButAreNeverCandidates) {
 TEST(Database, FanBinChangeRebuildsDistributionVectors) {
   Database db(vocabulary(), ScoringType::kL1, 2, 8);
   BowVector qbow;
-  const BuiltEntry qe = fill(&db, &qbow);
+  const CountedEntry qe = fill(&db, &qbow);
   db.setFanBins(5);
-  const DatabaseQuery q =
-      db.makeQuery(qbow, qe.raw_groups, qe.entry.points.unpack(), 320, 240, true);
+  const DatabaseQuery q = db.makeQuery(qbow, qe.counted, qe.entry.points.unpack(), 320, 240, true);
   ASSERT_EQ(q.distribution.size(), 5u);
   const std::vector<double> fresh_q = distributionVector(qe.entry.points.unpack(), 320, 240, 5);
   for (const EntryScores& e : db.query(q, 30, true)) {
@@ -193,17 +190,18 @@ TEST(Database, AddKeepsAGivenDistributionVector) {
   e.words = PackedWords({0, 1, 2});
   e.centre_x = 0;
   e.centre_y = 0;
-  db.add(e, {});
+  db.add(e, db.addToGroupTable({}));
   const std::vector<double> computed = db.distribution(0);
   ASSERT_EQ(computed.size(), 4u);
   for (int k = 0; k < 3; ++k) EXPECT_NEAR(computed[k], 1.0 / std::sqrt(3.0), 1e-15);
   EXPECT_EQ(computed[3], 0.0);
   const std::vector<double> given{0.5, 0.25, 0.25, 0.0};
   e.stamp = 2;
-  db.add(e, {}, given);
+  db.add(e, db.addToGroupTable({}), given);
   EXPECT_EQ(db.distribution(1), given);
   e.stamp = 3;
-  EXPECT_THROW(db.add(e, {}, std::vector<double>(5, 0.2)), std::invalid_argument);
+  EXPECT_THROW(db.add(e, db.addToGroupTable({}), std::vector<double>(5, 0.2)),
+               std::invalid_argument);
   EXPECT_EQ(db.size(), 2u);
 }
 
@@ -235,8 +233,7 @@ TEST(Database, BowIsRebuiltFromTheWordsBitForBit) {
     BowVector bow;
     BuiltEntry e =
         entryFromKeyframe(db.vocabulary(), testing::observeCorridor(c, 0.5, 1.0, rng, 2), &bow);
-    db.addToGroupTable(e.raw_groups);
-    const EntryId id = db.add(std::move(e.entry), e.raw_groups);
+    const EntryId id = db.add(std::move(e.entry), db.addToGroupTable(e.raw_groups));
     normaliseBowVector(s, &bow);
     ASSERT_FALSE(bow.empty());
     EXPECT_EQ(db.bow(id), bow) << toString(s);
@@ -292,21 +289,21 @@ TEST(Database, AddRejectsInconsistentEntries) {
   e.points = PackedPoints(std::vector<ImagePoint>(2), 0.f);
   e.descriptors.resize(2);
   e.words = PackedWords({0});
-  EXPECT_THROW(db.add(e, {}), std::invalid_argument);
+  EXPECT_THROW(db.add(e, db.addToGroupTable({})), std::invalid_argument);
   e.words = PackedWords({0, static_cast<WordId>(vocabulary()->wordCount())});
-  EXPECT_THROW(db.add(e, {}), std::invalid_argument);
+  EXPECT_THROW(db.add(e, db.addToGroupTable({})), std::invalid_argument);
   e.words = PackedWords({0, 1});
   // Raw groups: among the entry's words, sorted without repeats, whole counts.
-  EXPECT_THROW(db.add(e, {{2, 1.0}}), std::invalid_argument);
-  EXPECT_THROW(db.add(e, {{1, 1.0}, {0, 1.0}}), std::invalid_argument);
-  EXPECT_THROW(db.add(e, {{0, 1.0}, {0, 2.0}}), std::invalid_argument);
-  EXPECT_THROW(db.add(e, {{0, 1.5}}), std::invalid_argument);
-  EXPECT_THROW(db.add(e, {{0, 0.0}}), std::invalid_argument);
-  EXPECT_THROW(db.add(e, {{0, 16777216.0}}), std::invalid_argument);
+  EXPECT_THROW(db.add(e, db.addToGroupTable({{2, 1.0}})), std::invalid_argument);
+  EXPECT_THROW(db.add(e, db.addToGroupTable({{1, 1.0}, {0, 1.0}})), std::invalid_argument);
+  EXPECT_THROW(db.add(e, db.addToGroupTable({{0, 1.0}, {0, 2.0}})), std::invalid_argument);
+  EXPECT_THROW(db.add(e, db.addToGroupTable({{0, 1.5}})), std::invalid_argument);
+  EXPECT_THROW(db.add(e, db.addToGroupTable({{0, 0.0}})), std::invalid_argument);
+  EXPECT_THROW(db.add(e, db.addToGroupTable({{0, 16777216.0}})), std::invalid_argument);
   EXPECT_EQ(db.size(), 0u);
-  EXPECT_EQ(db.add(e, {{0, 2.0}, {1, 16777215.0}}), 0u);
+  EXPECT_EQ(db.add(e, db.addToGroupTable({{0, 2.0}, {1, 16777215.0}})), 0u);
   EXPECT_EQ(db.rawGroups(0), (GroupVector{{0, 2.0}, {1, 16777215.0}}));
-  EXPECT_THROW(db.add(e, {}), std::invalid_argument);  // same stamp
+  EXPECT_THROW(db.add(e, db.addToGroupTable({})), std::invalid_argument);  // same stamp
   EXPECT_EQ(db.size(), 1u);
   EXPECT_GT(db.memoryBytes(), 0u);
   db.clear();

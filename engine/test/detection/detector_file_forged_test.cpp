@@ -1,7 +1,11 @@
 // LoopDetector::load of forged files: one field of a good file edited to a
-// value no writer produces and the checksum resealed, so that only the
-// reader's own checks can catch it. Each is refused with a FormatError naming
-// the file and the field, and the detector stays empty.
+// value no run can produce (a forged or buggy writer) and the checksum
+// resealed, so that only the reader's own checks can catch it. Each is
+// refused with a FormatError naming the file and the field, and the
+// detector stays empty. Offsets from the layout (detector_file.cpp): header
+// 28 bytes, u32 scoring, u32 entry count, then entry 0: stamp, centre x, y
+// (f64), intrinsics valid (u8), fx, fy, cx, cy (f64), u32 feature count,
+// feature 0: x, y, size, angle, response (f32), ...
 #include <gtest/gtest.h>
 
 #include <cmath>

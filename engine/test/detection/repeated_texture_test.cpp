@@ -26,7 +26,7 @@ std::unique_ptr<Database> databaseWith(const std::vector<double>& odometers) {
     DatabaseEntry e;
     e.stamp = static_cast<double>(i);
     e.odometer = odometers[i];
-    db->add(std::move(e), GroupVector());
+    db->add(std::move(e), db->addToGroupTable(GroupVector()));
   }
   return db;
 }

@@ -16,9 +16,10 @@
 // id < a limit (the recent-exclusion window); its working memory belongs to
 // the caller (query_scratch.h).
 //
-// Per-keyframe order used by LoopDetector (and required here):
-//   transform -> raw groups -> addToGroupTable(raw) -> refined weights ->
-//   query -> add(entry).
+// Per-keyframe order, enforced by the CountedGroups type (counted_groups.h):
+//   transform -> raw groups -> addToGroupTable(raw) gives CountedGroups ->
+//   makeQuery(.., counted, ..) (refined weights) -> query ->
+//   add(entry, std::move(counted), ..).
 // The query's raw groups enter the table BEFORE its refined weights are
 // computed: eq. 1's IDF log(total / cumulative(i)) is then finite for every
 // group of the query (cumulative(i) > 0). The entry itself enters the inverse
@@ -34,6 +35,7 @@
 #include <vector>
 
 #include "bowg/core/types.h"
+#include "bowg/database/counted_groups.h"
 #include "bowg/database/distribution_table.h"
 #include "bowg/database/inverse_index.h"
 #include "bowg/database/packed_points.h"
@@ -150,23 +152,27 @@ class Database {
   void setDirectLevel(int level);
   void setFanBins(int m);
 
-  /// Step 3 of the order above: the query's raw groups join the table.
-  void addToGroupTable(const GroupVector& raw) { group_table_.add(raw); }
+  /// Step 3 of the order above: a keyframe's raw groups (buildWordGroups()
+  /// of its keypoints) join the table; the token returned carries them to
+  /// makeQuery and add. Empty groups leave the table as it is. Throws
+  /// std::invalid_argument on a weight that is not finite and positive.
+  CountedGroups addToGroupTable(GroupVector raw);
 
   /// Step 5: appends `entry` (its id is set to size()), computes its derived
   /// fields and adds it to the inverse index (its BoW vector from its words,
-  /// as bow() does, and `raw_groups`, buildWordGroups() of its keypoints).
-  /// The raw groups must already be in the table (addToGroupTable). Returns
-  /// the id. Throws std::invalid_argument on inconsistent sizes or word ids,
-  /// and on a raw group that is not one of the entry's words or whose weight
-  /// is not a whole count in [1, 2^24); std::length_error when the database
-  /// already holds kMaxEntries.
+  /// as bow() does, and the counted raw groups), marking `counted` added once
+  /// it is in (a throw leaves it as it was). Returns the id. Throws
+  /// std::invalid_argument on inconsistent sizes or word ids, and on a raw
+  /// group that is not one of the entry's words or whose weight is not a
+  /// whole count in [1, 2^24); std::length_error when the database already
+  /// holds kMaxEntries; std::logic_error when `counted` was added already,
+  /// moved from or counted by another database.
   /// `distribution`: the entry's distribution vector for the current
   /// fanBins() when the caller has it already (makeQuery's, for the keyframe
   /// just queried: the same positions give the same vector); empty: it is
   /// computed here from the entry's positions. A non-empty vector of another
   /// size is refused (std::invalid_argument).
-  EntryId add(DatabaseEntry entry, const GroupVector& raw_groups,
+  EntryId add(DatabaseEntry entry, CountedGroups&& counted,
               const std::vector<double>& distribution = std::vector<double>());
   /// add() for the keyframe just queried with `queried`: makeQuery's query
   /// for this entry, from the BoW vector of the entry's words (the one
@@ -174,7 +180,7 @@ class Database {
   /// distribution vectors are the ones add() would build again, so they are
   /// taken from it. std::invalid_argument also when `queried` was normalised
   /// for another scoring or its BoW holds a word the entry does not have.
-  EntryId add(DatabaseEntry entry, const GroupVector& raw_groups, const DatabaseQuery& queried);
+  EntryId add(DatabaseEntry entry, CountedGroups&& counted, const DatabaseQuery& queried);
 
   /// Entry `id`'s BoW vector normalised for scoring(): the vocabulary's
   /// transform of its words (Vocabulary::bowFromWords), normalised; the
@@ -188,8 +194,10 @@ class Database {
   /// searchable, from the groups kept apart).
   GroupVector rawGroups(EntryId id) const;
 
-  /// Step 4: the query's normalised BoW and refined groups.
-  DatabaseQuery makeQuery(BowVector bow, const GroupVector& raw_groups,
+  /// Step 4: the query's normalised BoW and refined groups (eq. 1 on the
+  /// counted groups with the table as it stands). std::logic_error when
+  /// `counted` was moved from or counted by another database.
+  DatabaseQuery makeQuery(BowVector bow, const CountedGroups& counted,
                           const std::vector<ImagePoint>& points, double centre_x, double centre_y,
                           bool with_distribution) const;
 
@@ -218,6 +226,9 @@ class Database {
   void clear();
 
  private:
+  // Throws std::logic_error unless `counted` is this database's and, when
+  // `to_add`, not added yet.
+  void checkCounted(const CountedGroups& counted, const char* function, bool to_add) const;
   // add(); `bow`: the entry's BoW vector when the caller has it (null: built
   // from the words).
   EntryId addEntry(DatabaseEntry entry, const GroupVector& raw_groups,

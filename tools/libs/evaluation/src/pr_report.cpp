@@ -64,88 +64,110 @@ std::vector<cv::Rect> placeLabels(const std::vector<cv::Point>& points,
   return placed;
 }
 
-cv::Mat drawPrCurves(const std::vector<NamedCurve>& curves, const std::string& title, int width,
-                     int height) {
-  if (width < 200 || height < 150) {
-    throw std::invalid_argument("drawPrCurves: image must be at least 200 x 150 px");
+namespace {
+
+const int kFont = cv::FONT_HERSHEY_SIMPLEX;
+
+// The plot area of the image and the pixel of a (recall, precision) point.
+struct PrPlot {
+  cv::Rect area;
+  cv::Point toPixel(double recall, double precision) const {
+    return cv::Point(area.x + static_cast<int>(std::lround(recall * area.width)),
+                     area.y + area.height - static_cast<int>(std::lround(precision * area.height)));
   }
-  cv::Mat img(height, width, CV_8UC3, cv::Scalar(255, 255, 255));
-  const int left = 70, right = 20, top = 40, bottom = 55;
-  const cv::Rect plot(left, top, width - left - right, height - top - bottom);
-  auto toPixel = [&](double recall, double precision) {
-    return cv::Point(plot.x + static_cast<int>(std::lround(recall * plot.width)),
-                     plot.y + plot.height - static_cast<int>(std::lround(precision * plot.height)));
-  };
-  const int font = cv::FONT_HERSHEY_SIMPLEX;
-  // Grid and ticks every 0.1, labelled every 0.2.
+};
+
+// Distinct colours (BGR) for up to 8 methods, then repeated.
+const cv::Scalar& curveColour(std::size_t k) {
+  static const cv::Scalar colours[] = {{200, 80, 0},   {0, 140, 255},  {40, 160, 40}, {30, 30, 220},
+                                       {160, 60, 160}, {60, 120, 140}, {180, 180, 0}, {90, 90, 90}};
+  return colours[k % 8];
+}
+
+// Grid and ticks every 0.1, labelled every 0.2.
+void drawGrid(const PrPlot& plot, cv::Mat* img) {
   for (int i = 0; i <= 10; ++i) {
     const double v = i / 10.0;
     const cv::Scalar grid(225, 225, 225);
-    cv::line(img, toPixel(v, 0), toPixel(v, 1), grid, 1);
-    cv::line(img, toPixel(0, v), toPixel(1, v), grid, 1);
-    cv::line(img, toPixel(v, 0), toPixel(v, 0) + cv::Point(0, 5), cv::Scalar(0, 0, 0), 1);
-    cv::line(img, toPixel(0, v), toPixel(0, v) - cv::Point(5, 0), cv::Scalar(0, 0, 0), 1);
+    cv::line(*img, plot.toPixel(v, 0), plot.toPixel(v, 1), grid, 1);
+    cv::line(*img, plot.toPixel(0, v), plot.toPixel(1, v), grid, 1);
+    cv::line(*img, plot.toPixel(v, 0), plot.toPixel(v, 0) + cv::Point(0, 5), cv::Scalar(0, 0, 0),
+             1);
+    cv::line(*img, plot.toPixel(0, v), plot.toPixel(0, v) - cv::Point(5, 0), cv::Scalar(0, 0, 0),
+             1);
     if (i % 2 == 0) {
       char label[8];
       std::snprintf(label, sizeof(label), "%.1f", v);
-      cv::putText(img, label, toPixel(v, 0) + cv::Point(-12, 22), font, 0.45, cv::Scalar(0, 0, 0), 1,
-                  cv::LINE_AA);
-      cv::putText(img, label, toPixel(0, v) + cv::Point(-40, 5), font, 0.45, cv::Scalar(0, 0, 0), 1,
-                  cv::LINE_AA);
+      cv::putText(*img, label, plot.toPixel(v, 0) + cv::Point(-12, 22), kFont, 0.45,
+                  cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
+      cv::putText(*img, label, plot.toPixel(0, v) + cv::Point(-40, 5), kFont, 0.45,
+                  cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
     }
   }
-  cv::rectangle(img, plot, cv::Scalar(0, 0, 0), 1);
-  cv::putText(img, "recall", cv::Point(plot.x + plot.width / 2 - 25, height - 12), font, 0.6,
+}
+
+// The frame, the axis names, the title and the hint on the point labels.
+void drawFrameAndTitles(const PrPlot& plot, const std::string& title, cv::Mat* img) {
+  const cv::Rect& area = plot.area;
+  cv::rectangle(*img, area, cv::Scalar(0, 0, 0), 1);
+  cv::putText(*img, "recall", cv::Point(area.x + area.width / 2 - 25, img->rows - 12), kFont, 0.6,
               cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
   // Vertical y label: draw horizontally on a strip and rotate it.
-  {
-    cv::Mat strip(24, 110, CV_8UC3, cv::Scalar(255, 255, 255));
-    cv::putText(strip, "precision", cv::Point(5, 17), font, 0.6, cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
-    cv::Mat rotated;
-    cv::rotate(strip, rotated, cv::ROTATE_90_COUNTERCLOCKWISE);
-    const int y0 = std::max(0, plot.y + plot.height / 2 - rotated.rows / 2);
-    if (y0 + rotated.rows <= height) rotated.copyTo(img(cv::Rect(2, y0, rotated.cols, rotated.rows)));
+  cv::Mat strip(24, 110, CV_8UC3, cv::Scalar(255, 255, 255));
+  cv::putText(strip, "precision", cv::Point(5, 17), kFont, 0.6, cv::Scalar(0, 0, 0), 1,
+              cv::LINE_AA);
+  cv::Mat rotated;
+  cv::rotate(strip, rotated, cv::ROTATE_90_COUNTERCLOCKWISE);
+  const int y0 = std::max(0, area.y + area.height / 2 - rotated.rows / 2);
+  if (y0 + rotated.rows <= img->rows) {
+    rotated.copyTo((*img)(cv::Rect(2, y0, rotated.cols, rotated.rows)));
   }
-  cv::putText(img, title, cv::Point(left, 26), font, 0.65, cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
-  cv::putText(img, "point labels: threshold", cv::Point(plot.x + plot.width - 170, 26), font, 0.45,
-              cv::Scalar(90, 90, 90), 1, cv::LINE_AA);
+  cv::putText(*img, title, cv::Point(area.x, 26), kFont, 0.65, cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
+  cv::putText(*img, "point labels: threshold", cv::Point(area.x + area.width - 170, 26), kFont,
+              0.45, cv::Scalar(90, 90, 90), 1, cv::LINE_AA);
+}
 
-  // Distinct colours (BGR) for up to 8 methods, then repeat.
-  const cv::Scalar colours[] = {{200, 80, 0},  {0, 140, 255}, {40, 160, 40}, {30, 30, 220},
-                                {160, 60, 160}, {60, 120, 140}, {180, 180, 0}, {90, 90, 90}};
-  // The legend in the lower-left corner of the plot (PR curves rarely go
-  // there); its boxes are taken first so that no threshold label covers it.
+// Every curve with its markers and its legend entry, in the lower-left
+// corner of the plot (PR curves rarely go there). The legend's boxes and
+// the markers go to `taken` so that no threshold label covers them; the
+// curves' pixels are returned.
+std::vector<std::vector<cv::Point>> drawCurvesAndLegend(const std::vector<NamedCurve>& curves,
+                                                        const PrPlot& plot, cv::Mat* img,
+                                                        std::vector<cv::Rect>* taken) {
+  const cv::Rect& area = plot.area;
   const auto legend_y = [&](std::size_t k) {
-    return plot.y + plot.height - 15 - 22 * static_cast<int>(curves.size() - 1 - k);
+    return area.y + area.height - 15 - 22 * static_cast<int>(curves.size() - 1 - k);
   };
-  std::vector<cv::Rect> taken;
   for (std::size_t k = 0; k < curves.size(); ++k) {
-    const cv::Size text = cv::getTextSize(curves[k].name, font, 0.5, 1, nullptr);
-    taken.emplace_back(plot.x + 15, legend_y(k) - 11, 37 + text.width, 22);
+    const cv::Size text = cv::getTextSize(curves[k].name, kFont, 0.5, 1, nullptr);
+    taken->emplace_back(area.x + 15, legend_y(k) - 11, 37 + text.width, 22);
   }
-  // Every curve and marker first, then the labels: a label then keeps clear
-  // of every marker (their boxes are taken too) and no later curve's line
-  // is drawn over it.
   std::vector<std::vector<cv::Point>> points(curves.size());
   for (std::size_t k = 0; k < curves.size(); ++k) {
-    const cv::Scalar colour = colours[k % 8];
+    const cv::Scalar& colour = curveColour(k);
     // Points in threshold order (descending) trace recall increasing.
     std::vector<cv::Point>& pts = points[k];
-    for (const PrPoint& p : curves[k].curve) pts.push_back(toPixel(p.recall, p.precision));
-    if (pts.size() > 1) cv::polylines(img, pts, false, colour, 2, cv::LINE_AA);
+    for (const PrPoint& p : curves[k].curve) pts.push_back(plot.toPixel(p.recall, p.precision));
+    if (pts.size() > 1) cv::polylines(*img, pts, false, colour, 2, cv::LINE_AA);
     for (const cv::Point& p : pts) {
-      cv::circle(img, p, 4, colour, -1, cv::LINE_AA);
-      taken.emplace_back(p.x - 3, p.y - 3, 7, 7);  // the marker's core
+      cv::circle(*img, p, 4, colour, -1, cv::LINE_AA);
+      taken->emplace_back(p.x - 3, p.y - 3, 7, 7);  // the marker's core
     }
     const int ly = legend_y(k);
-    cv::line(img, cv::Point(plot.x + 15, ly), cv::Point(plot.x + 45, ly), colour, 3, cv::LINE_AA);
-    cv::putText(img, curves[k].name, cv::Point(plot.x + 52, ly + 5), font, 0.5, cv::Scalar(0, 0, 0),
-                1, cv::LINE_AA);
+    cv::line(*img, cv::Point(area.x + 15, ly), cv::Point(area.x + 45, ly), colour, 3, cv::LINE_AA);
+    cv::putText(*img, curves[k].name, cv::Point(area.x + 52, ly + 5), kFont, 0.5,
+                cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
   }
-  // A label per threshold of the sweep, so the reader can pick an operating
-  // point. Dense sweeps put points a few px apart: placeLabels moves a label
-  // to another side of its point or leaves it out (the marker stays) rather
-  // than print it over another label or marker.
+  return points;
+}
+
+// A label per threshold of the sweep, so the reader can pick an operating
+// point. Dense sweeps put points a few px apart: placeLabels moves a label
+// to another side of its point or leaves it out (the marker stays) rather
+// than print it over another label or marker.
+void drawThresholdLabels(const std::vector<NamedCurve>& curves,
+                         const std::vector<std::vector<cv::Point>>& points, const PrPlot& plot,
+                         cv::Mat* img, std::vector<cv::Rect>* taken) {
   const double label_scale = 0.38;
   for (std::size_t k = 0; k < curves.size(); ++k) {
     std::vector<std::string> labels;
@@ -154,15 +176,36 @@ cv::Mat drawPrCurves(const std::vector<NamedCurve>& curves, const std::string& t
       char label[24];
       std::snprintf(label, sizeof label, "%g", p.threshold);
       labels.push_back(label);
-      sizes.push_back(cv::getTextSize(label, font, label_scale, 1, nullptr));
+      sizes.push_back(cv::getTextSize(label, kFont, label_scale, 1, nullptr));
     }
-    const std::vector<cv::Rect> boxes = placeLabels(points[k], sizes, plot, &taken);
+    const std::vector<cv::Rect> boxes = placeLabels(points[k], sizes, plot.area, taken);
     for (std::size_t i = 0; i < boxes.size(); ++i) {
       if (boxes[i].area() == 0) continue;
-      cv::putText(img, labels[i], cv::Point(boxes[i].x, boxes[i].y + boxes[i].height), font,
-                  label_scale, colours[k % 8], 1, cv::LINE_AA);
+      cv::putText(*img, labels[i], cv::Point(boxes[i].x, boxes[i].y + boxes[i].height), kFont,
+                  label_scale, curveColour(k), 1, cv::LINE_AA);
     }
   }
+}
+
+}  // namespace
+
+cv::Mat drawPrCurves(const std::vector<NamedCurve>& curves, const std::string& title, int width,
+                     int height) {
+  if (width < 200 || height < 150) {
+    throw std::invalid_argument("drawPrCurves: image must be at least 200 x 150 px");
+  }
+  cv::Mat img(height, width, CV_8UC3, cv::Scalar(255, 255, 255));
+  const int left = 70, right = 20, top = 40, bottom = 55;
+  const PrPlot plot{cv::Rect(left, top, width - left - right, height - top - bottom)};
+  drawGrid(plot, &img);
+  drawFrameAndTitles(plot, title, &img);
+  // Every curve and marker first, then the labels: a label then keeps clear
+  // of every marker (their boxes are taken too) and no later curve's line
+  // is drawn over it.
+  std::vector<cv::Rect> taken;
+  const std::vector<std::vector<cv::Point>> points =
+      drawCurvesAndLegend(curves, plot, &img, &taken);
+  drawThresholdLabels(curves, points, plot, &img, &taken);
   return img;
 }
 
