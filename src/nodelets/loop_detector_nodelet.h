@@ -143,6 +143,9 @@ class LoopDetectorNodelet : public nodelet::Nodelet {
   void advertiseInterfaces(ros::NodeHandle& nh, ros::NodeHandle& pnh);
   void subscribeInputs(ros::NodeHandle& nh, ros::NodeHandle& pnh);
   bool loadParameters(ros::NodeHandle& pnh);
+  /// Every other private parameter into options_ through the engine's
+  /// parameter table; false (fatal()) on an unknown or invalid one.
+  bool loadEngineParameters(ros::NodeHandle& pnh);
   /// A public topic name (image, loop_closure, ...) resolved and remapped in
   /// the nodelet's own namespace, whatever the manager's namespace.
   std::string publicName(const std::string& name) const;
@@ -159,6 +162,10 @@ class LoopDetectorNodelet : public nodelet::Nodelet {
 
   void workerLoop();
   void processFrame(const Frame& frame);
+  /// The latest camera_info's intrinsics; warns once while none is valid.
+  bowg::CameraIntrinsics currentIntrinsics();
+  /// The diagnostics and log lines of one processed keyframe.
+  void reportKeyframe(const bowg::LoopResult& result, double convert_ms, double feature_ms);
   /// loop_closure, ~keyframe_status and the lazy ~debug_image of one keyframe
   /// (called by the worker under the detector lock).
   void publishResult(const Frame& frame, const bowg::LoopResult& result, const cv::Mat& grey,

@@ -57,7 +57,10 @@ bool LoopDetectorNodelet::loadParameters(ros::NodeHandle& pnh) {
   } catch (const std::exception& e) {
     return fatal(e.what());
   }
+  return loadEngineParameters(pnh);
+}
 
+bool LoopDetectorNodelet::loadEngineParameters(ros::NodeHandle& pnh) {
   // Engine options: every other private parameter must be a table row, so a
   // misspelled key is an error instead of a silently ignored setting.
   std::vector<std::string> names;

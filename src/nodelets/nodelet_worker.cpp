@@ -33,6 +33,21 @@ void LoopDetectorNodelet::reportOdometryInput(bowg::OdometryInput input) {
   }
 }
 
+bowg::CameraIntrinsics LoopDetectorNodelet::currentIntrinsics() {
+  bowg::CameraIntrinsics intrinsics;
+  {
+    std::lock_guard<std::mutex> lock(gate_mutex_);
+    intrinsics = intrinsics_;
+  }
+  if (!intrinsics.valid && !intrinsics_warned_) {
+    intrinsics_warned_ = true;
+    NODELET_WARN(
+        "no valid camera_info yet: loop closures carry no relative pose "
+        "(has_relative_pose = false) until one arrives");
+  }
+  return intrinsics;
+}
+
 void LoopDetectorNodelet::processFrame(const Frame& frame) {
   // 1. Grey image (shared for mono8) or upstream features.
   auto t0 = Clock::now();
@@ -53,16 +68,7 @@ void LoopDetectorNodelet::processFrame(const Frame& frame) {
   input.stamp = frame.header.stamp.toSec();
   input.odometer = frame.odometer;
   input.position = frame.position;
-  {
-    std::lock_guard<std::mutex> lock(gate_mutex_);
-    input.intrinsics = intrinsics_;
-  }
-  if (!input.intrinsics.valid && !intrinsics_warned_) {
-    intrinsics_warned_ = true;
-    NODELET_WARN(
-        "no valid camera_info yet: loop closures carry no relative pose "
-        "(has_relative_pose = false) until one arrives");
-  }
+  input.intrinsics = currentIntrinsics();
 
   std::lock_guard<std::mutex> lock(detector_mutex_);
   if (frame.epoch != worker_epoch_) {
@@ -85,10 +91,14 @@ void LoopDetectorNodelet::processFrame(const Frame& frame) {
   const bowg::LoopResult result = detector_->process(input);
   reportOdometryInput(result.odometry_input);
   const std::size_t database_size = detector_->database().size();
-  const bool found = result.status == bowg::LoopStatus::kLoopDetected;
 
   publishResult(frame, result, grey, num_features, database_size, convert_ms, feature_ms);
+  reportKeyframe(result, convert_ms, feature_ms);
+}
 
+void LoopDetectorNodelet::reportKeyframe(const bowg::LoopResult& result, double convert_ms,
+                                         double feature_ms) {
+  const bool found = result.status == bowg::LoopStatus::kLoopDetected;
   const bool outside_odometry =
       found && result.metric_status == bowg::MetricTranslationStatus::kOutsideOdometry;
   if (outside_odometry) {
