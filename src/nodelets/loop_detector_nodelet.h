@@ -17,8 +17,10 @@
 //                    Taken by the worker (one keyframe), live tuning, the
 //                    services, diagnose() and the final save, so an option
 //                    swap or a database load happens between keyframes.
-//                    Nothing that reads or waits for a file holds it (a load
-//                    reads and checks the file first, then swaps it in).
+//                    While frames come, nothing that reads or waits for a
+//                    file holds it (a load reads and checks the file first,
+//                    then swaps it in; a save serializes under it and writes
+//                    after); the final save runs once the worker stopped.
 //   gate_mutex_      gate_ (stamp order, odometry) and intrinsics_. Taken by
 //                    the input callbacks, the worker (intrinsics),
 //                    restartRun() and diagnose().
