@@ -31,8 +31,8 @@ struct DiagnosticsSettings {
   std::string image_topic;     ///< the image topic (compressed: without "/compressed")
   std::string features_topic;  ///< keyframe_features
   std::string camera_info_topic, odom_topic, odometer_topic;
-  double window = 30.0;         ///< s: how long a condition stays in the status
-  bool distance_gate = false;   ///< ~min_keyframe_distance > 0
+  double window = 30.0;        ///< s: how long a condition stays in the status
+  bool distance_gate = false;  ///< ~min_keyframe_distance > 0
 };
 
 /// The rest of the nodelet as the status reports it, read by the caller

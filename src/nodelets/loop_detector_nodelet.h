@@ -32,10 +32,10 @@
 // nodelet_input.cpp (callbacks, stamp order, keyframe gate),
 // nodelet_worker.cpp (grey image, features, detector), nodelet_output.cpp
 // (messages, diagnostics snapshot), nodelet_services.cpp (live tuning,
-// database services, restartRun). Two helpers hold their own state:
-// debug_image_publisher.h (the lazy ~debug_image and its keyframe images)
-// and bowg_ros/nodelet_diagnostics.h (the counters and the diagnostics
-// status). Private to the nodelet library.
+// database services, restartRun). Two helpers of the ROS layer hold their
+// own state: bowg_ros/debug_image_publisher.h (the lazy ~debug_image and its
+// keyframe images) and bowg_ros/nodelet_diagnostics.h (the counters and the
+// diagnostics status). Private to the nodelet library.
 #pragma once
 
 #include <cv_bridge/cv_bridge.h>
@@ -76,13 +76,13 @@
 #include "bowg_ros/LoopClosure.h"
 #include "bowg_ros/SaveDatabase.h"
 #include "bowg_ros/bounded_queue.h"
+#include "bowg_ros/debug_image_publisher.h"
 #include "bowg_ros/image_conversion.h"
 #include "bowg_ros/keyframe_gate.h"
 #include "bowg_ros/live_parameters.h"
 #include "bowg_ros/live_tuning_server.h"
 #include "bowg_ros/nodelet_diagnostics.h"
 #include "bowg_ros/ros_conversions.h"
-#include "debug_image_publisher.h"
 
 namespace bowg_ros {
 
@@ -224,7 +224,7 @@ class LoopDetectorNodelet : public nodelet::Nodelet {
   // before the first keyframe).
   int logged_input_ = -1;
 
-  NodeletDiagnostics diagnostics_;  // locks itself
+  NodeletDiagnostics diagnostics_;              // locks itself
   std::unique_ptr<BoundedQueue<Frame>> queue_;  // locks itself
   std::thread worker_;
   /// The nodelet started (set by onInit(), read by the diagnostics timer).

@@ -4,7 +4,7 @@
 // images of recent keyframes while subscribed, and a thumbnail of every
 // keyframe, so that the match of any loop can be shown however far back.
 // Not thread-safe: the nodelet calls it under its detector lock, the lock of
-// the database whose keyframe ids it stores. Private to the nodelet library.
+// the database whose keyframe ids it stores.
 #pragma once
 
 #include <image_transport/image_transport.h>
@@ -31,8 +31,7 @@ class DebugImagePublisher {
   /// Keeps the thumbnail of keyframe `result.query_id` (8-bit grey `grey`,
   /// empty for upstream features) and, while somebody subscribes, publishes
   /// its debug image stamped with `header`.
-  void publish(const std_msgs::Header& header, const bowg::LoopResult& result,
-               const cv::Mat& grey);
+  void publish(const std_msgs::Header& header, const bowg::LoopResult& result, const cv::Mat& grey);
 
   /// Forgets every keyframe's image (full images and thumbnails): after a
   /// reset, a load or a new run their ids name other keyframes.

@@ -1,5 +1,5 @@
 // DebugImagePublisher: the lazy ~debug_image and the keyframe images it shows.
-#include "debug_image_publisher.h"
+#include "bowg_ros/debug_image_publisher.h"
 
 #include <cv_bridge/cv_bridge.h>
 
