@@ -150,7 +150,7 @@ void LoopDetectorNodelet::advertiseInterfaces(ros::NodeHandle& nh, ros::NodeHand
   loop_pub_ = nh.advertise<LoopClosure>(publicName("loop_closure"), 10);
   status_pub_ = pnh.advertise<KeyframeStatus>("keyframe_status", 50);
   private_it_.reset(new image_transport::ImageTransport(pnh));
-  debug_pub_ = private_it_->advertise("debug_image", 1);
+  debug_images_.advertise(*private_it_);
 
   // Services on the nodelet's own queue and thread (see service_queue_).
   ros::NodeHandle service_pnh(pnh);
@@ -200,8 +200,7 @@ void LoopDetectorNodelet::subscribeInputs(ros::NodeHandle& nh, ros::NodeHandle& 
       // No input: the diagnostics say so (ERROR) as long as the nodelet lives.
       const std::string problem = "cannot subscribe to " + publicName("image") + ": " + e.what();
       NODELET_FATAL("%s (for compressed input set ~use_compressed)", problem.c_str());
-      std::lock_guard<std::mutex> lock(stats_mutex_);
-      stats_.input_problem = problem;
+      diagnostics_.inputProblem(problem);
     }
   }
   // Intrinsics (for the relative pose) also in features mode: camera_info is
@@ -232,6 +231,7 @@ void LoopDetectorNodelet::onInit() {
   gate_.setOdometer(lastOdometer(*detector_));
   if (!detector_->database().empty()) gate_.setStampFloor(lastStamp(*detector_));
   queue_.reset(new BoundedQueue<Frame>(static_cast<std::size_t>(queue_size_)));
+  diagnostics_.configure(diagnosticsSettings());
 
   advertiseInterfaces(nh, pnh);
   worker_ = std::thread(&LoopDetectorNodelet::workerLoop, this);

@@ -9,17 +9,33 @@
 //        under the detector lock
 //     -> loop_closure, ~keyframe_status, ~debug_image (lazy), diagnostics
 //
-// dynamic_reconfigure, the services and the worker share the detector through
-// one mutex, so an option swap or a database load happens between keyframes;
-// nothing that reads or waits for a file holds it (a load reads and checks
-// the file first, then swaps it in under the mutex).
+// Locks, and what each guards (when two are held, in this order: the
+// detector's before the gate's; the helpers' own locks are taken last and
+// take no other):
+//   detector_mutex_  detector_, extractor_, options_, debug_images_ (its
+//                    keyframe ids are the database's), worker_epoch_.
+//                    Taken by the worker (one keyframe), live tuning, the
+//                    services, diagnose() and the final save, so an option
+//                    swap or a database load happens between keyframes.
+//                    While frames come, nothing that reads or waits for a
+//                    file holds it (a load reads and checks the file first,
+//                    then swaps it in; a save serializes under it and writes
+//                    after); the final save runs once the worker stopped.
+//   gate_mutex_      gate_ (stamp order, odometry) and intrinsics_. Taken by
+//                    the input callbacks, the worker (intrinsics),
+//                    restartRun() and diagnose().
+//   inside NodeletDiagnostics (diagnostics_): its counters.
+//   inside BoundedQueue (queue_): the frames between callbacks and worker.
 //
 // One class, its member functions grouped by job: loop_detector_nodelet.cpp
 // (start-up and shutdown), nodelet_parameters.cpp (private parameters),
 // nodelet_input.cpp (callbacks, stamp order, keyframe gate),
 // nodelet_worker.cpp (grey image, features, detector), nodelet_output.cpp
-// (messages, debug image, diagnostics), nodelet_services.cpp (live tuning,
-// database services). Private to the nodelet library.
+// (messages, diagnostics snapshot), nodelet_services.cpp (live tuning,
+// database services, restartRun). Two helpers of the ROS layer hold their
+// own state: bowg_ros/debug_image_publisher.h (the lazy ~debug_image and its
+// keyframe images) and bowg_ros/nodelet_diagnostics.h (the counters and the
+// diagnostics status). Private to the nodelet library.
 #pragma once
 
 #include <cv_bridge/cv_bridge.h>
@@ -60,12 +76,12 @@
 #include "bowg_ros/LoopClosure.h"
 #include "bowg_ros/SaveDatabase.h"
 #include "bowg_ros/bounded_queue.h"
-#include "bowg_ros/debug_image.h"
+#include "bowg_ros/debug_image_publisher.h"
 #include "bowg_ros/image_conversion.h"
 #include "bowg_ros/keyframe_gate.h"
-#include "bowg_ros/keyframe_thumbnails.h"
 #include "bowg_ros/live_parameters.h"
 #include "bowg_ros/live_tuning_server.h"
+#include "bowg_ros/nodelet_diagnostics.h"
 #include "bowg_ros/ros_conversions.h"
 
 namespace bowg_ros {
@@ -104,44 +120,18 @@ struct Frame {
   unsigned epoch = 0;
 };
 
-/// Counters for the diagnostics, guarded by LoopDetectorNodelet::stats_mutex_.
-struct Stats {
-  std::size_t frames_received = 0;
-  std::size_t keyframes = 0;
-  std::size_t loops = 0;
-  std::size_t metric_loops = 0;             ///< loops with a metric translation
-  std::size_t metric_outside_odometry = 0;  ///< metric translations the odometry rules out
-  std::size_t skipped_out_of_order = 0;
-  /// Images refused, by reason (bowg/features/image_check.h): the same
-  /// reasons the offline tools count.
-  bowg::ImageProblemCounts bad_images;
-  /// When a refusal of each reason was last logged: each reason is logged
-  /// at most every 5 s, a burst of one does not hide another.
-  std::array<Clock::time_point, bowg::kImageProblemCount> bad_image_logged{};
-  std::size_t errors = 0;
-  std::size_t time_jump_resets = 0;
-  std::string last_stamp_rejection;  ///< the latest stamp-order skip, for the diagnostics
-  std::string input_problem;         ///< why the input subscription failed (empty: fine)
-  // When each condition of the diagnostics last happened: a condition is
-  // reported while it happened within ~diagnostics_window.
-  Clock::time_point started = Clock::now();
-  Clock::time_point last_frame, last_camera_info, last_rejected, last_stamp_skip, last_drop,
-      last_error;
-  bool any_frame = false, any_camera_info = false;
-  std::size_t drops_seen = 0;
-  // Sums since the last diagnostics update (for means per window).
-  std::size_t window_keyframes = 0;
-  double window_convert_ms = 0, window_feature_ms = 0, window_transform_ms = 0,
-         window_word_groups_ms = 0, window_query_ms = 0, window_islands_ms = 0,
-         window_verification_ms = 0, window_total_ms = 0;
-  Clock::time_point window_start = Clock::now();
-};
-
 class LoopDetectorNodelet : public nodelet::Nodelet {
  public:
   ~LoopDetectorNodelet() override;
 
  private:
+  /// How a run of the database starts (restartRun()).
+  enum class RunStart {
+    kEmpty,          ///< ~reset: the database is forgotten, the gate starts over
+    kLoaded,         ///< ~load_database adopted a file: the gate continues after it
+    kAfterTimeJump,  ///< the gate began a new run itself: the database is forgotten
+  };
+
   void onInit() override;
   /// Vocabulary, feature extractor, detector and the database to resume
   /// from; false (logged FATAL) when the nodelet cannot start.
@@ -150,9 +140,14 @@ class LoopDetectorNodelet : public nodelet::Nodelet {
   /// diagnostics; returns false.
   bool fatal(const std::string& why);
   void startDiagnostics(ros::NodeHandle& nh, ros::NodeHandle& pnh);
+  /// The topics the diagnostics' warnings name, and their window.
+  DiagnosticsSettings diagnosticsSettings() const;
   void advertiseInterfaces(ros::NodeHandle& nh, ros::NodeHandle& pnh);
   void subscribeInputs(ros::NodeHandle& nh, ros::NodeHandle& pnh);
   bool loadParameters(ros::NodeHandle& pnh);
+  /// Every other private parameter into options_ through the engine's
+  /// parameter table; false (fatal()) on an unknown or invalid one.
+  bool loadEngineParameters(ros::NodeHandle& pnh);
   /// A public topic name (image, loop_closure, ...) resolved and remapped in
   /// the nodelet's own namespace, whatever the manager's namespace.
   std::string publicName(const std::string& name) const;
@@ -164,27 +159,27 @@ class LoopDetectorNodelet : public nodelet::Nodelet {
   void odometryCallback(const nav_msgs::OdometryConstPtr& msg);
   void odometerCallback(const std_msgs::Float64ConstPtr& msg);
   void reportOdometryInput(bowg::OdometryInput input);
-  // Under stats_mutex_.
-  void addToStats(const bowg::LoopResult& result, bool found, bool outside_odometry,
-                  double convert_ms, double feature_ms);
   /// Stamp order + keyframe gate; true when `frame` was queued.
   bool offer(Frame frame);
-  // Under stats_mutex_: a frame arrived (usable or not).
-  void noteFrame();
-  void noteRejectedFrame();
 
   void workerLoop();
   void processFrame(const Frame& frame);
+  /// The latest camera_info's intrinsics; warns once while none is valid.
+  bowg::CameraIntrinsics currentIntrinsics();
+  /// The diagnostics and log lines of one processed keyframe.
+  void reportKeyframe(const bowg::LoopResult& result, double convert_ms, double feature_ms);
   /// loop_closure, ~keyframe_status and the lazy ~debug_image of one keyframe
   /// (called by the worker under the detector lock).
   void publishResult(const Frame& frame, const bowg::LoopResult& result, const cv::Mat& grey,
                      std::size_t num_features, std::size_t database_size, double convert_ms,
                      double feature_ms);
 
-  /// Forgets every keyframe's image kept for the debug image (full images
-  /// and thumbnails): after a reset, a load or a new run their ids name
-  /// other keyframes. Called under the detector lock.
-  void forgetKeyframeImages();
+  /// A new run of the database (see RunStart): forgets the database unless
+  /// one was just loaded, forgets the keyframe images (their ids name other
+  /// keyframes now) and, unless the gate began the run itself, restarts the
+  /// gate where the database ends (its odometer and last stamp). The caller
+  /// holds detector_mutex_; takes gate_mutex_ after it.
+  void restartRun(RunStart start);
 
   /// Live tuning: applies `requested` (as the client sent it), reports
   /// start-only and out-of-range values, returns the live values in force.
@@ -192,58 +187,54 @@ class LoopDetectorNodelet : public nodelet::Nodelet {
   bool saveDatabase(SaveDatabase::Request& req, SaveDatabase::Response& res);
   bool loadDatabase(LoadDatabase::Request& req, LoadDatabase::Response& res);
   bool resetDatabase(std_srvs::Trigger::Request& req, std_srvs::Trigger::Response& res);
+  /// The diagnostics timer: the rest of the nodelet's state, read under its
+  /// locks one at a time, handed to diagnostics_.
   void diagnose(diagnostic_updater::DiagnosticStatusWrapper& status);
-  void inputWarnings(std::size_t dropped, bool has_odometry, std::vector<std::string>* warnings);
-  std::string silenceWarning(double seconds, bool camera_info) const;
   /// Counts (by reason) and logs a refused image: the frame is dropped.
   void dropBadImage(const bowg::ImageCheck& check, const ros::Time& stamp);
 
-  // Parameters.
+  // Parameters (written by onInit() only, before any thread starts).
   std::string vocabulary_path_, database_load_path_, database_save_path_;
   int queue_size_ = 2;
-  int debug_image_cache_ = 200;
   bool use_compressed_ = false, use_features_input_ = false, publish_correspondences_ = false;
   KeyframeGateOptions gate_options_;
   double diagnostics_window_ = 30.0;  ///< s: how long a condition stays in the diagnostics
   std::string startup_error_;         ///< why the nodelet did not start (empty: it did)
-
-  // Engine, guarded by detector_mutex_ (worker, dynamic_reconfigure, services).
-  std::mutex detector_mutex_;
-  bowg::PipelineOptions options_;
-  std::shared_ptr<const bowg::Vocabulary> vocabulary_;
-  std::unique_ptr<bowg::FeatureExtractor> extractor_;
-  std::unique_ptr<bowg::LoopDetector> detector_;
   /// The feature options at start-up, for their image size limit (not a
   /// live parameter): read by the callbacks without the detector lock.
   bowg::FeatureOptions size_limit_;
-  std::map<bowg::EntryId, cv::Mat> debug_cache_;  // keyframe images while debugging
-  ThumbnailOptions thumbnail_options_;
-  KeyframeThumbnails thumbnails_;  // every keyframe's, for the debug image of any loop
 
-  // Camera callback side.
+  // Engine (see the locks above).
+  std::mutex detector_mutex_;
+  bowg::PipelineOptions options_;
+  std::shared_ptr<const bowg::Vocabulary> vocabulary_;  // set at start, then read-only
+  std::unique_ptr<bowg::FeatureExtractor> extractor_;
+  std::unique_ptr<bowg::LoopDetector> detector_;
+  DebugImagePublisher debug_images_;
+  unsigned worker_epoch_ = 0;  ///< the gate's run the database belongs to
+
+  // Camera callback side (see the locks above).
   std::mutex gate_mutex_;
   KeyframeGate gate_;
-  std::mutex intrinsics_mutex_;
   bowg::CameraIntrinsics intrinsics_;
-  std::atomic<bool> intrinsics_warned_{false};
-  // The odometry input of the last keyframe, logged when it changes (worker
-  // thread only; -1 before the first keyframe).
+
+  // Worker thread only.
+  bool intrinsics_warned_ = false;  ///< the "no valid camera_info" warning was logged
+  // The odometry input of the last keyframe, logged when it changes (-1
+  // before the first keyframe).
   int logged_input_ = -1;
 
-  std::unique_ptr<BoundedQueue<Frame>> queue_;
+  NodeletDiagnostics diagnostics_;              // locks itself
+  std::unique_ptr<BoundedQueue<Frame>> queue_;  // locks itself
   std::thread worker_;
-  bool initialised_ = false;
-  unsigned worker_epoch_ = 0;  ///< the run the database belongs to (worker thread only)
-
-  std::mutex stats_mutex_;
-  Stats stats_;
+  /// The nodelet started (set by onInit(), read by the diagnostics timer).
+  std::atomic<bool> initialised_{false};
 
   // ROS interfaces.
   std::unique_ptr<image_transport::ImageTransport> it_, private_it_;
   image_transport::Subscriber image_sub_;
   ros::Subscriber compressed_sub_, features_sub_, info_sub_, odom_sub_, odometer_sub_;
   ros::Publisher loop_pub_, status_pub_;
-  image_transport::Publisher debug_pub_;
   // The services run on a queue and a thread of the nodelet's own, so a long
   // save does not hold up images, and the nodelet's ROS handles use one
   // manager queue only. The manager destroys its two queues of a nodelet

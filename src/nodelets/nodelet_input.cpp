@@ -1,21 +1,10 @@
 // LoopDetectorNodelet: the input callbacks. They only check, gate and enqueue
 // (never block: the bounded queue drops the oldest frame); the worker converts.
 #include <cmath>
-#include <cstdio>
 
 #include "loop_detector_nodelet.h"
 
 namespace bowg_ros {
-
-void LoopDetectorNodelet::noteFrame() {
-  stats_.last_frame = Clock::now();
-  stats_.any_frame = true;
-}
-
-void LoopDetectorNodelet::noteRejectedFrame() {
-  noteFrame();
-  stats_.last_rejected = stats_.last_frame;
-}
 
 bool LoopDetectorNodelet::offer(Frame frame) {
   const double stamp = frame.header.stamp.toSec();
@@ -27,19 +16,7 @@ bool LoopDetectorNodelet::offer(Frame frame) {
     frame.position = gate_.position();
     frame.epoch = gate_.epoch();
   }
-  {
-    std::lock_guard<std::mutex> lock(stats_mutex_);
-    ++stats_.frames_received;
-    noteFrame();
-    if (isStampRejection(d)) {
-      ++stats_.skipped_out_of_order;
-      stats_.last_stamp_skip = Clock::now();
-      char text[160];
-      std::snprintf(text, sizeof text, "frame at %.6f s: %s", stamp, toString(d));
-      stats_.last_stamp_rejection = text;
-    }
-    if (d == GateDecision::kTimeJump) ++stats_.time_jump_resets;
-  }
+  diagnostics_.frameReceived(stamp, d);
   if (isStampRejection(d)) {
     NODELET_WARN_THROTTLE(2.0,
                           "frame at %.6f skipped: %s (a replay that starts over: call ~reset, "
@@ -80,17 +57,8 @@ void LoopDetectorNodelet::compressedCallback(const sensor_msgs::CompressedImageC
 }
 
 void LoopDetectorNodelet::dropBadImage(const bowg::ImageCheck& check, const ros::Time& stamp) {
-  bool log;
-  {
-    // Counted in the diagnostics whatever the throttled log shows.
-    std::lock_guard<std::mutex> lock(stats_mutex_);
-    stats_.bad_images.add(check.problem);
-    noteRejectedFrame();
-    Clock::time_point& logged = stats_.bad_image_logged[static_cast<std::size_t>(check.problem)];
-    log = stats_.last_frame - logged >= std::chrono::seconds(5);
-    if (log) logged = stats_.last_frame;
-  }
-  if (log) NODELET_ERROR("image at %.6f dropped: %s", stamp.toSec(), check.message().c_str());
+  // Counted in the diagnostics whatever the throttled log shows.
+  if (diagnostics_.badImage(check.problem)) NODELET_ERROR("image at %.6f dropped: %s", stamp.toSec(), check.message().c_str());
 }
 
 void LoopDetectorNodelet::featuresCallback(const KeyframeFeatures::ConstPtr& msg) {
@@ -101,13 +69,9 @@ void LoopDetectorNodelet::featuresCallback(const KeyframeFeatures::ConstPtr& msg
 }
 
 void LoopDetectorNodelet::cameraInfoCallback(const sensor_msgs::CameraInfoConstPtr& msg) {
-  {
-    std::lock_guard<std::mutex> lock(stats_mutex_);
-    stats_.last_camera_info = Clock::now();
-    stats_.any_camera_info = true;
-  }
+  diagnostics_.cameraInfoReceived();
   const bowg::CameraIntrinsics k = toIntrinsics(*msg);
-  std::lock_guard<std::mutex> lock(intrinsics_mutex_);
+  std::lock_guard<std::mutex> lock(gate_mutex_);
   intrinsics_ = k;
 }
 

@@ -39,8 +39,10 @@ bool LoopDetectorNodelet::loadParameters(ros::NodeHandle& pnh) {
   pnh.param("publish_correspondences", publish_correspondences_, false);
   pnh.param<std::string>("database_load_path", database_load_path_, "");
   pnh.param<std::string>("database_save_path", database_save_path_, "");
-  pnh.param("debug_image_cache", debug_image_cache_, 200);
-  pnh.param("debug_thumbnail_size", thumbnail_options_.max_side, thumbnail_options_.max_side);
+  int debug_image_cache = 200;
+  pnh.param("debug_image_cache", debug_image_cache, debug_image_cache);
+  ThumbnailOptions thumbnail_options;
+  pnh.param("debug_thumbnail_size", thumbnail_options.max_side, thumbnail_options.max_side);
   pnh.param("diagnostics_window", diagnostics_window_, 30.0);
   if (!(diagnostics_window_ > 0.0) || !std::isfinite(diagnostics_window_)) {
     return fatal("~diagnostics_window must be a finite number of seconds > 0 (got " +
@@ -51,11 +53,14 @@ bool LoopDetectorNodelet::loadParameters(ros::NodeHandle& pnh) {
   }
   try {
     gate_options_.validate();
-    thumbnails_ = KeyframeThumbnails(thumbnail_options_);
+    debug_images_ = DebugImagePublisher(thumbnail_options, debug_image_cache);
   } catch (const std::exception& e) {
     return fatal(e.what());
   }
+  return loadEngineParameters(pnh);
+}
 
+bool LoopDetectorNodelet::loadEngineParameters(ros::NodeHandle& pnh) {
   // Engine options: every other private parameter must be a table row, so a
   // misspelled key is an error instead of a silently ignored setting.
   std::vector<std::string> names;

@@ -1,5 +1,6 @@
 // LoopDetectorNodelet: live tuning (dynamic_reconfigure, by name through the
-// parameter table) and the database services (save, load, reset).
+// parameter table), the database services (save, load, reset) and the one
+// way a new run of the database starts (restartRun).
 #include "loop_detector_nodelet.h"
 
 #include "bowg/core/atomic_file.h"
@@ -78,15 +79,7 @@ bool LoopDetectorNodelet::loadDatabase(LoadDatabase::Request& req, LoadDatabase:
     bowg::SavedDetector saved = bowg::LoopDetector::read(path, vocabulary_, options);
     std::lock_guard<std::mutex> lock(detector_mutex_);
     detector_->adopt(std::move(saved));
-    forgetKeyframeImages();  // the loaded keyframes' images are not in the file
-    {
-      // Stamps restart from the loaded database's; let the gate follow
-      // (frames up to its last keyframe are skipped and counted there).
-      std::lock_guard<std::mutex> gate_lock(gate_mutex_);
-      gate_.reset();
-      gate_.setOdometer(lastOdometer(*detector_));
-      if (!detector_->database().empty()) gate_.setStampFloor(lastStamp(*detector_));
-    }
+    restartRun(RunStart::kLoaded);  // the loaded keyframes' images are not in the file
     res.success = true;
     res.message =
         "loaded " + std::to_string(detector_->database().size()) + " keyframes from " + path;
@@ -99,17 +92,26 @@ bool LoopDetectorNodelet::loadDatabase(LoadDatabase::Request& req, LoadDatabase:
   return true;
 }
 
+void LoopDetectorNodelet::restartRun(RunStart start) {
+  if (start != RunStart::kLoaded) detector_->reset();
+  debug_images_.forgetKeyframeImages();
+  // After a time jump the gate began the run itself (KeyframeGate::check()).
+  if (start == RunStart::kAfterTimeJump) return;
+  // Stamps restart from the database's (none when empty); let the gate
+  // follow (frames up to its last keyframe are skipped and counted there),
+  // and its odometer continue from the database's last keyframe.
+  std::lock_guard<std::mutex> gate_lock(gate_mutex_);
+  gate_.reset();
+  gate_.setOdometer(lastOdometer(*detector_));
+  if (!detector_->database().empty()) gate_.setStampFloor(lastStamp(*detector_));
+}
+
 bool LoopDetectorNodelet::resetDatabase(std_srvs::Trigger::Request&,
                                         std_srvs::Trigger::Response& res) {
   queue_->clear();
   std::lock_guard<std::mutex> lock(detector_mutex_);
   const std::size_t n = detector_->database().size();
-  detector_->reset();
-  forgetKeyframeImages();
-  {
-    std::lock_guard<std::mutex> gate_lock(gate_mutex_);
-    gate_.reset();
-  }
+  restartRun(RunStart::kEmpty);
   res.success = true;
   res.message = "forgot " + std::to_string(n) + " keyframes";
   NODELET_INFO("reset: %s", res.message.c_str());

@@ -10,11 +10,7 @@ void LoopDetectorNodelet::workerLoop() {
     try {
       processFrame(frame);
     } catch (const std::exception& e) {
-      {
-        std::lock_guard<std::mutex> lock(stats_mutex_);
-        ++stats_.errors;
-        stats_.last_error = Clock::now();
-      }
+      diagnostics_.keyframeError();
       NODELET_ERROR_THROTTLE(2.0, "keyframe at %.6f skipped: %s", frame.header.stamp.toSec(),
                              e.what());
     }
@@ -37,6 +33,21 @@ void LoopDetectorNodelet::reportOdometryInput(bowg::OdometryInput input) {
   }
 }
 
+bowg::CameraIntrinsics LoopDetectorNodelet::currentIntrinsics() {
+  bowg::CameraIntrinsics intrinsics;
+  {
+    std::lock_guard<std::mutex> lock(gate_mutex_);
+    intrinsics = intrinsics_;
+  }
+  if (!intrinsics.valid && !intrinsics_warned_) {
+    intrinsics_warned_ = true;
+    NODELET_WARN(
+        "no valid camera_info yet: loop closures carry no relative pose "
+        "(has_relative_pose = false) until one arrives");
+  }
+  return intrinsics;
+}
+
 void LoopDetectorNodelet::processFrame(const Frame& frame) {
   // 1. Grey image (shared for mono8) or upstream features.
   auto t0 = Clock::now();
@@ -57,15 +68,7 @@ void LoopDetectorNodelet::processFrame(const Frame& frame) {
   input.stamp = frame.header.stamp.toSec();
   input.odometer = frame.odometer;
   input.position = frame.position;
-  {
-    std::lock_guard<std::mutex> lock(intrinsics_mutex_);
-    input.intrinsics = intrinsics_;
-  }
-  if (!input.intrinsics.valid && !intrinsics_warned_.exchange(true)) {
-    NODELET_WARN(
-        "no valid camera_info yet: loop closures carry no relative pose "
-        "(has_relative_pose = false) until one arrives");
-  }
+  input.intrinsics = currentIntrinsics();
 
   std::lock_guard<std::mutex> lock(detector_mutex_);
   if (frame.epoch != worker_epoch_) {
@@ -73,8 +76,7 @@ void LoopDetectorNodelet::processFrame(const Frame& frame) {
     // the frames queued before it were processed into the old run.
     NODELET_WARN("new run after a time jump: forgetting %zu keyframes",
                  detector_->database().size());
-    detector_->reset();
-    forgetKeyframeImages();
+    restartRun(RunStart::kAfterTimeJump);
     worker_epoch_ = frame.epoch;
   }
   t0 = Clock::now();
@@ -89,10 +91,14 @@ void LoopDetectorNodelet::processFrame(const Frame& frame) {
   const bowg::LoopResult result = detector_->process(input);
   reportOdometryInput(result.odometry_input);
   const std::size_t database_size = detector_->database().size();
-  const bool found = result.status == bowg::LoopStatus::kLoopDetected;
 
   publishResult(frame, result, grey, num_features, database_size, convert_ms, feature_ms);
+  reportKeyframe(result, convert_ms, feature_ms);
+}
 
+void LoopDetectorNodelet::reportKeyframe(const bowg::LoopResult& result, double convert_ms,
+                                         double feature_ms) {
+  const bool found = result.status == bowg::LoopStatus::kLoopDetected;
   const bool outside_odometry =
       found && result.metric_status == bowg::MetricTranslationStatus::kOutsideOdometry;
   if (outside_odometry) {
@@ -101,35 +107,14 @@ void LoopDetectorNodelet::processFrame(const Frame& frame) {
                           "gates allow between the two keyframes; published without scale",
                           result.query_id, result.match_id);
   }
-  std::size_t loops;
-  {
-    std::lock_guard<std::mutex> stats_lock(stats_mutex_);
-    addToStats(result, found, outside_odometry, convert_ms, feature_ms);
-    loops = stats_.loops;
-  }
+  const std::size_t loops =
+      diagnostics_.keyframeProcessed(result, outside_odometry, convert_ms, feature_ms);
   // Each loop at DEBUG (a robot on a revisit closes several a second); at
   // INFO a line every 10 s at most while loops come.
   if (found) {
     NODELET_INFO_THROTTLE(10.0, "%zu loops so far; the latest: keyframe %u matches %u (%d inliers)",
                           loops, result.query_id, result.match_id, result.inliers);
   }
-}
-
-void LoopDetectorNodelet::addToStats(const bowg::LoopResult& result, bool found,
-                                     bool outside_odometry, double convert_ms, double feature_ms) {
-  ++stats_.keyframes;
-  ++stats_.window_keyframes;
-  if (found) ++stats_.loops;
-  if (found && result.translation_scale_known) ++stats_.metric_loops;
-  if (outside_odometry) ++stats_.metric_outside_odometry;
-  stats_.window_convert_ms += convert_ms;
-  stats_.window_feature_ms += feature_ms;
-  stats_.window_transform_ms += result.timings.transform_ms;
-  stats_.window_word_groups_ms += result.timings.word_groups_ms;
-  stats_.window_query_ms += result.timings.query_ms;
-  stats_.window_islands_ms += result.timings.islands_ms;
-  stats_.window_verification_ms += result.timings.verification_ms;
-  stats_.window_total_ms += result.timings.total_ms + convert_ms + feature_ms;
 }
 
 }  // namespace bowg_ros
