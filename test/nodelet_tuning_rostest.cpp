@@ -7,15 +7,14 @@
 namespace bowg_ros {
 namespace {
 
-// One scenario, long because each step depends on the state the previous
-// one left: the database must survive every change for the last step.
-TEST(LoopDetectorNodelet, LiveParametersTakeEffectAndInvalidValuesAreCorrected) {
-  Detector d("/tuning", {});
-  ASSERT_TRUE(d.loaded());
-  const cv::Mat world = test::makeWorld(kForward * kStep + kViewWidth + kOffset, kViewHeight, 4);
-  const std::vector<int> xs = test::trajectory(kForward, kRevisit, kStep, kOffset);
+// The steps of one scenario (below): each depends on the state the previous
+// one left, and the database must survive every change for the last step.
 
-  BoWGConfig c = BoWGConfig::__getDefault__();
+// Each live parameter is in force from the next keyframe; `c` keeps them for
+// the next step.
+void expectEveryParameterInForceNextKeyframe(Detector& d, const cv::Mat& world, BoWGConfig* cp) {
+  BoWGConfig& c = *cp;
+  c = BoWGConfig::__getDefault__();
   c.lambda_1 = 0.65;
   c.lambda_2 = 0.25;
   c.w_max = 0.4;
@@ -33,8 +32,7 @@ TEST(LoopDetectorNodelet, LiveParametersTakeEffectAndInvalidValuesAreCorrected) 
   ASSERT_TRUE(setConfig(d.name(), &c));
   d.publish(test::viewAt(world, 0, kViewWidth), 1000.0);
   ASSERT_TRUE(d.waitForStatuses(1, 20.0));
-  KeyframeStatus s = d.statuses().back();
-  // Each live parameter is in force from the next keyframe.
+  const KeyframeStatus s = d.statuses().back();
   EXPECT_EQ(s.lambda_1, 0.65);
   EXPECT_EQ(s.lambda_2, 0.25);
   EXPECT_EQ(s.w_max, 0.4);
@@ -49,10 +47,13 @@ TEST(LoopDetectorNodelet, LiveParametersTakeEffectAndInvalidValuesAreCorrected) 
   EXPECT_FALSE(s.temporal_score);
   EXPECT_TRUE(s.geometric_verification);
   EXPECT_TRUE(s.exhaustive_matching);
+}
 
-  // Invalid combinations are corrected and the client gets the corrected
-  // values: 0.8 + 0.5 > 1 -> lambda_2 = 1 - 0.8 = 0.2; level 9 deeper than
-  // the test vocabulary's L = 3 -> 3.
+// Invalid combinations are corrected and the client gets the corrected
+// values: 0.8 + 0.5 > 1 -> lambda_2 = 1 - 0.8 = 0.2; level 9 deeper than the
+// test vocabulary's L = 3 -> 3 (the other values as the previous step left
+// them). Then the same through the command line users type (dynparam set).
+void expectInvalidValuesCorrected(Detector& d, const cv::Mat& world, BoWGConfig c) {
   c.lambda_1 = 0.8;
   c.lambda_2 = 0.5;
   c.direct_index_level = 9;
@@ -61,11 +62,10 @@ TEST(LoopDetectorNodelet, LiveParametersTakeEffectAndInvalidValuesAreCorrected) 
   EXPECT_EQ(c.direct_index_level, 3);
   d.publish(test::viewAt(world, kStep, kViewWidth), 1000.1);
   ASSERT_TRUE(d.waitForStatuses(2, 20.0));
-  s = d.statuses().back();
+  KeyframeStatus s = d.statuses().back();
   EXPECT_NEAR(s.lambda_2, 0.2, 1e-12);
   EXPECT_EQ(s.direct_index_level, 3);
 
-  // The same through the command line users type (dynparam set).
   const std::string cmd = "rosrun dynamic_reconfigure dynparam set " + d.name() +
                           " \"{'lambda_1': 0.9, 'lambda_2': 0.9}\" > /dev/null 2>&1";
   EXPECT_EQ(std::system(cmd.c_str()), 0) << cmd;
@@ -74,17 +74,20 @@ TEST(LoopDetectorNodelet, LiveParametersTakeEffectAndInvalidValuesAreCorrected) 
   s = d.statuses().back();
   EXPECT_NEAR(s.lambda_1, 0.9, 1e-12);
   EXPECT_NEAR(s.lambda_2, 0.1, 1e-9);
+}
 
-  // Effects on the scores: with the distribution score off, eq. 5 with
-  // lambda_1 = 1 gives eta_sim = eta_w; with the temporal score off
-  // eta = eta_sim; with min_score = 10 no loop is accepted on a revisit.
-  c = BoWGConfig::__getDefault__();
+// Effects on the scores: with the distribution score off, eq. 5 with
+// lambda_1 = 1 gives eta_sim = eta_w; with the temporal score off eta =
+// eta_sim; with min_score = 10 no loop is accepted on a revisit.
+void expectScoresFollowTheSwitches(Detector& d, const cv::Mat& world) {
+  BoWGConfig c = BoWGConfig::__getDefault__();
   c.distribution = false;
   c.lambda_1 = 1.0;
   c.temporal_score = false;
   c.min_score = 10.0;
   ASSERT_TRUE(setConfig(d.name(), &c));
   d.clear();
+  const std::vector<int> xs = test::trajectory(kForward, kRevisit, kStep, kOffset);
   const std::vector<int> rest(xs.begin() + 3, xs.end());
   const std::vector<int> light = revisitBrightness();
   ASSERT_TRUE(d.run(world, rest, 1000.3, std::vector<int>(light.begin() + 3, light.end())));
@@ -98,9 +101,13 @@ TEST(LoopDetectorNodelet, LiveParametersTakeEffectAndInvalidValuesAreCorrected) 
   }
   EXPECT_GT(with_candidate, 10u);
   EXPECT_TRUE(d.loops().empty());
+}
 
-  // Back to an accepting threshold: the database survived every change, so
-  // revisiting the first places again finds loops at once.
+// Back to an accepting threshold: the database survived every change, so
+// revisiting the first places again finds loops at once.
+void expectDatabaseSurvivedTheChanges(Detector& d, const cv::Mat& world) {
+  BoWGConfig c = BoWGConfig::__getDefault__();
+  c.distribution = false;
   c.min_score = 0.3;
   c.lambda_1 = 0.5;
   c.temporal_score = true;
@@ -111,6 +118,21 @@ TEST(LoopDetectorNodelet, LiveParametersTakeEffectAndInvalidValuesAreCorrected) 
   ASSERT_TRUE(d.run(world, again, 1020.0));
   ros::WallDuration(0.3).sleep();
   EXPECT_FALSE(d.loops().empty()) << "database lost after reconfiguration";
+}
+
+TEST(LoopDetectorNodelet, LiveParametersTakeEffectAndInvalidValuesAreCorrected) {
+  Detector d("/tuning", {});
+  ASSERT_TRUE(d.loaded());
+  const cv::Mat world = test::makeWorld(kForward * kStep + kViewWidth + kOffset, kViewHeight, 4);
+  // Each step stops the scenario at its first fatal failure.
+  BoWGConfig c = BoWGConfig::__getDefault__();
+  expectEveryParameterInForceNextKeyframe(d, world, &c);
+  if (HasFatalFailure()) return;
+  expectInvalidValuesCorrected(d, world, c);
+  if (HasFatalFailure()) return;
+  expectScoresFollowTheSwitches(d, world);
+  if (HasFatalFailure()) return;
+  expectDatabaseSurvivedTheChanges(d, world);
 }
 
 // What a user typing a wrong value or a start-only name is told: dynparam
