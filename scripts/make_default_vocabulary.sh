@@ -33,9 +33,9 @@ trap 'rm -rf "$work"' EXIT
   { cat "$work/generate.log" >&2; exit 1; }
 tail -n 3 "$work/generate.log"
 
-# GFTT corners, the detector of config/pipe_gftt.yaml (the trainer's defaults are FeatureOptions'
-# defaults: GFTT, 500 corners, quality 0.01, min distance 10, size 31, oriented
-# ORB), tree k=10 L=4, TF-IDF, trainer seed 2.
+# GFTT corners, the detector of config/pipe_gftt.yaml (the trainer's defaults
+# are FeatureOptions' defaults: GFTT, 500 corners, quality 0.01, min distance
+# 10, size 31, oriented ORB), tree k=10 L=4, TF-IDF, trainer seed 2.
 "$tools/bowg_train_vocabulary" --output "$work/voc.bowgvoc" --k 10 --L 4 --seed 2 --threads 2 \
   "$work/frames" 2>/dev/null | tail -n 2
 mkdir -p "$(dirname "$out")"
