@@ -189,7 +189,7 @@ done < <(find "$inst" -type l -print0)
 required=(
   "$share/package.xml" "$share/nodelet_plugins.xml"
   "$share/launch/bowg.launch" "$share/launch/bowg_nodelet.launch" "$share/launch/evaluate_bag.launch"
-  "$share/config/pipe.yaml" "$share/config/generic.yaml"
+  "$share/config/pipe.yaml" "$share/config/pipe_gftt.yaml" "$share/config/generic.yaml"
   "$share/data/default_vocabulary.bowgvoc" "$share/data/README.md"
   "$inst/lib/libbowg_engine.so" "$inst/lib/libbowg_ros.so" "$inst/lib/libbowg_ros_nodelet.so"
   "$inst/include/bowg_ros/LoopClosure.h" "$inst/include/bowg_ros/LoadDatabase.h"

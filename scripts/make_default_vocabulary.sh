@@ -5,7 +5,8 @@
 #      its own seed (2) so that its wall texture (grain tile and marks) differs
 #      from the demo sequence's (seed 1): the vocabulary never sees the test data;
 #   2. trains a k=10, L=4 tree (~10k words) with bowg_train_vocabulary on GFTT
-#      corners + oriented ORB, the features of config/pipe.yaml.
+#      corners + oriented ORB, the features of config/pipe_gftt.yaml (and the
+#      descriptor of config/pipe.yaml's multi-scale ORB, which uses it too).
 # Needs the tools built (scripts/build.sh). Same tools + same options = the
 # same file, bit for bit (the renderer and the trainer are seeded).
 #   BOWG_WS=/tmp/ws ./scripts/make_default_vocabulary.sh [OUTPUT]
@@ -32,9 +33,9 @@ trap 'rm -rf "$work"' EXIT
   { cat "$work/generate.log" >&2; exit 1; }
 tail -n 3 "$work/generate.log"
 
-# Features as in config/pipe.yaml (the trainer's defaults are FeatureOptions'
-# defaults: GFTT, 500 corners, quality 0.01, min distance 10, size 31, oriented
-# ORB), tree k=10 L=4, TF-IDF, trainer seed 2.
+# GFTT corners, the detector of config/pipe_gftt.yaml (the trainer's defaults
+# are FeatureOptions' defaults: GFTT, 500 corners, quality 0.01, min distance
+# 10, size 31, oriented ORB), tree k=10 L=4, TF-IDF, trainer seed 2.
 "$tools/bowg_train_vocabulary" --output "$work/voc.bowgvoc" --k 10 --L 4 --seed 2 --threads 2 \
   "$work/frames" 2>/dev/null | tail -n 2
 mkdir -p "$(dirname "$out")"

@@ -278,6 +278,32 @@ TEST(ParameterTable, LoadsEveryShippedConfig) {
   EXPECT_EQ(generic.features.detector, FeatureOptions::Detector::kOrb);
 }
 
+// config/pipe_gftt.yaml is config/pipe.yaml with GFTT corners: the detector
+// values it does not comment on must be pipe.yaml's, so that a value changed
+// in pipe.yaml alone (or a key forgotten in the copy, which would fall back
+// to the engine's default) fails here instead of silently changing what a
+// GFTT robot runs.
+TEST(ParameterTable, TheGfttPresetIsThePipePresetWithGfttCorners) {
+  const PipelineOptions pipe = loadParameterFile(configDir() + "/pipe.yaml");
+  const PipelineOptions gftt = loadParameterFile(configDir() + "/pipe_gftt.yaml");
+  EXPECT_EQ(gftt.features.detector, FeatureOptions::Detector::kGftt);
+  EXPECT_EQ(gftt.features.descriptor, FeatureOptions::DescriptorType::kOrb);
+  EXPECT_TRUE(gftt.features.compute_orientation);
+  EXPECT_EQ(gftt.features.gftt_max_corners, 1000);
+  EXPECT_DOUBLE_EQ(gftt.features.gftt_min_distance, 7.0);
+  // The values the GFTT preset chose for itself (its comments say why).
+  const std::set<std::string> own = {"min_score", "min_inliers", "min_unique_inliers"};
+  EXPECT_DOUBLE_EQ(gftt.detector.islands.min_score, 1.0);
+  for (const std::string& name : own) {
+    SCOPED_TRACE(name);
+    EXPECT_NE(getParameter(name, gftt), getParameter(name, pipe)) << "no longer its own value";
+  }
+  for (const ParameterInfo& p : parameterTable()) {
+    if (p.group != "detector" || own.count(p.name)) continue;
+    EXPECT_EQ(getParameter(p.name, gftt), getParameter(p.name, pipe)) << p.name;
+  }
+}
+
 TEST(ParameterTable, SpecialParameterFilesAreRefusedFast) {
   const auto files = testing::makeSpecialFiles(std::string(BOWG_TEST_OUTPUT_DIR) + "/params",
                                                ".yaml", 3ull << 30, "more than the limit");

@@ -249,5 +249,38 @@ TEST_F(EvaluateCli, OdometryPositionsFeedTheOdometryGate) {
   EXPECT_EQ(loops(kDir + "/far/detections_bowg.csv"), 0);
 }
 
+// The shipped pipe presets, ORB (config/pipe.yaml) and GFTT
+// (config/pipe_gftt.yaml), load and run with the bundled vocabulary on the
+// rendered route, with the generator's drifting odometry and without any:
+// loops at each preset's own threshold, none of them false. (On this route
+// both find 0.5-0.9 of the revisits.)
+TEST_F(EvaluateCli, TheShippedPipePresetsFindLoopsAndNoFalseOne) {
+  for (const char* preset : {"pipe.yaml", "pipe_gftt.yaml"}) {
+    for (const bool odometry : {true, false}) {
+      const std::string name = std::string(preset) + (odometry ? "_odometry" : "_images");
+      SCOPED_TRACE(name);
+      const std::string odometry_csv = kDir + "/frames/odometry.csv";
+      const std::string cmd =
+          kEvaluate + " --quiet --images " + kDir + "/frames --gt " + kDir +
+          "/frames/ground_truth.txt --vocabulary " + BOWG_DEFAULT_VOCABULARY + " --config " +
+          BOWG_REPO_DIR + "/config/" + preset + " --sweep score --output " + kDir + "/" + name +
+          (odometry ? " --odometry " + odometry_csv + " --odometry-poses " + odometry_csv : "");
+      ASSERT_EQ(run(cmd, kDir + "/" + name + ".log"), 0) << readAll(kDir + "/" + name + ".log");
+      // The summary's result row: precision, recall, F1, TP, FP at min_score.
+      std::istringstream summary(readAll(kDir + "/" + name + "/summary.txt"));
+      std::string line;
+      while (std::getline(summary, line) && line.compare(0, 5, "bowg ") != 0) {
+      }
+      std::istringstream row(line);
+      std::string method;
+      double precision = 0, recall = 0, f1 = 0;
+      int tp = 0, fp = -1;
+      ASSERT_TRUE(row >> method >> precision >> recall >> f1 >> tp >> fp) << line;
+      EXPECT_EQ(fp, 0) << line;
+      EXPECT_GT(recall, 0.3) << line;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace bowg
