@@ -88,6 +88,14 @@ void Database::clear() {
   group_table_.clear();
   index_.clear();
   recent_.clear();
+  missions_.clear();
+}
+
+void Database::restoreMissions(const std::vector<Mission>& missions) {
+  if (!entries_.empty()) {
+    throw std::logic_error("Database::restoreMissions: the database holds entries");
+  }
+  missions_.restore(missions);
 }
 
 void Database::setScoring(ScoringType scoring) {
@@ -215,6 +223,10 @@ void Database::checkEntry(const DatabaseEntry& e, const std::vector<WordId>& wor
   if (!std::isnan(e.odometer) && !(std::isfinite(e.odometer) && e.odometer >= 0.0)) {
     throw std::invalid_argument("Database::add: odometer must be NaN (unknown) or finite >= 0");
   }
+  if (missions_.find(e.mission) == nullptr) {
+    throw std::invalid_argument("Database::add: mission " + std::to_string(e.mission) +
+                                " is not one of the database's missions");
+  }
 }
 
 EntryId Database::addEntry(DatabaseEntry e, const GroupVector& raw_groups,
@@ -230,6 +242,7 @@ EntryId Database::addEntry(DatabaseEntry e, const GroupVector& raw_groups,
                        : odometers_.empty()    ? -std::numeric_limits<double>::infinity()
                                                : odometers_.back());
   const bool searchable = e.searchable;
+  missions_.countEntry(e.mission);
   entries_.push_back(std::move(e));
   // The BoW vector comes from the words for every entry; an entry out of
   // the inverse index keeps only its raw groups.

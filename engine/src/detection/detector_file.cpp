@@ -103,6 +103,7 @@ std::string encodeDetectorFile(const Database& database, const DetectorState& st
   }
   w.u32(static_cast<std::uint32_t>(database.size()));
   for (const DatabaseEntry& e : database.entries()) w.u8(e.searchable ? 1 : 0);
+  writeMissions(&w, database, state);
 
   std::string& bytes = w.str();
   const std::uint64_t payload = bytes.size() - payload_start;

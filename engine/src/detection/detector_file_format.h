@@ -12,6 +12,9 @@
 
 #include "bowg/core/errors.h"
 #include "bowg/core/types.h"
+#include "bowg/database/database.h"
+#include "bowg/database/missions.h"
+#include "bowg/detection/detector_state.h"
 #include "bowg/detection/islands.h"
 
 namespace bowg {
@@ -35,10 +38,14 @@ constexpr char kMagic[8] = {'B', 'O', 'W', 'G', 'D', 'B', 0, 0};
 // unknown); older files load with unknown positions. Version 8 appends
 // whether each entry is in the inverse index (u32 count = entries, then u8
 // 1 = searchable, 0 = not: DatabaseEntry::searchable); older files load with
-// every entry searchable. A keypoint's size, angle, response and
+// every entry searchable. Version 9 appends the missions: the mission new
+// entries belong to (u32), the missions (u32 count, then u32 id, u32 name
+// length and the name's bytes each) and each entry's mission (u32 count =
+// entries, u32 id each); older files load as the unnamed mission 0 holding
+// every entry. A keypoint's size, angle, response and
 // octave are read and checked but not kept (the database keeps positions
 // only); they are written as 0, -1, 0, 0.
-constexpr std::uint32_t kVersion = 8;
+constexpr std::uint32_t kVersion = 9;
 constexpr std::uint32_t kOldestVersion = 1;
 // magic + version + fingerprint + payload size | ... | checksum
 constexpr std::size_t kHeaderBytes = 8 + 4 + 8 + 8;
@@ -71,6 +78,10 @@ class Writer {
     u64(b);
   }
   void bytes(const char* p, std::size_t n) { out_.append(p, n); }
+  void text(const std::string& s) {
+    u32(static_cast<std::uint32_t>(s.size()));
+    bytes(s.data(), s.size());
+  }
   void pairs(const std::vector<std::pair<WordId, double>>& v) {
     u32(static_cast<std::uint32_t>(v.size()));
     for (const auto& p : v) {
@@ -125,6 +136,12 @@ class Reader {
     return v;
   }
   /// A count of items of `item_bytes` each that must fit in the bytes left.
+  std::string text(const char* what) {
+    const std::size_t n = count(1, what);
+    std::string s(p_, n);
+    p_ += n;
+    return s;
+  }
   std::size_t count(std::size_t item_bytes, const char* what) {
     const std::uint64_t n = u32(what);
     if (item_bytes > 0 && n > left() / item_bytes) {
@@ -152,6 +169,14 @@ class Reader {
   const char* p_;
   const char* end_;
 };
+
+// Version 9's section (detector_file_missions.cpp).
+void writeMissions(Writer* w, const Database& database, const DetectorState& state);
+// Reads the missions into `missions` and each entry's mission; checks that
+// the ids are unique, that every entry's mission and the state's are held
+// and that no odometry run spans two missions.
+void readMissions(Reader* p, std::vector<DatabaseEntry>* entries, DetectorState* state,
+                  std::vector<Mission>* missions);
 
 }  // namespace detector_file
 }  // namespace bowg

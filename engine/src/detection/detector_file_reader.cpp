@@ -369,7 +369,8 @@ void restoreChain(Reader* p, const Database& db, StoredChain* chain, DetectorSta
 std::unique_ptr<Database> loadDetectorFile(const std::string& path,
                                            std::shared_ptr<const Vocabulary> vocabulary,
                                            ScoringType scoring, int direct_index_level,
-                                           int fan_bins, DetectorState* state) {
+                                           int fan_bins, DetectorState* state,
+                                           ScoringType* stored_scoring_out) {
   const std::string bytes = readDatabaseFile(path);
   std::uint64_t payload = 0;
   const std::uint32_t version = checkHeader(path, bytes, *vocabulary, &payload);
@@ -379,6 +380,7 @@ std::unique_ptr<Database> loadDetectorFile(const std::string& path,
   if (stored_scoring > static_cast<std::uint32_t>(ScoringType::kDotProduct)) {
     p.fail("unknown scoring type " + std::to_string(stored_scoring));
   }
+  if (stored_scoring_out != nullptr) *stored_scoring_out = static_cast<ScoringType>(stored_scoring);
   const std::size_t n = p.count(kEntryFixedBytes, "entries");
   if (n > kMaxEntries) {
     p.fail(std::to_string(n) + " entries, more than a database holds (" +
@@ -403,6 +405,11 @@ std::unique_ptr<Database> loadDetectorFile(const std::string& path,
     if (version >= 6) readPlaceLinks(&p, n, state);
     if (version >= 7) readOdometryPositions(&p, &entries, state);
     if (version >= 8) readSearchable(&p, &entries);
+    if (version >= 9) {
+      std::vector<Mission> missions;
+      readMissions(&p, &entries, state, &missions);
+      db->restoreMissions(missions);
+    }
     for (std::size_t i = 0; i < n; ++i) {
       db->add(std::move(entries[i]), db->addToGroupTable(std::move(raw_groups[i])));
     }

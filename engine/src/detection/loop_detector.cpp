@@ -177,9 +177,48 @@ void LoopDetector::adopt(SavedDetector saved) {
 }
 
 void LoopDetector::reset() {
+  const Mission kept = mission();
   database_->clear();
   state_.reset(new State);
   last_candidates_.clear();
+  database_->reassignMission(0, kept.id, kept.name);
+  state_->mission = kept.id;
+}
+
+constexpr std::int64_t LoopDetector::kNextMissionId;
+
+const Mission& LoopDetector::startMission(const std::string& name, std::int64_t id) {
+  const std::string problem = missionNameProblem(name);
+  if (!problem.empty()) throw std::invalid_argument("LoopDetector::startMission: " + problem);
+  if (id < kNextMissionId || id > std::numeric_limits<std::uint32_t>::max()) {
+    throw std::invalid_argument("LoopDetector::startMission: mission id " + std::to_string(id) +
+                                " outside 0..2^32-1 (or kNextMissionId)");
+  }
+  const MissionTable& table = database_->missions();
+  const Mission* named = table.findByName(name);
+  if (named != nullptr && id != kNextMissionId && named->id != id) {
+    throw std::invalid_argument("LoopDetector::startMission: mission '" + name + "' is mission " +
+                                std::to_string(named->id) + ", not " + std::to_string(id));
+  }
+  std::uint32_t next = state_->mission;
+  if (named != nullptr) {
+    next = named->id;
+  } else if (mission().entries == 0) {
+    // The run's mission has no keyframe yet: it becomes the one named.
+    if (id != kNextMissionId) next = static_cast<std::uint32_t>(id);
+    database_->reassignMission(state_->mission, next, name);
+    state_->mission = next;
+  } else {
+    next = id != kNextMissionId ? static_cast<std::uint32_t>(id) : table.nextId();
+    database_->addMission(next, name);
+  }
+  if (next != state_->mission && !database_->empty()) ++state_->odometry_run;
+  state_->mission = next;
+  return mission();
+}
+
+const Mission& LoopDetector::mission() const {
+  return *database_->missions().find(state_->mission);
 }
 
 LoopResult LoopDetector::process(const KeyframeInput& keyframe) {
@@ -190,6 +229,7 @@ LoopResult LoopDetector::process(const KeyframeInput& keyframe) {
   LoopResult r;
   r.query_id = static_cast<EntryId>(database_->size());
   r.stamp = keyframe.stamp;
+  r.mission = state_->mission;
   r.odometry_input = odometryInput(keyframe.odometer, keyframe.position);
   last_candidates_.clear();
 
@@ -201,6 +241,7 @@ LoopResult LoopDetector::process(const KeyframeInput& keyframe) {
   entry.odometer = keyframe.odometer;
   entry.position = keyframe.position;
   entry.odometry_run = state_->odometry_run;
+  entry.mission = state_->mission;
   fanCentre(keyframe, &entry.centre_x, &entry.centre_y);
 
   if (f.empty()) {

@@ -73,6 +73,8 @@ void verifyMatch(const QueryContext& ctx, const Island& island, IslandChoice* ch
   const DatabaseEntry& match = ctx.database.entry(island.best_entry);
   r->match_id = match.id;
   r->match_stamp = match.stamp;
+  r->match_mission = match.mission;
+  r->match_mission_name = ctx.database.missions().find(match.mission)->name;
   if (!go.enabled) {
     r->status = LoopStatus::kLoopDetected;
     return;
@@ -92,6 +94,8 @@ void verifyMatch(const QueryContext& ctx, const Island& island, IslandChoice* ch
   if (g.status != LoopStatus::kLoopDetected) {
     r->match_id = 0;
     r->match_stamp = 0;
+    r->match_mission = 0;
+    r->match_mission_name.clear();
     return;
   }
   if (!g.has_relative_pose && verifier->intrinsics().valid) {

@@ -35,7 +35,9 @@ constexpr std::size_t kEntries = 52;      // keyframes in the good file
 constexpr std::size_t kNormalisers = 50;  // the normaliser history's length
 
 /// Where the sections of the good file start, from the end: checksum 8, the
-/// searchable flags (u32 count, a u8 per entry), the odometry positions (the
+/// missions (one unnamed: current u32, count u32, id u32, name length u32,
+/// entry count u32, u32 per entry; detector_missions_test.cpp forges them),
+/// the searchable flags (u32 count, a u8 per entry), the odometry positions (the
 /// current run u32, u32 count, per entry u32 run and 3 f64), the place links
 /// (u32 count, u32 per entry), the scale factors (u32 count, f32 per entry),
 /// the hypothesis count 4 (none stored) and the two query odometers 16, the
@@ -46,7 +48,8 @@ struct TailLayout {
   explicit TailLayout(std::size_t file_size) {
     const std::size_t searchable = 4 + kEntries, positions = 4 + 4 + kEntries * (4 + 3 * 8);
     const std::size_t place_links = 4 + kEntries * 4, scale_factors = 4 + kEntries * 4;
-    flags = file_size - 8 - searchable;
+    const std::size_t missions = 4 + 4 + 4 + 4 + 4 + kEntries * 4;
+    flags = file_size - 8 - missions - searchable;
     run = flags - positions;
     links = run - place_links;
     scales = links - scale_factors;

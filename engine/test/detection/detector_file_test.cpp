@@ -24,7 +24,6 @@ using testing::options;
 using testing::outPath;
 using testing::putLe;
 using testing::readBytes;
-using testing::searchableBytes;
 using testing::vocabulary;
 using testing::writeBytes;
 
@@ -222,7 +221,7 @@ TEST(DatabaseIo, SearchableFlagsRoundTrip) {
   for (EntryId i = 52; i < a.database().size(); ++i) {
     EXPECT_EQ(b.database().entry(i).searchable, a.database().entry(i).searchable) << i;
   }
-  writeBytes(path, asVersion(bytes, searchableBytes(52), 7));
+  writeBytes(path, asVersion(bytes, testing::fromVersion8Bytes(52), 7));
   LoopDetector c(voc, o);
   c.load(path);
   EXPECT_EQ(c.database().searchableCount(), 52u);

@@ -22,9 +22,16 @@ inline void putLe(std::string* bytes, std::size_t at, std::uint64_t v, int n) {
 inline std::size_t odometryPositionBytes(std::size_t n) { return 4 + 4 + n * (4 + 3 * 8); }
 // The version-8 section: a u32 count and each entry's u8 searchable flag.
 inline std::size_t searchableBytes(std::size_t n) { return 4 + n; }
-// Everything from the version-7 section on.
+// The version-9 section of a detector with the unnamed mission 0 alone:
+// the current mission, a count, id 0 and an empty name, then a count and
+// each entry's u32 mission.
+inline std::size_t unnamedMissionBytes(std::size_t n) { return 4 + 4 + 4 + 4 + 4 + 4 * n; }
+// Everything from the version-8 / version-7 section on (one unnamed mission).
+inline std::size_t fromVersion8Bytes(std::size_t n) {
+  return searchableBytes(n) + unnamedMissionBytes(n);
+}
 inline std::size_t fromVersion7Bytes(std::size_t n) {
-  return odometryPositionBytes(n) + searchableBytes(n);
+  return odometryPositionBytes(n) + fromVersion8Bytes(n);
 }
 
 // A saved detector file as version `version` wrote it: without the last

@@ -38,6 +38,7 @@
 #include "bowg/database/counted_groups.h"
 #include "bowg/database/distribution_table.h"
 #include "bowg/database/inverse_index.h"
+#include "bowg/database/missions.h"
 #include "bowg/database/packed_points.h"
 #include "bowg/database/packed_words.h"
 #include "bowg/database/query_scratch.h"
@@ -78,6 +79,9 @@ struct DatabaseEntry {
   /// loaded from a file starts a new run, DetectorState::odometry_run).
   OdometryPosition position;
   std::uint32_t odometry_run = 0;
+  /// The mission (survey) the keyframe was taken in: an id of the
+  /// database's missions(). A mission's odometry runs are its own.
+  std::uint32_t mission = 0;
   /// False: the entry stays out of the inverse index (Database::add), so no
   /// query finds it as a candidate, while its scores against a query
   /// (Database::score, the normalisers of eqs. 2 and 4), its words, points
@@ -140,6 +144,18 @@ class Database {
   /// The cached distribution vector of entry `id` for the current m.
   std::vector<double> distribution(EntryId id) const;
 
+  /// The missions the entries belong to (a new database: the unnamed
+  /// mission 0).
+  const MissionTable& missions() const { return missions_; }
+  /// MissionTable::add and MissionTable::reassign.
+  void addMission(std::uint32_t id, const std::string& name) { missions_.add(id, name); }
+  void reassignMission(std::uint32_t id, std::uint32_t new_id, const std::string& name) {
+    missions_.reassign(id, new_id, name);
+  }
+  /// MissionTable::restore, for a database without entries (a loaded file's
+  /// missions before its entries are added); std::logic_error otherwise.
+  void restoreMissions(const std::vector<Mission>& missions);
+
   ScoringType scoring() const { return scoring_; }
   int directLevel() const { return direct_level_; }
   int fanBins() const { return distributions_.bins(); }
@@ -165,8 +181,9 @@ class Database {
   /// std::invalid_argument on inconsistent sizes or word ids, and on a raw
   /// group that is not one of the entry's words or whose weight is not a
   /// whole count in [1, 2^24); std::length_error when the database already
-  /// holds kMaxEntries; std::logic_error when `counted` was added already,
-  /// moved from or counted by another database.
+  /// holds kMaxEntries; std::invalid_argument also when the entry's
+  /// mission is not in missions(); std::logic_error when `counted` was added
+  /// already, moved from or counted by another database.
   /// `distribution`: the entry's distribution vector for the current
   /// fanBins() when the caller has it already (makeQuery's, for the keyframe
   /// just queried: the same positions give the same vector); empty: it is
@@ -223,6 +240,7 @@ class Database {
   /// overhead (docs/benchmarks.md compares it with the resident set).
   std::size_t memoryBytes() const;
 
+  /// Forgets every entry; the missions go back to the unnamed mission 0.
   void clear();
 
  private:
@@ -264,6 +282,7 @@ class Database {
   InverseIndex index_;
   DistributionTable distributions_;
   RecentVectors recent_;
+  MissionTable missions_;
 };
 
 }  // namespace bowg

@@ -33,9 +33,12 @@ std::string encodeDetectorFile(const Database& database, const DetectorState& st
 /// (nothing shared with any existing one). Throws IoError (unreadable) or
 /// FormatError (bad magic/version, truncated, checksum mismatch, sizes
 /// inconsistent with the file length, other vocabulary, invalid content).
+/// `stored_scoring` (optional): the scoring the file's BoW vectors were
+/// saved for (the saving detector's).
 std::unique_ptr<Database> loadDetectorFile(const std::string& path,
                                            std::shared_ptr<const Vocabulary> vocabulary,
                                            ScoringType scoring, int direct_index_level,
-                                           int fan_bins, DetectorState* state);
+                                           int fan_bins, DetectorState* state,
+                                           ScoringType* stored_scoring = nullptr);
 
 }  // namespace bowg

@@ -38,6 +38,9 @@ struct DetectorState {
   /// a robot restarted with a saved database has a new odometry frame, so
   /// LoopDetector::load starts a new run.
   std::uint32_t odometry_run = 0;
+  /// The mission new entries belong to (DatabaseEntry::mission; one of the
+  /// database's missions()).
+  std::uint32_t mission = 0;
   /// The last kLoopAnchors accepted loops, oldest first
   /// (IslandOptions::odometry_anchor_m); recorded whether or not the option
   /// is on. Not saved (LoopAnchor).

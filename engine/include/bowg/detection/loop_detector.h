@@ -7,12 +7,14 @@
 // between keyframes (the nodelet serialises both with a mutex).
 #pragma once
 
+#include <cstdint>
 #include <limits>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "bowg/core/types.h"
+#include "bowg/database/missions.h"
 #include "bowg/detection/detection_options.h"
 #include "bowg/detection/geometric_verification.h"
 #include "bowg/detection/loop_status.h"
@@ -85,6 +87,8 @@ struct KeyframeInput {
 struct LoopResult {
   EntryId query_id = 0;
   double stamp = 0;
+  /// The mission the keyframe was added to (LoopDetector::startMission).
+  std::uint32_t mission = 0;
   LoopStatus status = LoopStatus::kNoFeatures;
   /// The odometry the keyframe came with, which decided how its loop is
   /// accepted (odometry_input.h).
@@ -100,6 +104,9 @@ struct LoopResult {
   /// The loop (valid when status == kLoopDetected).
   EntryId match_id = 0;
   double match_stamp = 0;
+  /// The mission the match belongs to (Database::missions()) and its name.
+  std::uint32_t match_mission = 0;
+  std::string match_mission_name;
   int correspondences = 0;
   int inliers = 0;
   std::vector<Correspondence> inlier_correspondences;
@@ -177,8 +184,25 @@ class LoopDetector {
   /// apply). Throws InvalidParameter, keeping the current state, when
   /// `saved` was read for another vocabulary.
   void adopt(SavedDetector saved);
-  /// Forgets every keyframe.
+  /// Forgets every keyframe; the current mission keeps its id and name.
   void reset();
+
+  /// startMission's id for "the next free one".
+  static constexpr std::int64_t kNextMissionId = -1;
+  /// Names the mission the next keyframes belong to: the mission of that
+  /// name when the database holds one (a robot continuing a survey after a
+  /// restart); else the current mission, given this id and name, while it
+  /// has no keyframe; else a new mission. `id`: the mission's id, unique in
+  /// a network's archive (bowg_merge_databases refuses an id twice), or
+  /// kNextMissionId for the current or next free one. Another mission than
+  /// the current one starts a new odometry run: its positions are in a
+  /// frame of their own. Throws std::invalid_argument, keeping the current
+  /// mission, on an invalid name (missionNameProblem), an id outside
+  /// [0, 2^32), a name held by a mission of another id or an id held by a
+  /// mission of another name.
+  const Mission& startMission(const std::string& name, std::int64_t id = kNextMissionId);
+  /// The mission the next keyframes belong to.
+  const Mission& mission() const;
 
  private:
   struct State;
