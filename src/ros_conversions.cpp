@@ -98,6 +98,9 @@ LoopClosure toLoopClosure(const bowg::LoopResult& r, const std_msgs::Header& hea
   msg.query_stamp = header.stamp;
   msg.match_id = r.match_id;
   msg.match_stamp = ros::Time(r.match_stamp);
+  msg.query_mission = r.mission;
+  msg.match_mission = r.match_mission;
+  msg.match_mission_name = r.match_mission_name;
   msg.score = r.best.eta;
   msg.score_word = r.best.eta_w;
   msg.score_group = r.best.eta_g;

@@ -2,6 +2,9 @@
 // (dynamic_reconfigure and dynparam, the database services, saving at
 // shutdown and loading at start); the harness is nodelet_harness.h and
 // main() is loop_detector_rostest.cpp's (one test executable).
+#include <set>
+#include <utility>
+
 #include "nodelet_harness.h"
 
 namespace bowg_ros {
@@ -245,6 +248,83 @@ TEST(LoopDetectorNodelet, DatabaseIsSavedAtShutdownAndLoadedAtStart) {
   ASSERT_TRUE(d.waitForStatuses(1, 20.0));
   EXPECT_EQ(d.statuses()[0].id, 3u);
   EXPECT_EQ(d.statuses()[0].database_size, 4u);
+}
+
+// A robot's second survey against its first survey's saved database: its
+// keyframes are in its own mission, and its loops into the first survey say
+// which mission they are from.
+TEST(LoopDetectorNodelet, MissionsNameTheKeyframesAndLoopsIntoALoadedMissionSayWhichOne) {
+  const std::string path = std::string(BOWG_TEST_OUTPUT_DIR) + "/bowg_rostest_missions.bin";
+  std::remove(path.c_str());
+  const cv::Mat world = test::makeWorld(kForward * kStep + kViewWidth + kOffset, kViewHeight, 5);
+  const std::vector<int> xs = test::trajectory(kForward, kRevisit, kStep, kOffset);
+  {
+    Detector first("/survey_2025", {{"database_save_path", XmlRpc::XmlRpcValue(path)},
+                                    {"mission_name", XmlRpc::XmlRpcValue("2025-05 Kanal 7")},
+                                    {"mission_id", XmlRpc::XmlRpcValue(4)}});
+    ASSERT_TRUE(first.loaded());
+    ASSERT_TRUE(first.run(world, std::vector<int>(xs.begin(), xs.begin() + kForward), 1000.0));
+  }  // saved at shutdown
+  Detector second("/survey_2026", {{"database_load_path", XmlRpc::XmlRpcValue(path)},
+                                   {"mission_name", XmlRpc::XmlRpcValue("2026-05 Kanal 7")},
+                                   {"mission_id", XmlRpc::XmlRpcValue(7)}});
+  ASSERT_TRUE(second.loaded());
+  ASSERT_TRUE(second.run(world, std::vector<int>(xs.begin() + kForward, xs.end()), 2000.0,
+                         std::vector<int>(kRevisit, 12)));
+  ros::WallDuration(0.3).sleep();
+  const std::vector<LoopClosure> loops = second.loops();
+  EXPECT_GE(loops.size(), 5u) << "the second survey finds the first one's places";
+  for (const LoopClosure& l : loops) {
+    EXPECT_EQ(l.query_mission, 7u);
+    ASSERT_LT(l.match_id, static_cast<std::uint32_t>(kForward));
+    EXPECT_EQ(l.match_mission, 4u);
+    EXPECT_EQ(l.match_mission_name, "2025-05 Kanal 7");
+  }
+  expectRightIds(loops);
+}
+
+// Two earlier surveys, each saved into its own file, as the reference maps of
+// a third: its revisit finds the places of both, each loop naming its
+// mission; the ids are the merged files' (first survey first).
+TEST(LoopDetectorNodelet, ReferenceMapsOfTwoSurveysAreSearchedTogether) {
+  const std::string dir = std::string(BOWG_TEST_OUTPUT_DIR);
+  const std::string first = dir + "/bowg_rostest_reference_1.bin";
+  const std::string second = dir + "/bowg_rostest_reference_2.bin";
+  const cv::Mat world = test::makeWorld(kForward * kStep + kViewWidth + kOffset, kViewHeight, 5);
+  const std::vector<int> xs = test::trajectory(kForward, kRevisit, kStep, kOffset);
+  const int split = 15;
+  const std::vector<std::pair<std::string, std::vector<int>>> surveys = {
+      {first, std::vector<int>(xs.begin(), xs.begin() + split)},
+      {second, std::vector<int>(xs.begin() + split, xs.begin() + kForward)}};
+  for (std::size_t k = 0; k < surveys.size(); ++k) {
+    std::remove(surveys[k].first.c_str());
+    Detector d("/reference_" + std::to_string(k),
+               {{"database_save_path", XmlRpc::XmlRpcValue(surveys[k].first)},
+                {"mission_name", XmlRpc::XmlRpcValue("survey " + std::to_string(k + 1))},
+                {"mission_id", XmlRpc::XmlRpcValue(static_cast<int>(k + 1))}});
+    ASSERT_TRUE(d.loaded());
+    ASSERT_TRUE(d.run(world, surveys[k].second, 1000.0 + 100.0 * k));
+  }
+  XmlRpc::XmlRpcValue maps;
+  maps[0] = second;  // any order: the merge orders them by time
+  maps[1] = first;
+  Detector third("/reference_3",
+                 {{"reference_maps", maps}, {"mission_name", XmlRpc::XmlRpcValue("survey 3")}});
+  ASSERT_TRUE(third.loaded());
+  ASSERT_TRUE(third.run(world, std::vector<int>(xs.begin() + kForward, xs.end()), 2000.0,
+                        std::vector<int>(kRevisit, 12)));
+  ros::WallDuration(0.3).sleep();
+  const std::vector<LoopClosure> loops = third.loops();
+  std::set<std::uint32_t> missions;
+  for (const LoopClosure& l : loops) {
+    EXPECT_EQ(l.query_mission, 3u);  // the next free id
+    const std::uint32_t expected = l.match_id < static_cast<std::uint32_t>(split) ? 1u : 2u;
+    EXPECT_EQ(l.match_mission, expected) << "match " << l.match_id;
+    EXPECT_EQ(l.match_mission_name, "survey " + std::to_string(expected));
+    missions.insert(l.match_mission);
+  }
+  EXPECT_EQ(missions.size(), 2u) << loops.size() << " loops";
+  expectRightIds(loops);
 }
 
 }  // namespace

@@ -174,6 +174,9 @@ bowg::LoopResult aLoop() {
   r.island_score = 3.5;
   r.match_id = 7;
   r.match_stamp = 1000.25;
+  r.mission = 12;
+  r.match_mission = 3;
+  r.match_mission_name = "2025-05-12";
   r.correspondences = 50;
   r.inliers = 30;
   bowg::Correspondence c;
@@ -202,6 +205,9 @@ TEST(RosConversions, LoopClosureCarriesIdsFramePoseAndOptionalPoints) {
   EXPECT_EQ(m.query_id, 42u);
   EXPECT_EQ(m.match_id, 7u);
   EXPECT_DOUBLE_EQ(m.match_stamp.toSec(), 1000.25);
+  EXPECT_EQ(m.query_mission, 12u);
+  EXPECT_EQ(m.match_mission, 3u);
+  EXPECT_EQ(m.match_mission_name, "2025-05-12");
   EXPECT_EQ(m.score, 0.9);
   EXPECT_EQ(m.score_word, 0.8);
   EXPECT_EQ(m.island_first, 5u);

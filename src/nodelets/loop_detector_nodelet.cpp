@@ -2,13 +2,12 @@
 // diagnostics, live tuning, inputs last) and an orderly shutdown.
 #include "loop_detector_nodelet.h"
 
-#include <opencv2/core/version.hpp>
-#include <pluginlib/class_list_macros.hpp>
-
 #include <sys/stat.h>
 
 #include <cerrno>
 #include <cstring>
+#include <opencv2/core/version.hpp>
+#include <pluginlib/class_list_macros.hpp>
 
 #include "bowg/core/atomic_file.h"
 #include "bowg/core/bounded_file.h"
@@ -104,7 +103,18 @@ bool LoopDetectorNodelet::startEngine() {
                    path.c_str());
     }
   }
-  if (!database_load_path_.empty()) {
+  if (!loadStartDatabase()) return false;
+  try {
+    NODELET_INFO("%s", startMission().c_str());
+  } catch (const std::exception& e) {
+    return fatal(std::string("~mission_name / ~mission_id: ") + e.what());
+  }
+  return true;
+}
+
+bool LoopDetectorNodelet::loadStartDatabase() {
+  if (reference_maps_.empty()) {
+    if (database_load_path_.empty()) return true;
     try {
       detector_->load(database_load_path_);
       NODELET_INFO("loaded %zu keyframes from %s", detector_->database().size(),
@@ -113,7 +123,21 @@ bool LoopDetectorNodelet::startEngine() {
       NODELET_ERROR("could not load ~database_load_path, starting with an empty database: %s",
                     e.what());
     }
+    return true;
   }
+  // Re-inspection against an archive: recording without it is not what the
+  // operator asked for.
+  std::vector<std::string> files = reference_maps_;
+  if (!database_load_path_.empty()) files.push_back(database_load_path_);
+  try {
+    detector_->adopt(bowg::LoopDetector::readMerged(files, vocabulary_, detector_->options()));
+  } catch (const std::exception& e) {
+    return fatal(std::string("~reference_maps: ") + e.what());
+  }
+  std::string list;
+  for (const std::string& f : files) list += (list.empty() ? "" : ", ") + f;
+  NODELET_INFO("loaded %zu keyframes of %zu mission(s) from %s", detector_->database().size(),
+               detector_->database().missions().size(), list.c_str());
   return true;
 }
 

@@ -62,6 +62,7 @@
 #include <mutex>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "bowg/core/errors.h"
 #include "bowg/database/database.h"
@@ -190,11 +191,27 @@ class LoopDetectorNodelet : public nodelet::Nodelet {
   /// The diagnostics timer: the rest of the nodelet's state, read under its
   /// locks one at a time, handed to diagnostics_.
   void diagnose(diagnostic_updater::DiagnosticStatusWrapper& status);
+  /// The database at start: the reference maps and ~database_load_path
+  /// merged (a reference map that cannot be read: fatal), or the load path
+  /// alone (an error: logged, empty database). False when not started.
+  bool loadStartDatabase();
+  /// Puts the keyframes that follow in the configured mission
+  /// (~mission_name, ~mission_id); returns the line that says which. Throws
+  /// std::invalid_argument when the database holds the id or the name as
+  /// another mission's. Called with detector_mutex_ held or before the
+  /// threads start.
+  std::string startMission();
   /// Counts (by reason) and logs a refused image: the frame is dropped.
   void dropBadImage(const bowg::ImageCheck& check, const ros::Time& stamp);
 
   // Parameters (written by onInit() only, before any thread starts).
   std::string vocabulary_path_, database_load_path_, database_save_path_;
+  /// The mission the keyframes belong to (LoopDetector::startMission).
+  std::string mission_name_;
+  int mission_id_ = -1;
+  /// Earlier missions' database files loaded at start beside the live
+  /// mission (with ~database_load_path, merged: LoopDetector::readMerged).
+  std::vector<std::string> reference_maps_;
   int queue_size_ = 2;
   bool use_compressed_ = false, use_features_input_ = false, publish_correspondences_ = false;
   KeyframeGateOptions gate_options_;

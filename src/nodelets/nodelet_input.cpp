@@ -58,7 +58,8 @@ void LoopDetectorNodelet::compressedCallback(const sensor_msgs::CompressedImageC
 
 void LoopDetectorNodelet::dropBadImage(const bowg::ImageCheck& check, const ros::Time& stamp) {
   // Counted in the diagnostics whatever the throttled log shows.
-  if (diagnostics_.badImage(check.problem)) NODELET_ERROR("image at %.6f dropped: %s", stamp.toSec(), check.message().c_str());
+  if (diagnostics_.badImage(check.problem))
+    NODELET_ERROR("image at %.6f dropped: %s", stamp.toSec(), check.message().c_str());
 }
 
 void LoopDetectorNodelet::featuresCallback(const KeyframeFeatures::ConstPtr& msg) {

@@ -12,11 +12,24 @@ namespace {
 /// The nodelet's own private parameters (not engine options); every other
 /// private parameter must be a row of the engine's parameter table.
 const char* const kNodeParameters[] = {
-    "vocabulary_path",         "queue_size",           "min_keyframe_interval",
-    "min_keyframe_distance",   "use_compressed",       "use_features_input",
-    "publish_correspondences", "database_load_path",   "database_save_path",
-    "debug_image_cache",       "image_transport",      "diagnostic_period",
-    "reset_on_time_jump",      "debug_thumbnail_size", "diagnostics_window",
+    "vocabulary_path",
+    "queue_size",
+    "min_keyframe_interval",
+    "min_keyframe_distance",
+    "use_compressed",
+    "use_features_input",
+    "publish_correspondences",
+    "database_load_path",
+    "database_save_path",
+    "debug_image_cache",
+    "image_transport",
+    "diagnostic_period",
+    "reset_on_time_jump",
+    "debug_thumbnail_size",
+    "diagnostics_window",
+    "mission_name",
+    "mission_id",
+    "reference_maps",
 };
 
 bool isNodeParameter(const std::string& name) {
@@ -39,6 +52,21 @@ bool LoopDetectorNodelet::loadParameters(ros::NodeHandle& pnh) {
   pnh.param("publish_correspondences", publish_correspondences_, false);
   pnh.param<std::string>("database_load_path", database_load_path_, "");
   pnh.param<std::string>("database_save_path", database_save_path_, "");
+  if (pnh.hasParam("mission_name") && !pnh.getParam("mission_name", mission_name_)) {
+    return fatal("~mission_name must be a string (a name like 2025 needs quotes: '2025')");
+  }
+  pnh.param("mission_id", mission_id_, -1);
+  if (pnh.hasParam("reference_maps") && !pnh.getParam("reference_maps", reference_maps_)) {
+    std::string one;
+    if (!pnh.getParam("reference_maps", one)) {
+      return fatal("~reference_maps must be a list of database files (or one file name)");
+    }
+    reference_maps_.assign(1, one);
+  }
+  if (mission_id_ < -1) {
+    return fatal("~mission_id must be >= 0, or -1 for the next free id (got " +
+                 std::to_string(mission_id_) + ")");
+  }
   int debug_image_cache = 200;
   pnh.param("debug_image_cache", debug_image_cache, debug_image_cache);
   ThumbnailOptions thumbnail_options;

@@ -1,9 +1,8 @@
 // LoopDetectorNodelet: live tuning (dynamic_reconfigure, by name through the
 // parameter table), the database services (save, load, reset) and the one
 // way a new run of the database starts (restartRun).
-#include "loop_detector_nodelet.h"
-
 #include "bowg/core/atomic_file.h"
+#include "loop_detector_nodelet.h"
 
 namespace bowg_ros {
 
@@ -80,9 +79,21 @@ bool LoopDetectorNodelet::loadDatabase(LoadDatabase::Request& req, LoadDatabase:
     std::lock_guard<std::mutex> lock(detector_mutex_);
     detector_->adopt(std::move(saved));
     restartRun(RunStart::kLoaded);  // the loaded keyframes' images are not in the file
-    res.success = true;
     res.message =
         "loaded " + std::to_string(detector_->database().size()) + " keyframes from " + path;
+    try {
+      res.message += "; " + startMission();
+    } catch (const std::invalid_argument& e) {
+      // Loaded, but not into the configured mission: said, not hidden.
+      res.success = false;
+      res.message += "; the configured mission was refused (" + std::string(e.what()) +
+                     "): keyframes continue the file's mission " +
+                     std::to_string(detector_->mission().id) + " '" + detector_->mission().name +
+                     "'";
+      NODELET_ERROR("load_database: %s", res.message.c_str());
+      return true;
+    }
+    res.success = true;
     NODELET_INFO("%s", res.message.c_str());
   } catch (const std::exception& e) {
     res.success = false;
@@ -90,6 +101,22 @@ bool LoopDetectorNodelet::loadDatabase(LoadDatabase::Request& req, LoadDatabase:
     NODELET_ERROR("load_database: %s", res.message.c_str());
   }
   return true;
+}
+
+std::string LoopDetectorNodelet::startMission() {
+  const bool held = detector_->database().missions().findByName(mission_name_) != nullptr &&
+                    detector_->database().missions().findByName(mission_name_)->entries > 0;
+  const bowg::Mission& m = detector_->startMission(mission_name_, mission_id_);
+  std::string line = "mission " + std::to_string(m.id) + " '" + m.name + "' (" +
+                     (held ? "continued, " + std::to_string(m.entries) + " keyframes" : "new") +
+                     "); the database holds " +
+                     std::to_string(detector_->database().missions().size()) + " mission(s)";
+  for (const bowg::Mission& other : detector_->database().missions().all()) {
+    if (other.id == m.id) continue;
+    line += ", " + std::to_string(other.id) + " '" + other.name + "' (" +
+            std::to_string(other.entries) + " keyframes)";
+  }
+  return line;
 }
 
 void LoopDetectorNodelet::restartRun(RunStart start) {

@@ -101,8 +101,6 @@ void MissionTable::restore(const std::vector<Mission>& missions) {
   missions_.swap(restored.missions_);
 }
 
-void MissionTable::clear() {
-  missions_.assign(1, Mission());
-}
+void MissionTable::clear() { missions_.assign(1, Mission()); }
 
 }  // namespace bowg

@@ -27,9 +27,9 @@ Part readPart(const std::string& path, const std::shared_ptr<const Vocabulary>& 
   const LoopDetectorOptions defaults;
   Part part;
   part.path = path;
-  part.database = loadDetectorFile(path, vocabulary, ScoringType::kL1,
-                                   defaults.geometric.direct_index_level,
-                                   defaults.distribution.fan_bins, &part.state, &part.scoring);
+  part.database =
+      loadDetectorFile(path, vocabulary, ScoringType::kL1, defaults.geometric.direct_index_level,
+                       defaults.distribution.fan_bins, &part.state, &part.scoring);
   return part;
 }
 
@@ -96,32 +96,41 @@ void appendPart(const Part& part, std::uint32_t run_offset, Database* merged,
 
 }  // namespace
 
-std::string mergeDetectorFiles(const std::vector<std::string>& paths,
-                               std::shared_ptr<const Vocabulary> vocabulary) {
+std::unique_ptr<Database> mergeDetectorFiles(const std::vector<std::string>& paths,
+                                             std::shared_ptr<const Vocabulary> vocabulary,
+                                             DetectorState* state) {
   if (paths.size() < 2) throw std::invalid_argument("a merge takes two files or more");
   std::vector<Part> parts;
   for (const std::string& path : paths) parts.push_back(readPart(path, vocabulary));
   orderAndCheck(&parts);
 
   const LoopDetectorOptions defaults;
-  Database merged(vocabulary, parts.front().scoring, defaults.geometric.direct_index_level,
-                  defaults.distribution.fan_bins);
+  std::unique_ptr<Database> merged(new Database(vocabulary, parts.front().scoring,
+                                                defaults.geometric.direct_index_level,
+                                                defaults.distribution.fan_bins));
   std::vector<Mission> missions;
   for (const Part& p : parts) {
     for (const Mission& m : p.database->missions().all()) missions.push_back(m);
   }
-  merged.restoreMissions(missions);
-  DetectorState state;
+  merged->restoreMissions(missions);
+  *state = DetectorState();
   std::vector<EntryId> parents;
   std::uint32_t runs = 0;
   for (const Part& p : parts) {
-    appendPart(p, runs, &merged, &parents);
-    state.odometry_run = runs + p.state.odometry_run;
-    state.mission = p.state.mission;
+    appendPart(p, runs, merged.get(), &parents);
+    state->odometry_run = runs + p.state.odometry_run;
+    state->mission = p.state.mission;
     runs += p.state.odometry_run + 1;
   }
-  state.place_links.restore(std::move(parents));
-  return encodeDetectorFile(merged, state);
+  state->place_links.restore(std::move(parents));
+  return merged;
+}
+
+std::string mergeDetectorFiles(const std::vector<std::string>& paths,
+                               std::shared_ptr<const Vocabulary> vocabulary) {
+  DetectorState state;
+  const std::unique_ptr<Database> merged = mergeDetectorFiles(paths, std::move(vocabulary), &state);
+  return encodeDetectorFile(*merged, state);
 }
 
 }  // namespace bowg

@@ -13,6 +13,7 @@
 #include "bowg/core/errors.h"
 #include "bowg/database/database.h"
 #include "bowg/detection/detector_file.h"
+#include "bowg/detection/detector_merge.h"
 #include "bowg/detection/geometric_verification.h"
 #include "bowg/detection/islands.h"
 #include "bowg/scoring/similarity.h"
@@ -154,6 +155,17 @@ SavedDetector LoopDetector::read(const std::string& path,
   saved.database_ =
       loadDetectorFile(path, vocabulary, options.scoring, options.geometric.direct_index_level,
                        options.distribution.fan_bins, saved.state_.get());
+  saved.vocabulary_ = std::move(vocabulary);
+  return saved;
+}
+
+SavedDetector LoopDetector::readMerged(const std::vector<std::string>& paths,
+                                       std::shared_ptr<const Vocabulary> vocabulary,
+                                       const LoopDetectorOptions& options) {
+  if (paths.size() == 1) return read(paths.front(), std::move(vocabulary), options);
+  SavedDetector saved;
+  saved.state_.reset(new DetectorState);
+  saved.database_ = mergeDetectorFiles(paths, vocabulary, saved.state_.get());
   saved.vocabulary_ = std::move(vocabulary);
   return saved;
 }

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -93,6 +94,35 @@ TEST(DetectorMerge, TheMergeOfAMergeIsTheMergeOfTheParts) {
   for (const std::string& p : {a, b, c, ab, abc}) std::remove(p.c_str());
 }
 
+// A detector starting on two earlier missions as reference maps finds the
+// places of both.
+TEST(DetectorMerge, ADetectorReadsSeveralReferenceMapsAtOnce) {
+  const auto voc = testing::vocabulary();
+  const std::string a = missionFile("ref_a.bowgdb", "first half", 1, 0, 20);
+  const std::string b = missionFile("ref_b.bowgdb", "second half", 2, 20, 40);
+  LoopDetector d(voc, options());
+  d.adopt(LoopDetector::readMerged({b, a}, voc, d.options()));
+  EXPECT_EQ(d.database().size(), 40u);
+  EXPECT_EQ(d.startMission("live", 3).id, 3u);
+  const auto kfs = keyframes();
+  std::set<std::uint32_t> found;
+  for (std::size_t i = 40; i < kfs.size(); ++i) {
+    const LoopResult r = d.process(kfs[i]);
+    EXPECT_EQ(r.mission, 3u);
+    if (r.status != LoopStatus::kLoopDetected) continue;
+    EXPECT_EQ(r.match_mission, r.match_id < 20 ? 1u : 2u);
+    EXPECT_EQ(r.match_mission_name, r.match_id < 20 ? "first half" : "second half");
+    found.insert(r.match_mission);
+  }
+  EXPECT_EQ(found.size(), 2u) << "loops into both reference missions";
+  // One file is read as it is, memory of previous queries included.
+  LoopDetector one(voc, options());
+  one.adopt(LoopDetector::readMerged({a}, voc, one.options()));
+  EXPECT_EQ(one.database().size(), 20u);
+  EXPECT_EQ(one.mission().id, 1u);
+  for (const std::string& p : {a, b}) std::remove(p.c_str());
+}
+
 void expectRefused(const std::vector<std::string>& paths, const std::string& why) {
   try {
     mergeDetectorFiles(paths, testing::vocabulary());
@@ -131,7 +161,8 @@ TEST(DetectorMerge, FilesThatDoNotGoTogetherAreRefused) {
   const std::string other_scoring = outPath("bad_scoring.bowgdb");
   d.save(other_scoring);
   expectRefused({a, other_scoring}, "one configuration");
-  for (const std::string& p : {a, b, same_id, same_name, overlap, foreign, truncated, other_scoring}) {
+  for (const std::string& p :
+       {a, b, same_id, same_name, overlap, foreign, truncated, other_scoring}) {
     std::remove(p.c_str());
   }
 }

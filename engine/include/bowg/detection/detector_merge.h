@@ -9,7 +9,9 @@
 
 namespace bowg {
 
+class Database;
 class Vocabulary;
+struct DetectorState;
 
 /// The detector file (detector_file.h) of the union of the files at
 /// `paths`, each read for `vocabulary`:
@@ -30,5 +32,10 @@ class Vocabulary;
 /// in time.
 std::string mergeDetectorFiles(const std::vector<std::string>& paths,
                                std::shared_ptr<const Vocabulary> vocabulary);
+/// The same merge as a database and the detector's memory for it (a
+/// detector starting on several reference maps: LoopDetector::readMerged).
+std::unique_ptr<Database> mergeDetectorFiles(const std::vector<std::string>& paths,
+                                             std::shared_ptr<const Vocabulary> vocabulary,
+                                             DetectorState* state);
 
 }  // namespace bowg

@@ -179,6 +179,13 @@ class LoopDetector {
   /// file takes seconds) and holds it for adopt() only. Throws as load().
   static SavedDetector read(const std::string& path, std::shared_ptr<const Vocabulary> vocabulary,
                             const LoopDetectorOptions& options);
+  /// read() of several files at once: their merge (mergeDetectorFiles,
+  /// detector_merge.h), every mission of each, for a detector that starts
+  /// on the reference maps of earlier missions. One path: read(). Throws as
+  /// read(), and std::invalid_argument when the files do not go together.
+  static SavedDetector readMerged(const std::vector<std::string>& paths,
+                                  std::shared_ptr<const Vocabulary> vocabulary,
+                                  const LoopDetectorOptions& options);
   /// Puts a read file in use in place of the database and the memory of
   /// previous queries (cheap: no file access; the options in force now
   /// apply). Throws InvalidParameter, keeping the current state, when
