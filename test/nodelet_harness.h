@@ -37,6 +37,7 @@
 #include "bowg_ros/KeyframeStatus.h"
 #include "bowg_ros/LoadDatabase.h"
 #include "bowg_ros/LoopClosure.h"
+#include "bowg_ros/MergeDatabases.h"
 #include "bowg_ros/SaveDatabase.h"
 #include "bowg_ros/ros_conversions.h"
 #include "encoded_test_images.h"

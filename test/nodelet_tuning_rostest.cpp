@@ -325,6 +325,32 @@ TEST(LoopDetectorNodelet, ReferenceMapsOfTwoSurveysAreSearchedTogether) {
   }
   EXPECT_EQ(missions.size(), 2u) << loops.size() << " loops";
   expectRightIds(loops);
+
+  // The two surveys merged by the nodelet's service: one file that loads
+  // with both; a file merged with itself is refused and nothing written.
+  const std::string merged = dir + "/bowg_rostest_merged.bin";
+  std::remove(merged.c_str());
+  MergeDatabases merge;
+  merge.request.paths = {first, first};
+  merge.request.output = merged;
+  ASSERT_TRUE(ros::service::call(third.name() + "/merge_databases", merge));
+  EXPECT_FALSE(merge.response.success);
+  EXPECT_NE(merge.response.message.find("merged with itself"), std::string::npos)
+      << merge.response.message;
+  EXPECT_NE(access(merged.c_str(), F_OK), 0) << "written on error";
+  merge.request.paths = {second, first};
+  ASSERT_TRUE(ros::service::call(third.name() + "/merge_databases", merge));
+  EXPECT_TRUE(merge.response.success) << merge.response.message;
+  EXPECT_NE(merge.response.message.find(std::to_string(kForward) + " keyframes, 2 missions"),
+            std::string::npos)
+      << merge.response.message;
+  LoadDatabase load;
+  load.request.path = merged;
+  ASSERT_TRUE(ros::service::call(third.name() + "/load_database", load));
+  EXPECT_TRUE(load.response.success) << load.response.message;
+  EXPECT_NE(load.response.message.find("loaded " + std::to_string(kForward) + " keyframes"),
+            std::string::npos)
+      << load.response.message;
 }
 
 }  // namespace

@@ -38,6 +38,7 @@ LoopDetectorNodelet::~LoopDetectorNodelet() {
   if (load_spinner_) load_spinner_->stop();
   save_srv_.shutdown();
   load_srv_.shutdown();
+  merge_srv_.shutdown();
   reset_srv_.shutdown();
   image_sub_.shutdown();
   compressed_sub_.shutdown();
@@ -187,6 +188,8 @@ void LoopDetectorNodelet::advertiseInterfaces(ros::NodeHandle& nh, ros::NodeHand
   ros::NodeHandle load_pnh(pnh);
   load_pnh.setCallbackQueue(&load_queue_);
   load_srv_ = load_pnh.advertiseService("load_database", &LoopDetectorNodelet::loadDatabase, this);
+  merge_srv_ =
+      load_pnh.advertiseService("merge_databases", &LoopDetectorNodelet::mergeDatabases, this);
   load_spinner_.reset(new ros::AsyncSpinner(1, &load_queue_));
   load_spinner_->start();
 

@@ -2,6 +2,8 @@
 // parameter table), the database services (save, load, reset) and the one
 // way a new run of the database starts (restartRun).
 #include "bowg/core/atomic_file.h"
+#include "bowg/detection/detector_file.h"
+#include "bowg/detection/detector_merge.h"
 #include "loop_detector_nodelet.h"
 
 namespace bowg_ros {
@@ -117,6 +119,27 @@ std::string LoopDetectorNodelet::startMission() {
             std::to_string(other.entries) + " keyframes)";
   }
   return line;
+}
+
+bool LoopDetectorNodelet::mergeDatabases(MergeDatabases::Request& req,
+                                         MergeDatabases::Response& res) {
+  try {
+    if (req.output.empty()) throw std::invalid_argument("no output path given");
+    bowg::DetectorState state;
+    const std::unique_ptr<bowg::Database> merged =
+        bowg::mergeDetectorFiles(req.paths, vocabulary_, &state);
+    bowg::writeFileAtomically(req.output, bowg::encodeDetectorFile(*merged, state));
+    res.success = true;
+    res.message = "merged " + std::to_string(req.paths.size()) + " files into " + req.output +
+                  ": " + std::to_string(merged->size()) + " keyframes, " +
+                  std::to_string(merged->missions().size()) + " missions";
+    NODELET_INFO("merge_databases: %s", res.message.c_str());
+  } catch (const std::exception& e) {
+    res.success = false;
+    res.message = e.what();
+    NODELET_ERROR("merge_databases: %s", res.message.c_str());
+  }
+  return true;
 }
 
 void LoopDetectorNodelet::restartRun(RunStart start) {
