@@ -42,6 +42,10 @@ const char* const kUsage =
     "                             a cable counter; the generator's /odometer): each image gets\n"
     "                             the path of the readings before it, as the nodelet's odometer\n"
     "                             topic (instead of --odometry)\n"
+    "  --missions FILE            the frames where each mission starts (CSV lines\n"
+    "                             first_frame,mission_id,name; the generator's missions.csv):\n"
+    "                             each mission is started as the nodelet's ~mission_name starts\n"
+    "                             one, and the summary scores the loops across missions\n"
     "Engine:\n"
     "  --vocabulary FILE          any format bowg::loadVocabulary reads (required)\n"
     "  --config FILE              parameter file, e.g. config/pipe.yaml [engine defaults]\n"
@@ -170,6 +174,8 @@ Args parseArgs(int argc, char** argv) {
       a.odometry = v;
     else if (flag == "--odometry-poses")
       a.odometry_poses = v;
+    else if (flag == "--missions")
+      a.missions = v;
     else if (flag == "--odometer-topic")
       a.odometer_topic = v;
     else if (flag == "--intrinsics")

@@ -15,6 +15,7 @@ struct Args {
   std::string odometry;
   std::string odometry_poses;
   std::string odometer_topic;  ///< --odometer-topic: std_msgs/Float64 readings in the bag
+  std::string missions;        ///< --missions: the frames where each mission starts
   std::string intrinsics;      ///< --intrinsics: fx,fy,cx,cy of folder images
   std::string dump_candidates;
   double rate = 1.0;

@@ -19,9 +19,9 @@
 
 #include "bowg/core/errors.h"
 #include "bowg/features/image_decoding.h"
+#include "bowg_bag_reading/bag_images.h"
 #include "bowg_evaluation/intrinsics_file.h"
 #include "bowg_evaluation/odometry_file.h"
-#include "bowg_bag_reading/bag_images.h"
 #include "bowg_ros/ros_conversions.h"
 #include "console_output.h"
 

@@ -21,6 +21,7 @@
 #include "bowg/parameters/parameter_table.h"
 #include "bowg/vocabulary/vocabulary_io.h"
 #include "bowg_evaluation/ground_truth.h"
+#include "bowg_evaluation/mission_file.h"
 #include "candidate_dump.h"
 #include "evaluate_args.h"
 #include "frame_loading.h"
@@ -72,6 +73,7 @@ int run(int argc, char** argv) {
   std::vector<FrameInput> frames = loadFrames(a, extractor);
   if (!a.odometry.empty()) attachOdometry(a.odometry, &frames);
   if (!a.odometry_poses.empty()) attachOdometryPositions(a.odometry_poses, &frames);
+  if (!a.missions.empty()) attachMissions(readMissionStarts(a.missions), &frames);
   // Which acceptance applies: what the robot of this run has.
   const std::string odometry =
       std::string("odometry: ") + describeAcceptance(odometryInputOf(frames));

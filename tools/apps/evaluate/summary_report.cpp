@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "bowg/core/atomic_file.h"
+#include "bowg_evaluation/mission_file.h"
 #include "bowg_evaluation/pr_report.h"
 #include "bowg_evaluation/timing_stats.h"
 #include "console_output.h"
@@ -18,6 +19,22 @@ namespace evaluate_app {
 using namespace bowg::eval;
 
 namespace {
+
+// The loops from one mission into another, at the operating point: what a
+// robot re-inspecting a network gets from the earlier surveys.
+void crossMissionTable(const std::vector<RowResult>& results, const GroundTruth& gt,
+                       std::ostream& s) {
+  s << "\nacross missions (loops into another mission than the query's; "
+    << "positives: queries with a true match there)\n"
+    << "row            precision  recall   TP   FP  positives\n";
+  for (const RowResult& r : results) {
+    const PrPoint p = crossMissionPoint(r.run, gt);
+    char line[160];
+    std::snprintf(line, sizeof(line), "%-14s %9.3f %7.3f %4d %4d  %9d\n", r.run.name.c_str(),
+                  p.precision, p.recall, p.true_positives, p.false_positives, p.positives);
+    s << line;
+  }
+}
 
 // Precision, recall, F1 and recall at 100 % precision per row.
 void accuracyTable(const Args& a, const std::vector<RowResult>& results, const GroundTruth& gt,
@@ -41,6 +58,7 @@ void accuracyTable(const Args& a, const std::vector<RowResult>& results, const G
         detectionsOf(r.run).size());
     s << line;
   }
+  if (!a.missions.empty()) crossMissionTable(results, gt, s);
   if (a.ablation && results.front().run.name == "bow" &&
       results.back().run.name == "distribution") {
     // The comparison the paper's ablation is for, in one line (bow first,

@@ -81,6 +81,36 @@ TEST_F(EvaluateCli, TheConfiguredThresholdIsAlwaysAPointOfTheSweep) {
   EXPECT_NE(curve.find("\nbowg,0.5,"), std::string::npos) << curve;
 }
 
+// The run split into two missions where the route is driven again: the
+// second mission's loops into the first are scored on their own, and a
+// missions file that breaks the rules stops the run naming the file.
+TEST_F(EvaluateCli, MissionsAreStartedAndTheLoopsAcrossThemScoredOnTheirOwn) {
+  writeFile(kDir + "/missions.csv", "# first_frame,mission_id,name\n0,1,first\n150,2,second\n");
+  ASSERT_EQ(run(evaluate("--thresholds 0.7 --missions " + kDir + "/missions.csv", "missions"),
+                kDir + "/missions.log"),
+            0)
+      << readAll(kDir + "/missions.log");
+  const std::string summary = readAll(kDir + "/missions/summary.txt");
+  const std::size_t table = summary.find("across missions");
+  ASSERT_NE(table, std::string::npos) << summary;
+  int tp = -1, fp = -1, positives = -1;
+  double precision = -1, recall = -1;
+  const std::size_t row = summary.find("\nbowg ", table);
+  ASSERT_NE(row, std::string::npos) << summary;
+  ASSERT_EQ(std::sscanf(summary.c_str() + row, "\nbowg %lf %lf %d %d %d", &precision, &recall, &tp,
+                        &fp, &positives),
+            5)
+      << summary;
+  EXPECT_GT(positives, 0) << "the second mission revisits the first";
+  EXPECT_GT(tp, 0) << summary;
+  writeFile(kDir + "/bad_missions.csv", "0,1,first\n150,1,second\n");
+  const std::string log = kDir + "/bad_missions.log";
+  EXPECT_NE(run(evaluate("--thresholds 0.7 --missions " + kDir + "/bad_missions.csv", "bad"), log),
+            0);
+  EXPECT_NE(readAll(log).find("bad_missions.csv:2: mission id twice"), std::string::npos)
+      << readAll(log);
+}
+
 TEST_F(EvaluateCli, TheSweepDoesNotDependOnTheNumberOfThreads) {
   ASSERT_EQ(run(evaluate("--thresholds 0.3,0.5,0.9 --jobs 1", "one_thread")), 0);
   ASSERT_EQ(run(evaluate("--thresholds 0.3,0.5,0.9 --jobs 2", "two_threads")), 0);

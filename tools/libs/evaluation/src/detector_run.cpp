@@ -45,7 +45,11 @@ DetectorRun runDetector(std::shared_ptr<const Vocabulary> vocabulary,
     k.features = frames[i].features.size();
     k.feature_ms = frames[i].feature_ms;
     k.database_size = i;
+    if (frames[i].starts_mission) {
+      detector.startMission(frames[i].mission_name, frames[i].mission_id);
+    }
     const LoopResult r = detector.process(input);
+    k.mission = r.mission;
     // Entries are numbered in insertion order, and every frame is inserted
     // (also those without features), so entry id == frame index.
     k.status = r.status;
@@ -75,8 +79,7 @@ DetectorRun runDetector(std::shared_ptr<const Vocabulary> vocabulary,
     // Outside the timings above; memoryBytes() walks the whole database.
     if ((i + 1) % kMemorySampleEvery == 0 && i + 1 < frames.size()) sample();
   }
-  run.wall_seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  run.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (!frames.empty()) sample();
   return run;
 }
@@ -113,8 +116,10 @@ std::string keyframesCsv(const DetectorRun& run, const GroundTruth* gt) {
   for (const KeyframeRecord& k : run.keyframes) {
     out << k.frame << "," << std::fixed << std::setprecision(6) << k.stamp << ","
         << toString(k.status) << ",";
-    if (k.has_candidate) out << k.candidate << "," << k.candidate_score;
-    else out << ",";
+    if (k.has_candidate)
+      out << k.candidate << "," << k.candidate_score;
+    else
+      out << ",";
     out << "," << (k.match >= 0 ? std::to_string(k.match) : "") << "," << k.correspondences << ","
         << k.inliers << "," << k.features << "," << k.database_size << std::setprecision(3) << ","
         << k.feature_ms << "," << k.timings.transform_ms << "," << k.timings.word_groups_ms << ","
@@ -130,13 +135,14 @@ std::string keyframesCsv(const DetectorRun& run, const GroundTruth* gt) {
 }
 
 std::vector<std::pair<std::string, TimingStats>> stageTimingStats(const DetectorRun& run) {
-  const char* names[] = {"features",  "transform",    "word_groups",    "query",
-                         "islands",   "verification", "detector_total", "keyframe_total"};
+  const char* names[] = {"features", "transform",    "word_groups",    "query",
+                         "islands",  "verification", "detector_total", "keyframe_total"};
   std::vector<std::vector<double>> values(8);
   for (const KeyframeRecord& k : run.keyframes) {
     const StageTimings& t = k.timings;
-    const double v[] = {k.feature_ms, t.transform_ms,    t.word_groups_ms, t.query_ms,
-                        t.islands_ms, t.verification_ms, t.total_ms,       k.feature_ms + t.total_ms};
+    const double v[] = {
+        k.feature_ms, t.transform_ms,    t.word_groups_ms, t.query_ms,
+        t.islands_ms, t.verification_ms, t.total_ms,       k.feature_ms + t.total_ms};
     for (int i = 0; i < 8; ++i) values[i].push_back(v[i]);
   }
   std::vector<std::pair<std::string, TimingStats>> out;

@@ -33,6 +33,11 @@ struct FrameInput {
   double odometer = std::numeric_limits<double>::quiet_NaN();
   /// Position in the odometry's frame (odometry_file.h); unknown = NaN.
   OdometryPosition position;
+  /// The frame starts a mission (mission_file.h): the detector starts it
+  /// (LoopDetector::startMission) before processing the frame.
+  bool starts_mission = false;
+  std::uint32_t mission_id = 0;
+  std::string mission_name;
 };
 
 /// The detector's input for one frame (a copy of its features).
@@ -44,9 +49,10 @@ struct KeyframeRecord {
   double stamp = 0;
   LoopStatus status = LoopStatus::kNoFeatures;
   bool has_candidate = false;
-  int candidate = -1;         ///< best candidate's frame (after islands, when any)
-  double candidate_score = 0; ///< its final score eta
-  int match = -1;             ///< the loop's frame when status == kLoopDetected
+  int candidate = -1;          ///< best candidate's frame (after islands, when any)
+  double candidate_score = 0;  ///< its final score eta
+  int match = -1;              ///< the loop's frame when status == kLoopDetected
+  std::uint32_t mission = 0;   ///< the keyframe's mission (LoopResult::mission)
   int correspondences = 0, inliers = 0;
   std::size_t features = 0;
   std::size_t database_size = 0;  ///< entries before this keyframe was added
