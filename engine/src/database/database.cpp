@@ -164,22 +164,11 @@ void Database::checkCounted(const CountedGroups& counted, const char* function, 
 
 EntryId Database::add(DatabaseEntry e, CountedGroups&& counted,
                       const std::vector<double>& distribution) {
-  checkCounted(counted, "Database::add", true);
-  const EntryId id = addEntry(std::move(e), counted.raw_, distribution, nullptr);
-  counted.added_ = true;
-  return id;
+  return addEntry(std::move(e), &counted, distribution, nullptr);
 }
 
 EntryId Database::add(DatabaseEntry e, CountedGroups&& counted, const DatabaseQuery& queried) {
-  checkCounted(counted, "Database::add", true);
-  if (queried.scoring != scoring_) {
-    throw std::invalid_argument("Database::add: the query's BoW vector is normalised for " +
-                                toString(queried.scoring) + ", the database scores " +
-                                toString(scoring_));
-  }
-  const EntryId id = addEntry(std::move(e), counted.raw_, queried.distribution, &queried.bow);
-  counted.added_ = true;
-  return id;
+  return addEntry(std::move(e), &counted, queried.distribution, &queried);
 }
 
 void Database::checkEntry(const DatabaseEntry& e, const std::vector<WordId>& words,
@@ -229,8 +218,16 @@ void Database::checkEntry(const DatabaseEntry& e, const std::vector<WordId>& wor
   }
 }
 
-EntryId Database::addEntry(DatabaseEntry e, const GroupVector& raw_groups,
-                           const std::vector<double>& distribution, const BowVector* bow) {
+EntryId Database::addEntry(DatabaseEntry e, CountedGroups* counted,
+                           const std::vector<double>& distribution, const DatabaseQuery* queried) {
+  checkCounted(*counted, "Database::add", true);
+  if (queried != nullptr && queried->scoring != scoring_) {
+    throw std::invalid_argument("Database::add: the query's BoW vector is normalised for " +
+                                toString(queried->scoring) + ", the database scores " +
+                                toString(scoring_));
+  }
+  const GroupVector& raw_groups = counted->raw_;
+  const BowVector* bow = queried != nullptr ? &queried->bow : nullptr;
   const std::vector<WordId> words = e.words.unpack();
   checkEntry(e, words, raw_groups, distribution, bow);
   const EntryId id = static_cast<EntryId>(entries_.size());
@@ -253,6 +250,7 @@ EntryId Database::addEntry(DatabaseEntry e, const GroupVector& raw_groups,
   } else {
     index_.addArchived(raw_groups);
   }
+  counted->added_ = true;
   return id;
 }
 

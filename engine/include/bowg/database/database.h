@@ -247,10 +247,11 @@ class Database {
   // Throws std::logic_error unless `counted` is this database's and, when
   // `to_add`, not added yet.
   void checkCounted(const CountedGroups& counted, const char* function, bool to_add) const;
-  // add(); `bow`: the entry's BoW vector when the caller has it (null: built
-  // from the words).
-  EntryId addEntry(DatabaseEntry entry, const GroupVector& raw_groups,
-                   const std::vector<double>& distribution, const BowVector* bow);
+  // Both add()s: `queried` is the query made for the entry when the caller
+  // has it (its BoW vector is taken; null: built from the words); marks
+  // `counted` added once the entry is in.
+  EntryId addEntry(DatabaseEntry entry, CountedGroups* counted,
+                   const std::vector<double>& distribution, const DatabaseQuery* queried);
   // add()'s checks of the entry against itself, the database and its inputs.
   void checkEntry(const DatabaseEntry& e, const std::vector<WordId>& words,
                   const GroupVector& raw_groups, const std::vector<double>& distribution,
