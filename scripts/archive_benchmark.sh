@@ -80,7 +80,8 @@ print(f"map: {build['keyframes']:.0f} keyframes, {build['features_per_keyframe']
 print("memoryBytes() per keyframe: " + ", ".join(
     f"{k.replace('_bytes_per_keyframe', '')} {r[k]:,.0f}" for k in
     ["descriptor_bytes_per_keyframe", "word_bytes_per_keyframe", "point_bytes_per_keyframe",
-     "entry_record_bytes_per_keyframe", "index_and_table_bytes_per_keyframe"]))
+     "entry_record_bytes_per_keyframe", "group_table_bytes_per_keyframe",
+     "distribution_and_odometer_bytes_per_keyframe", "inverse_index_bytes_per_keyframe"]))
 print(f"stages (first run), ms: transform {r['transform_ms']:.2f}, word groups {r['word_groups_ms']:.2f}, "
       f"query {r['query_stage_ms']:.2f}, islands {r['islands_ms']:.2f}, verification {r['verification_ms']:.2f}; "
       f"candidates {r['candidates']:.0f}, loops {r['loops']:.0%}")

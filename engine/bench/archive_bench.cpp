@@ -19,9 +19,9 @@
 // The keyframes: a straight corridor of landmarks (synthetic_corridor.h) of
 // ~500 features a keyframe (the pipe preset's orb_max_features), one every
 // 4 cm; a k=10 L=6 vocabulary trained on its first 2 km (~10^6 descriptors,
-// ~10^5 words), so that every map size shares one vocabulary and most places
-// of a large map are ones the vocabulary never saw, as a network is to a
-// vocabulary trained elsewhere. Options: the pipe preset's (config/pipe.yaml)
+// ~740,000 words), so that every map size has a vocabulary of one size and
+// most places of a large map are ones the vocabulary never saw, as a network
+// is to a vocabulary trained elsewhere. Options: the pipe preset's (config/pipe.yaml)
 // with a wider recent-exclusion window (below). Output: one "name value"
 // line per figure (scripts/archive_benchmark.sh reads them).
 #include <sys/stat.h>
@@ -64,8 +64,10 @@ const double kMapStart = 5.0;  // first keyframe: a full view of the wall
 const double kSecondsPerKeyframe = 0.1;
 const std::uint64_t kCorridorSeed = 5;
 
-// The corridor of a map of n keyframes: every map size has at least the
-// stretch the vocabulary is trained on, so that they share the vocabulary.
+// The corridor of a map of n keyframes: at least the 2 km the vocabulary is
+// trained on, so that small maps get a vocabulary as large as large maps
+// (the landmarks are spread over the whole length, so maps longer than
+// 2 km get a vocabulary of the same size, not the same one).
 testing::Corridor mapCorridor(std::size_t n) {
   const double length = std::max(kTrainedMetres, n * kSpacing) + 2 * kMapStart;
   return testing::makeCorridor(length, kLandmarksPerMetre, kCorridorSeed);
@@ -166,9 +168,10 @@ int build(std::size_t n, const std::string& dir) {
 }
 
 // Database::memoryBytes() per keyframe and its parts: what each entry holds
-// (descriptors, packed words and positions, the entry record in the deque)
-// and the rest (inverse index postings, word-group and distribution tables,
-// odometers, recent vectors).
+// (descriptors, packed words and positions, the entry record in the deque),
+// the word-group table, the distribution table and odometers (fan_bins + 1
+// doubles an entry) and the rest: the inverse index (postings and list
+// headers) and the newest entries' vectors.
 void printMemory(const Database& db) {
   double descriptors = 0, words = 0, points = 0;
   for (const DatabaseEntry& e : db.entries()) {
@@ -177,25 +180,35 @@ void printMemory(const Database& db) {
     points += e.points.heapBytes();
   }
   const double records = dequeHeapBytes(db.entries());
-  const double total = db.memoryBytes();
+  const double groups = db.groupTable().heapBytes();
   const double n = std::max<std::size_t>(1, db.size());
+  const double per_entry_doubles = n * (db.fanBins() + 1) * sizeof(double);
+  const double total = db.memoryBytes();
   print("memory_bytes_per_keyframe", total / n);
   print("descriptor_bytes_per_keyframe", descriptors / n);
   print("word_bytes_per_keyframe", words / n);
   print("point_bytes_per_keyframe", points / n);
   print("entry_record_bytes_per_keyframe", records / n);
-  print("index_and_table_bytes_per_keyframe", (total - descriptors - words - points - records) / n);
+  print("group_table_bytes_per_keyframe", groups / n);
+  print("distribution_and_odometer_bytes_per_keyframe", per_entry_doubles / n);
+  print("inverse_index_bytes_per_keyframe",
+        (total - descriptors - words - points - records - groups - per_entry_doubles) / n);
+}
+
+// Where live stretch `s` of `stretches` is centred on a map of n keyframes,
+// metres along the corridor: spread over the map.
+double stretchCentre(std::size_t n, int s, int stretches) {
+  return kMapStart + n * kSpacing * (s + 0.5) / stretches;
 }
 
 // Live keyframes: `stretches` drives of `per_stretch` keyframes at 4 cm,
-// spread over the map and 2 cm off its keyframes, stamped after it.
+// 2 cm off the map's keyframes, stamped after it.
 std::vector<KeyframeInput> liveKeyframes(const testing::Corridor& corridor, std::size_t map_size,
                                          double first_stamp, int stretches, int per_stretch) {
   std::mt19937_64 rng(97);
-  const double span = map_size * kSpacing;
   std::vector<KeyframeInput> live;
   for (int s = 0; s < stretches; ++s) {
-    const double start = kMapStart + span * (s + 0.5) / stretches - per_stretch * kSpacing / 2;
+    const double start = stretchCentre(map_size, s, stretches) - per_stretch * kSpacing / 2;
     for (int i = 0; i < per_stretch; ++i) {
       const double stamp = first_stamp + live.size() * kSecondsPerKeyframe;
       live.push_back(
@@ -205,12 +218,12 @@ std::vector<KeyframeInput> liveKeyframes(const testing::Corridor& corridor, std:
   return live;
 }
 
-// Processes the live keyframes, printing the time per keyframe and stage.
-void timeQueries(LoopDetector* detector, const std::vector<KeyframeInput>& live) {
+// Sums of the per-keyframe figures of LoopDetector::process.
+struct QueryTotals {
   StageTimings sum;
-  double max_ms = 0, loops = 0, candidates = 0;
-  for (const KeyframeInput& kf : live) {
-    const LoopResult r = detector->process(kf);
+  double max_ms = 0, loops = 0, candidates = 0, n = 0;
+
+  void add(const LoopResult& r) {
     sum.transform_ms += r.timings.transform_ms;
     sum.word_groups_ms += r.timings.word_groups_ms;
     sum.query_ms += r.timings.query_ms;
@@ -220,18 +233,42 @@ void timeQueries(LoopDetector* detector, const std::vector<KeyframeInput>& live)
     max_ms = std::max(max_ms, r.timings.total_ms);
     loops += r.status == LoopStatus::kLoopDetected ? 1 : 0;
     candidates += r.candidates_scored;
+    n += 1;
   }
-  const double k = 1.0 / std::max<std::size_t>(1, live.size());
-  print("live_keyframes", static_cast<double>(live.size()));
-  print("query_mean_ms", sum.total_ms * k);
-  print("query_max_ms", max_ms);
-  print("transform_ms", sum.transform_ms * k);
-  print("word_groups_ms", sum.word_groups_ms * k);
-  print("query_stage_ms", sum.query_ms * k);
-  print("islands_ms", sum.islands_ms * k);
-  print("verification_ms", sum.verification_ms * k);
-  print("candidates", candidates * k);
-  print("loops", loops * k);
+};
+
+void printTotals(const QueryTotals& t) {
+  const double k = 1.0 / std::max(1.0, t.n);
+  print("live_keyframes", t.n);
+  print("query_mean_ms", t.sum.total_ms * k);
+  print("query_max_ms", t.max_ms);
+  print("transform_ms", t.sum.transform_ms * k);
+  print("word_groups_ms", t.sum.word_groups_ms * k);
+  print("query_stage_ms", t.sum.query_ms * k);
+  print("islands_ms", t.sum.islands_ms * k);
+  print("verification_ms", t.sum.verification_ms * k);
+  print("candidates", t.candidates * k);
+  print("loops", t.loops * k);
+}
+
+// Processes the live keyframes, stretch by stretch; prints each stretch's
+// line ("#": not a figure) and the totals.
+void timeQueries(LoopDetector* detector, const std::vector<KeyframeInput>& live, int stretches) {
+  const std::size_t map_size = detector->database().size();
+  const std::size_t per_stretch = live.size() / stretches;
+  QueryTotals all;
+  for (int s = 0; s < stretches; ++s) {
+    QueryTotals stretch;
+    for (std::size_t i = s * per_stretch; i < (s + 1) * per_stretch; ++i) {
+      const LoopResult r = detector->process(live[i]);
+      all.add(r);
+      stretch.add(r);
+    }
+    std::printf("# stretch at %.0f m: %.2f ms mean, %.2f max, %.0f candidates, %.0f%% loops\n",
+                stretchCentre(map_size, s, stretches), stretch.sum.total_ms / stretch.n,
+                stretch.max_ms, stretch.candidates / stretch.n, 100 * stretch.loops / stretch.n);
+  }
+  printTotals(all);
 }
 
 int query(const std::string& dir, int live_count) {
@@ -249,8 +286,10 @@ int query(const std::string& dir, int live_count) {
   printMemory(db);
   const int stretches = 4;
   const testing::Corridor corridor = mapCorridor(db.size());
-  timeQueries(&detector, liveKeyframes(corridor, db.size(), db.entries().back().stamp + 1.0,
-                                       stretches, std::max(1, live_count / stretches)));
+  timeQueries(&detector,
+              liveKeyframes(corridor, db.size(), db.entries().back().stamp + 1.0, stretches,
+                            std::max(1, live_count / stretches)),
+              stretches);
   return 0;
 }
 
