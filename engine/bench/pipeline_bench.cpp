@@ -42,16 +42,15 @@
 #include "bowg/core/resident_memory.h"
 #include "bowg/database/database.h"
 #include "bowg/detection/loop_detector.h"
-#include "bowg/parameters/parameter_table.h"
 #include "bowg/vocabulary/vocabulary.h"
-#include "bowg/vocabulary/vocabulary_trainer.h"
+#include "corridor_keyframes.h"
 #include "synthetic_corridor.h"
 #include "synthetic_vocabulary.h"
 
 namespace bowg {
 namespace {
 
-const double kStep = 0.25;  // metres between keyframes
+const double kStep = 0.25;          // metres between keyframes
 const int kLandmarksPerMetre = 50;  // keyframes of ~400 features
 
 struct Pipeline {
@@ -70,9 +69,7 @@ struct Pipeline {
     // Laps of the corridor, leaving the last 10 m (one view) unvisited so
     // that every view is full.
     const double x = std::fmod(next * kStep, corridor.length - 10.0) + 5.0;
-    KeyframeInput kf = testing::observeCorridor(corridor, x, 1.0 + next * 0.1, rng, 2, 0.5);
-    // Positions as ORB reports them (what the database packs).
-    testing::placeOnOrbPyramid(&kf);
+    KeyframeInput kf = bench::corridorKeyframe(corridor, x, 1.0 + next * 0.1, rng);
     ++next;
     return kf;
   }
@@ -125,17 +122,11 @@ std::unique_ptr<Pipeline> stressPipeline(int indexed_per_place, int landmarks_pe
       testing::makeCorridor(500.0, landmarks_per_metre, 5), stressOptions(indexed_per_place)));
 }
 
-// The trained case's options: the pipe preset (config/pipe.yaml, its
-// verification, scores and temporal chain) with the corridor's window and
-// threshold. No odometry: the preset's windows in keyframes apply.
+// The trained case's options: the pipe preset (its verification, scores
+// and temporal chain) with the corridor's window and threshold.
 LoopDetectorOptions presetOptions(int indexed_per_place) {
-  LoopDetectorOptions o = loadParameterFile(std::string(BOWG_CONFIG_DIR) + "/pipe.yaml").detector;
-  o.islands.recent_exclusion = kRecentExclusion;
+  LoopDetectorOptions o = bench::corridorPresetOptions(kRecentExclusion);
   o.islands.indexed_per_place = indexed_per_place;
-  // The corridor's keyframes see 8 m of wall 25 cm apart, so a revisit
-  // scores about what the previous keyframe does (eta ~1): the preset's
-  // min_score, chosen on pipe sequences, would let none through.
-  o.islands.min_score = 1.0;
   return o;
 }
 
@@ -146,15 +137,8 @@ std::unique_ptr<Pipeline> trainedPipeline(int indexed_per_place) {
   static std::shared_ptr<const Vocabulary> vocabulary;
   const testing::Corridor corridor = testing::makeCorridor(200.0, kLandmarksPerMetre, 5);
   if (!vocabulary) {
-    std::mt19937_64 rng(23);
-    std::vector<std::vector<Descriptor>> images;
-    for (double x = 5.0; x < corridor.length - 5.0; x += 1.0) {
-      images.push_back(
-          testing::observeCorridor(corridor, x, 0.0, rng, 2, 0.5).features.descriptors);
-    }
-    TrainingOptions t;  // k = 10, L = 6, TF-IDF, L1
-    t.threads = 2;
-    vocabulary = std::make_shared<Vocabulary>(trainVocabulary(images, t));
+    vocabulary = std::make_shared<Vocabulary>(
+        bench::trainCorridorVocabulary(corridor, corridor.length - 5.0));
   }
   return std::unique_ptr<Pipeline>(
       new Pipeline(vocabulary, corridor, presetOptions(indexed_per_place)));
