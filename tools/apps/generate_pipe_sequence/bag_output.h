@@ -37,6 +37,11 @@ class BagOutput {
   void writeOdometry(const pipe_sim::FrameState& f, const pipe_sim::CameraPose& pose,
                      const cv::Vec4d& q, const cv::Matx<double, 6, 6>& covariance);
 
+  /// The next odometry belongs to a new run (another mission's, in a frame
+  /// of its own): /odometer keeps counting from where it is, without the
+  /// jump between the runs' positions.
+  void startOdometryRun() { has_position_ = false; }
+
   /// Closes the bag and renames it to its final path.
   void finish();
 

@@ -66,7 +66,21 @@ const char* const kUsage =
     "  --gt-distance M --gt-heading DEG --gt-exclude M\n"
     "                         ground-truth tolerances [0.15 30 3]\n"
     "  --compression C        bag compression: none, lz4 or bz2 (noisy images hardly\n"
-    "                         compress) [none]\n";
+    "                         compress) [none]\n"
+    "re-inspection: a second mission through the same network after the first, into the\n"
+    "same output (frames, poses.csv, odometry.csv and stamps continue; missions.csv says\n"
+    "where each mission starts; the second mission's odometry starts a new frame):\n"
+    "  --again                render the second mission (no value; implied by any --again-*)\n"
+    "  --again-marks-changed F\n"
+    "                         share of the unique wall marks removed and replaced by as many\n"
+    "                         new ones at random places, in [0, 1] [0.2]\n"
+    "  --again-seed N         the second mission's roll, exposure, image noise, odometry\n"
+    "                         noise and new marks [--seed + 1000]\n"
+    "  --again-speed MPS      its mean driving speed, > 0 [--speed]\n"
+    "  --again-route-nodes LIST\n"
+    "                         its own route, node indices as --route-nodes (e.g. the first\n"
+    "                         route reversed) [the first mission's route]\n"
+    "  (--frames N stops each mission after N frames; the other options apply to both)\n";
 
 namespace {
 
@@ -97,7 +111,7 @@ bool setSequenceOption(pipe_sim::SequenceOptions* s, const std::string& flag,
   if (flag == "--laps") s->laps = toInt(flag, v);
   else if (flag == "--frames") s->max_frames = toInt(flag, v);
   else if (flag == "--roll-amplitude") s->roll_amplitude_deg = eval::numberArgument(flag, v);
-  else if (flag == "--speed") s->speed_mps = eval::numberArgument(flag, v);
+  else if (flag == "--speed") s->speed_mps = atLeast(flag, v, 0, false);
   else if (flag == "--rate") s->frame_rate_hz = eval::numberArgument(flag, v);
   else if (flag == "--speed-variation") s->speed_variation = atLeast(flag, v, 0, true);
   else if (flag == "--speed-knot-seconds") s->speed_knot_s = atLeast(flag, v, 0, false);
@@ -125,10 +139,30 @@ bool setOdometryOption(pipe_sim::OdometryNoise* o, const std::string& flag,
   return true;
 }
 
+/// The second mission's options (--again-*); false for any other flag.
+bool setAgainOption(AgainArgs* a, const std::string& flag, const std::string& v) {
+  if (flag == "--again-marks-changed") {
+    a->marks_changed = eval::numberArgument(flag, v);
+    if (!(a->marks_changed >= 0 && a->marks_changed <= 1)) {
+      throw std::invalid_argument("--again-marks-changed must be in [0, 1], not " + v);
+    }
+  } else if (flag == "--again-seed") {
+    const int seed = toInt(flag, v);
+    if (seed < 0) throw std::invalid_argument("--again-seed must be >= 0, not " + v);
+    a->seed = static_cast<std::uint64_t>(seed);
+    a->seed_given = true;
+  } else if (flag == "--again-speed") a->speed_mps = atLeast(flag, v, 0, false);
+  else if (flag == "--again-route-nodes") a->route_nodes = v;
+  else return false;
+  a->enabled = true;
+  return true;
+}
+
 /// One option with its value; `fx` keeps --fx until the image size is known.
 void setOption(Args* a, double* fx, const std::string& flag, const std::string& v) {
   if (setSequenceOption(&a->sequence, flag, v)) return;
   if (setOdometryOption(&a->odometry, flag, v)) return;
+  if (setAgainOption(&a->again, flag, v)) return;
   if (flag == "--bag") a->bag = v;
   else if (flag == "--images") a->images = v;
   else if (flag == "--gt") a->gt = v;
@@ -191,7 +225,7 @@ void checkCombinations(const Args& a) {
 
 /// What follows from other options: the intrinsics from the image size (and
 /// --fx), the ground truth's path from the outputs, the odometry's seed from
-/// --seed.
+/// --seed, the second mission's seed and speed from the first's.
 void deriveDefaults(Args* a, double fx) {
   // A stream of its own ("odom"): the odometry noise is not correlated with
   // the roll, speed or texture drawn from the same --seed.
@@ -200,19 +234,18 @@ void deriveDefaults(Args* a, double fx) {
   a->camera.cx = (a->camera.width - 1) / 2.0;
   a->camera.cy = (a->camera.height - 1) / 2.0;
   if (a->gt.empty()) {
-    if (!a->bag.empty()) {
-      const std::string& bag = a->bag;
-      const std::string stem = bag.size() > 4 && bag.substr(bag.size() - 4) == ".bag"
-                                   ? bag.substr(0, bag.size() - 4)
-                                   : bag;
-      a->gt = stem + "_gt.txt";
-    } else {
-      a->gt = a->images + "/ground_truth.txt";
-    }
+    a->gt = !a->bag.empty() ? bagStem(a->bag) + "_gt.txt" : a->images + "/ground_truth.txt";
   }
+  if (!a->again.seed_given) a->again.seed = a->sequence.seed + 1000;
+  if (!(a->again.speed_mps > 0)) a->again.speed_mps = a->sequence.speed_mps;
 }
 
 }  // namespace
+
+std::string bagStem(const std::string& bag) {
+  return bag.size() > 4 && bag.substr(bag.size() - 4) == ".bag" ? bag.substr(0, bag.size() - 4)
+                                                                : bag;
+}
 
 Args parseArgs(int argc, char** argv) {
   Args a;
@@ -225,6 +258,10 @@ Args parseArgs(int argc, char** argv) {
     }
     if (flag == "--allow-reverse") {
       a.sequence.allow_reverse = true;
+      continue;
+    }
+    if (flag == "--again") {
+      a.again.enabled = true;
       continue;
     }
     if (i + 1 >= argc) throw std::invalid_argument(flag + ": missing value (see --help)");

@@ -51,8 +51,19 @@ std::string odometryLine(const pipe_sim::OdometryNoise& o, double drift_m, doubl
   return line;
 }
 
+/// The second mission's line (--again): where it starts and what differs.
+std::string againLine(const Args& args, int first_frame) {
+  const AgainArgs& a = args.again;
+  std::ostringstream line;
+  line << "mission 2 (second survey, missions.csv) from frame " << first_frame << ": seed "
+       << a.seed << ", speed " << a.speed_mps << " m/s, route "
+       << (a.route_nodes.empty() ? "the first mission's" : "nodes " + a.route_nodes)
+       << ", marks changed " << a.marks_changed << ", odometry restarted\n";
+  return line.str();
+}
+
 std::string headerText(const Args& args, std::size_t frames, const eval::GroundTruth& gt,
-                       const GroundTruthSummary& summary) {
+                       const GroundTruthSummary& summary, const std::vector<int>& mission_starts) {
   const pipe_sim::SequenceOptions& s = args.sequence;
   const std::string route_name =
       args.route_nodes.empty() ? args.route : "nodes " + args.route_nodes;
@@ -76,8 +87,9 @@ std::string headerText(const Args& args, std::size_t frames, const eval::GroundT
     header << " (" << args.texture.grain_images.size() << " images, crop " << args.texture_crop
            << ")";
   }
-  header << "\n"
-         << summary.spacing << "\n"
+  header << "\n";
+  if (mission_starts.size() > 1) header << againLine(args, mission_starts[1]);
+  header << summary.spacing << "\n"
          << "odometry (odometry.csv, /odom): " << summary.odometry << "\n"
          << "tolerances: distance < " << args.gt_options.max_distance_m << " m, heading < "
          << args.gt_options.max_heading_deg << " deg, excluding the last "
@@ -91,16 +103,21 @@ std::string headerText(const Args& args, std::size_t frames, const eval::GroundT
 
 GroundTruthSummary writeSequenceGroundTruth(const Args& args,
                                             const std::vector<pipe_sim::FrameState>& frames,
+                                            const std::vector<int>& mission_starts,
                                             const std::vector<eval::TravelPose>& travel,
                                             double odometry_drift_m) {
   const eval::GroundTruth gt = eval::groundTruthFromPoses(travel, args.gt_options);
   GroundTruthSummary summary;
   summary.positives = gt.positives();
   summary.median_roll_deg = medianRollDifference(frames, gt);
-  const pipe_sim::SequenceStats stats = pipe_sim::sequenceStats(frames);
+  const pipe_sim::SequenceStats stats = pipe_sim::sequenceStats(frames, mission_starts);
   summary.spacing = spacingLine(stats);
-  summary.odometry = odometryLine(args.odometry, odometry_drift_m, stats.driven_m);
-  eval::writeGroundTruth(args.gt, gt, headerText(args, frames.size(), gt, summary));
+  // The drift is the last odometry run's: relative to that mission's metres.
+  const int last_start = mission_starts.empty() ? 0 : mission_starts.back();
+  const double run_driven_m =
+      frames.empty() ? 0 : stats.driven_m - (last_start > 0 ? frames[last_start - 1].odometer : 0);
+  summary.odometry = odometryLine(args.odometry, odometry_drift_m, run_driven_m);
+  eval::writeGroundTruth(args.gt, gt, headerText(args, frames.size(), gt, summary, mission_starts));
   return summary;
 }
 

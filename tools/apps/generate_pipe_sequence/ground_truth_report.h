@@ -21,11 +21,13 @@ struct GroundTruthSummary {
   std::string odometry;        ///< the odometry's options and end-point drift, one line
 };
 
-/// Computes the ground truth of `frames` from their poses `travel` and
-/// writes it to args.gt; `odometry_drift_m` is the distance between the
-/// last frame's odometry and true positions.
+/// Computes the ground truth of `frames` (all missions, one after the
+/// other, the first frame of each in `mission_starts`) from their poses
+/// `travel` and writes it to args.gt; `odometry_drift_m` is the distance
+/// between the last frame's odometry and true positions.
 GroundTruthSummary writeSequenceGroundTruth(const Args& args,
                                             const std::vector<pipe_sim::FrameState>& frames,
+                                            const std::vector<int>& mission_starts,
                                             const std::vector<eval::TravelPose>& travel,
                                             double odometry_drift_m);
 

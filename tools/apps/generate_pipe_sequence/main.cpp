@@ -14,11 +14,14 @@
 //       [--gt-exclude 3] [--compression none|lz4|bz2]
 //       [--odometry-slip 0.03] [--odometry-slip-noise 0.02]
 //       [--odometry-heading-drift 1] [--odometry-roll-drift 1]
+//       [--again] [--again-marks-changed 0.2] [--again-seed N]
+//       [--again-speed MPS] [--again-route-nodes 0,1,...]
 //
-// The pieces: generator_args (command line), sequence_outputs (the bag via
-// bag_output, the PNG files, poses.csv, the drifting odometry),
-// ground_truth_report (the loop ground truth and its header); here the
-// scene, the render loop and the console summary.
+// The pieces: generator_args (command line), mission_plan (the missions:
+// one, or two through the same network with --again), sequence_outputs (the
+// bag via bag_output, the PNG files, poses.csv, the drifting odometry,
+// missions.csv), ground_truth_report (the loop ground truth and its header);
+// here the scene, the render loop and the console summary.
 #include <algorithm>
 #include <chrono>
 #include <cstdint>
@@ -34,10 +37,10 @@
 #include "bowg_pipe_sim/pipe_renderer.h"
 #include "bowg_pipe_sim/pipe_sequence.h"
 #include "bowg_pipe_sim/quilted_grain.h"
-#include "bowg_pipe_sim/route_programs.h"
 #include "bowg_pipe_sim/wall_texture.h"
 #include "generator_args.h"
 #include "ground_truth_report.h"
+#include "mission_plan.h"
 #include "sequence_outputs.h"
 
 namespace bowg {
@@ -46,30 +49,15 @@ namespace {
 
 using namespace bowg::pipe_sim;
 
-std::vector<int> routeNodesOf(const Args& args) {
-  if (args.route_nodes.empty()) return routeProgramNodes(args.route, args.sequence.laps);
-  return parseRouteNodes(args.route_nodes, "--route-nodes");
-}
-
-/// The route, with a custom node list's errors (not joined, U-turn, no such
-/// node) attributed to the flag that gave it.
-Route makeRoute(const PipeNetwork& network, const Args& args) {
-  try {
-    return Route(network, routeNodesOf(args), args.sequence.bend_radius_m);
-  } catch (const std::invalid_argument& e) {
-    if (args.route_nodes.empty()) throw;
-    throw std::invalid_argument("--route-nodes " + args.route_nodes + ": " + e.what());
-  }
-}
-
 struct RenderTime {
   double total_ms = 0, max_ms = 0;
 };
 
-/// Renders every frame into `outputs`, with a progress line on stderr.
-RenderTime renderFrames(const PipeRenderer& renderer, const std::vector<FrameState>& frames,
-                        std::uint64_t seed, SequenceOutputs* outputs) {
-  RenderTime time;
+/// Renders every frame into `outputs`, with a progress line on stderr;
+/// adds to `time`.
+void renderFrames(const PipeRenderer& renderer, const std::vector<FrameState>& frames,
+                  std::uint64_t seed, SequenceOutputs* outputs, RenderTime* time_sum) {
+  RenderTime& time = *time_sum;
   for (const FrameState& f : frames) {
     const auto t0 = std::chrono::steady_clock::now();
     const cv::Mat image = renderer.render(f.pose, f.exposure, seed * 1000003ULL + f.index);
@@ -78,31 +66,71 @@ RenderTime renderFrames(const PipeRenderer& renderer, const std::vector<FrameSta
     time.total_ms += ms;
     time.max_ms = std::max(time.max_ms, ms);
     outputs->add(f, image);
-    if (f.index % 20 == 0 || f.index + 1 == static_cast<int>(frames.size())) {
-      std::fprintf(stderr, "\rrendering %d/%zu", f.index + 1, frames.size());
+    const int done = f.index - frames.front().index + 1;
+    if (f.index % 20 == 0 || done == static_cast<int>(frames.size())) {
+      std::fprintf(stderr, "\rrendering %d/%zu", done, frames.size());
     }
   }
   std::fprintf(stderr, "\n");
-  return time;
+}
+
+/// One mission's drive: its route and frames, planned before anything is
+/// rendered so that a bad route of the second mission stops the run early.
+struct MissionDrive {
+  MissionPlan plan;
+  Route route;
+  std::vector<FrameState> frames;
+};
+
+std::vector<MissionDrive> planDrives(const PipeNetwork& network, const Args& args) {
+  std::vector<MissionDrive> drives;
+  std::vector<FrameState> previous;
+  for (const MissionPlan& plan : planMissions(args)) {
+    Route route = makeRoute(network, plan);
+    std::vector<FrameState> frames = planFrames(route, plan, previous);
+    previous = frames;
+    drives.push_back(MissionDrive{plan, std::move(route), std::move(frames)});
+  }
+  return drives;
+}
+
+/// Renders every mission into `outputs`, each with its own texture (the
+/// second's marks changed) and renderer; returns all frames in order and
+/// the first frame of each mission.
+std::vector<FrameState> renderMissions(const PipeNetwork& network, const Args& args,
+                                       const std::vector<MissionDrive>& drives,
+                                       SequenceOutputs* outputs, RenderTime* time,
+                                       std::vector<int>* starts) {
+  std::vector<FrameState> all;
+  for (const MissionDrive& d : drives) {
+    const WallTexture texture(network, d.plan.texture);
+    const PipeRenderer renderer(network, d.route, texture, args.camera, LightModel(),
+                                SensorModel());
+    starts->push_back(d.frames.front().index);
+    outputs->startMission(d.frames.front().index, d.plan.id, d.plan.name, d.plan.odometry);
+    renderFrames(renderer, d.frames, d.plan.sequence.seed, outputs, time);
+    all.insert(all.end(), d.frames.begin(), d.frames.end());
+  }
+  return all;
 }
 
 int run(int argc, char** argv) {
   Args args = parseArgs(argc, argv);
   const PipeNetwork network = PipeNetwork::figureEight(args.sequence.network_width_m,
                                                        args.sequence.network_height_m);
-  const Route route = makeRoute(network, args);
-  const std::vector<FrameState> frames = planSequence(route, args.sequence);
   if (!args.texture_images.empty()) {
     args.texture.grain_images = loadGrainImages(args.texture_images, args.texture_crop);
   }
-  const WallTexture texture(network, args.texture);
-  const PipeRenderer renderer(network, route, texture, args.camera, LightModel(), SensorModel());
+  const std::vector<MissionDrive> drives = planDrives(network, args);
 
   SequenceOutputs outputs(args);
-  const RenderTime time = renderFrames(renderer, frames, args.sequence.seed, &outputs);
+  RenderTime time;
+  std::vector<int> starts;
+  const std::vector<FrameState> frames =
+      renderMissions(network, args, drives, &outputs, &time, &starts);
   outputs.finish();
   const GroundTruthSummary gt =
-      writeSequenceGroundTruth(args, frames, outputs.travel(), outputs.odometryDrift());
+      writeSequenceGroundTruth(args, frames, starts, outputs.travel(), outputs.odometryDrift());
 
   std::printf("frames: %zu, %s\n", frames.size(), gt.spacing.c_str());
   std::printf("render: %.1f ms mean, %.1f ms max per %dx%d frame\n", time.total_ms / frames.size(),
@@ -110,6 +138,9 @@ int run(int argc, char** argv) {
   std::printf("ground truth: %d queries with a revisit, median roll difference %.1f deg -> %s\n",
               gt.positives, gt.median_roll_deg, args.gt.c_str());
   std::printf("odometry: %s\n", gt.odometry.c_str());
+  if (starts.size() > 1) {
+    std::printf("missions: 2, the second survey from frame %d (missions.csv)\n", starts[1]);
+  }
   if (!args.bag.empty()) std::printf("bag: %s\n", args.bag.c_str());
   if (!args.images.empty()) std::printf("images: %s\n", args.images.c_str());
   return 0;

@@ -1,6 +1,6 @@
 // bowg_generate_pipe_sequence's per-frame outputs (sequence_outputs.h): the
-// image folder, the PNG of each frame, the rows of poses.csv and
-// odometry.csv and the poses for the ground truth; the bag messages are
+// image folder, the PNG of each frame, the rows of poses.csv, odometry.csv
+// and missions.csv and the poses for the ground truth; the bag messages are
 // bag_output's.
 #include "sequence_outputs.h"
 
@@ -63,7 +63,7 @@ eval::TravelPose travelPoseOf(const pipe_sim::FrameState& f) {
 }  // namespace
 
 SequenceOutputs::SequenceOutputs(const Args& args)
-    : images_(args.images), camera_(args.camera), odometry_(args.odometry) {
+    : images_(args.images), bag_path_(args.bag), camera_(args.camera), odometry_(args.odometry) {
   if (!args.images.empty()) makeImageFolder(args.images);
   if (!args.bag.empty()) {
     bag_.reset(new BagOutput(args.bag, args.compression, args.bag_images, args.camera));
@@ -72,6 +72,17 @@ SequenceOutputs::SequenceOutputs(const Args& args)
   // once the robot backs up).
   poses_csv_ << "frame,stamp,x,y,z,qx,qy,qz,qw,roll_deg,exposure,distance,odometer\n";
   odometry_csv_ << "frame,stamp,x,y,z,qx,qy,qz,qw\n";
+  // A comment line, so that the header is not mistaken for a mission.
+  missions_csv_ << "# first_frame,mission_id,name\n";
+}
+
+void SequenceOutputs::startMission(int first_frame, int id, const std::string& name,
+                                   const pipe_sim::OdometryNoise& noise) {
+  missions_csv_ << first_frame << "," << id << "," << name << "\n";
+  // A robot inspecting again months later starts its odometry afresh: the
+  // drift of the first mission does not carry over.
+  odometry_ = pipe_sim::OdometrySimulator(noise);
+  if (bag_) bag_->startOdometryRun();
 }
 
 void SequenceOutputs::add(const pipe_sim::FrameState& f, const cv::Mat& image) {
@@ -103,6 +114,10 @@ void SequenceOutputs::finish() {
     k.cx = camera_.cx;
     k.cy = camera_.cy;
     bowg::writeFileAtomically(images_ + "/intrinsics.csv", eval::intrinsicsToCsv(k));
+    bowg::writeFileAtomically(images_ + "/missions.csv", missions_csv_.str());
+  }
+  if (bag_) {
+    bowg::writeFileAtomically(bagStem(bag_path_) + "_missions.csv", missions_csv_.str());
   }
 }
 

@@ -1,8 +1,9 @@
 // Everything bowg_generate_pipe_sequence writes frame by frame: the bag
 // (--bag), the PNG files, poses.csv, odometry.csv and intrinsics.csv
-// (--images), and the
-// driven poses the ground truth is computed from afterwards. The odometry is
-// simulated here, one frame after the other, from the true poses.
+// (--images), missions.csv (beside both), and the driven poses the ground
+// truth is computed from afterwards. The odometry is simulated here, one
+// frame after the other, from the true poses; every mission starts a new
+// odometry run.
 #pragma once
 
 #include <memory>
@@ -26,11 +27,19 @@ class SequenceOutputs {
   /// Creates the image folder (--images) and opens the bag (--bag).
   explicit SequenceOutputs(const Args& args);
 
+  /// The frames added next belong to mission `id` named `name`, the first
+  /// of them `first_frame`: a line of missions.csv, and a new odometry run
+  /// with `noise` (its frame starts at the mission's first true pose). Call
+  /// before the first mission's frames too.
+  void startMission(int first_frame, int id, const std::string& name,
+                    const pipe_sim::OdometryNoise& noise);
+
   /// Frame `f`, rendered as `image`, into every output; frames in order
   /// (the odometry integrates from one to the next).
   void add(const pipe_sim::FrameState& f, const cv::Mat& image);
 
-  /// Completes the bag and writes poses.csv, odometry.csv and intrinsics.csv.
+  /// Completes the bag and writes poses.csv, odometry.csv, intrinsics.csv
+  /// and missions.csv (DIR/missions.csv, <bag stem>_missions.csv).
   void finish();
 
   /// The poses of the frames added so far, for eval::groundTruthFromPoses.
@@ -41,10 +50,10 @@ class SequenceOutputs {
   double odometryDrift() const { return odometry_drift_m_; }
 
  private:
-  std::string images_;  // --images, empty without
+  std::string images_, bag_path_;  // --images, --bag, empty without
   pipe_sim::CameraModel camera_;
   std::unique_ptr<BagOutput> bag_;
-  std::ostringstream poses_csv_, odometry_csv_;
+  std::ostringstream poses_csv_, odometry_csv_, missions_csv_;
   std::vector<eval::TravelPose> travel_;
   pipe_sim::OdometrySimulator odometry_;
   double odometry_drift_m_ = 0;

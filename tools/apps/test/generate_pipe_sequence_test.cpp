@@ -2,7 +2,10 @@
 // tiny sequences: odometry.csv has poses.csv's frames and stamps and starts
 // at the first true pose, equals poses.csv when every odometry noise is 0,
 // the bag carries the same poses on /odom, the summary reports the drift,
-// and bad odometry options are refused naming the flag.
+// and bad odometry options are refused naming the flag. The re-inspection
+// (--again): missions.csv, frames, stamps and the odometer continue, the
+// second mission's odometry restarts, its queries match the first mission's
+// frames, the first mission is the run without --again, bad values refused.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -15,7 +18,10 @@
 #include <nav_msgs/Odometry.h>
 #include <rosbag/bag.h>
 #include <rosbag/view.h>
+#include <std_msgs/Float64.h>
 
+#include "bowg_evaluation/ground_truth.h"
+#include "bowg_evaluation/odometry_file.h"
 #include "shell_command.h"
 
 namespace bowg {
@@ -78,6 +84,12 @@ class GeneratePipeSequence : public ::testing::Test {
             kDir + "/drift.log"),
         0)
         << readAll(kDir + "/drift.log");
+    // Two missions: the second slower, every other option the default.
+    ASSERT_EQ(run(kGenerator + kSequence + " --again-speed 0.8 --images " + kDir + "/again --bag " +
+                      kDir + "/again.bag",
+                  kDir + "/again.log"),
+              0)
+        << readAll(kDir + "/again.log");
     // Every odometry noise off.
     ASSERT_EQ(run(kGenerator + kSequence + kNoOdometryNoise + " --images " + kDir + "/exact",
                   kDir + "/exact.log"),
@@ -230,6 +242,122 @@ TEST_F(GeneratePipeSequence, BadOdometryOptionsAreRefusedNamingTheFlag) {
   refused("--odometry-heading-drift -1", "--odometry-heading-drift must be >= 0");
   refused("--odometry-roll-drift inf", "--odometry-roll-drift");
   refused("--odometry-roll-drift", "--odometry-roll-drift: missing value");
+}
+
+const char kOneMission[] = "# first_frame,mission_id,name\n0,1,first survey\n";
+
+TEST_F(GeneratePipeSequence, MissionsCsvIsWrittenForEverySequence) {
+  EXPECT_EQ(readAll(kDir + "/drift/missions.csv"), kOneMission);
+  EXPECT_EQ(readAll(kDir + "/drift_missions.csv"), kOneMission);
+  EXPECT_EQ(readAll(kDir + "/exact/missions.csv"), kOneMission);
+  const std::string two = std::string(kOneMission) + "60,2,second survey\n";
+  EXPECT_EQ(readAll(kDir + "/again/missions.csv"), two);
+  EXPECT_EQ(readAll(kDir + "/again_missions.csv"), two);
+}
+
+TEST_F(GeneratePipeSequence, AgainContinuesFramesStampsAndTheOdometer) {
+  const Table poses = readCsv(kDir + "/again/poses.csv");
+  ASSERT_EQ(poses.size(), 121u);  // 60 frames per mission
+  for (std::size_t i = 1; i < poses.size(); ++i) {
+    SCOPED_TRACE(i);
+    EXPECT_EQ(std::stoi(poses[i][0]), static_cast<int>(i) - 1);
+    if (i > 1) {
+      EXPECT_GT(std::stod(poses[i][1]), std::stod(poses[i - 1][1]));    // stamp
+      EXPECT_GE(std::stod(poses[i][12]), std::stod(poses[i - 1][12]));  // odometer
+    }
+  }
+  // The second mission drives from the start of the route again, 8 cm per
+  // frame (0.8 m/s at 10 Hz) instead of 10.
+  EXPECT_EQ(poses[61][11], "0.000000");
+  EXPECT_EQ(poses[62][11], "0.080000");
+  EXPECT_NE(readAll(kDir + "/again/frame_000119.png"), "");
+  // The readers of the evaluation take both files (never-decreasing
+  // odometer, frames in order).
+  EXPECT_EQ(eval::readOdometry(kDir + "/again/poses.csv").size(), 120u);
+  EXPECT_EQ(eval::readOdometry(kDir + "/again/odometry.csv").size(), 120u);
+  EXPECT_EQ(eval::readOdometryPositions(kDir + "/again/odometry.csv").size(), 120u);
+}
+
+TEST_F(GeneratePipeSequence, AgainLeavesTheFirstMissionAsWithoutIt) {
+  const Table once = readCsv(kDir + "/drift/poses.csv");
+  const Table again = readCsv(kDir + "/again/poses.csv");
+  const Table once_odometry = readCsv(kDir + "/drift/odometry.csv");
+  const Table again_odometry = readCsv(kDir + "/again/odometry.csv");
+  for (std::size_t i = 0; i < once.size(); ++i) {
+    EXPECT_EQ(again[i], once[i]) << i;
+    EXPECT_EQ(again_odometry[i], once_odometry[i]) << i;
+  }
+  EXPECT_EQ(readAll(kDir + "/again/frame_000059.png"), readAll(kDir + "/drift/frame_000059.png"));
+}
+
+TEST_F(GeneratePipeSequence, TheSecondMissionsOdometryStartsANewFrame) {
+  const Table poses = readCsv(kDir + "/again/poses.csv");
+  const Table odometry = readCsv(kDir + "/again/odometry.csv");
+  ASSERT_EQ(odometry.size(), poses.size());
+  // Frame 60 (row 61): the odometry starts afresh at the true pose, as the
+  // first mission's did at frame 0; the first mission's drift is gone.
+  EXPECT_EQ(std::vector<std::string>(odometry[61].begin() + 2, odometry[61].end()),
+            std::vector<std::string>(poses[61].begin() + 2, poses[61].begin() + 9));
+  EXPECT_GT(poseDifference(poseOf(odometry[60]), poseOf(poses[60])), 0.01);
+  // The bag: 120 frames on /odom, the /odometer counting on without the
+  // jump between the two missions' positions.
+  rosbag::Bag bag(kDir + "/again.bag", rosbag::bagmode::Read);
+  std::vector<double> odometer;
+  for (const rosbag::MessageInstance& m : rosbag::View(bag, rosbag::TopicQuery("/odometer"))) {
+    odometer.push_back(m.instantiate<std_msgs::Float64>()->data);
+  }
+  int odom = 0;
+  for (const rosbag::MessageInstance& m : rosbag::View(bag, rosbag::TopicQuery("/odom"))) {
+    odom += m.instantiate<nav_msgs::Odometry>() ? 1 : 0;
+  }
+  EXPECT_EQ(odom, 120);
+  ASSERT_EQ(odometer.size(), 120u);
+  EXPECT_EQ(odometer[60], odometer[59]);
+  for (std::size_t i = 1; i < odometer.size(); ++i) EXPECT_GE(odometer[i], odometer[i - 1]) << i;
+}
+
+TEST_F(GeneratePipeSequence, TheSecondMissionsQueriesMatchTheFirstMission) {
+  const eval::GroundTruth gt = eval::readGroundTruth(kDir + "/again_gt.txt");
+  int cross = 0;
+  for (const auto& kv : gt.loops) {
+    EXPECT_GE(kv.first, 60) << "the first mission drives 6 m of new pipe";
+    if (!kv.second.empty() && kv.second.front() < 60) ++cross;
+  }
+  // The second mission drives 4.8 m of the first's 6 m: nearly every query
+  // sees a place of the first mission.
+  EXPECT_GE(cross, 50);
+  const std::string header = readAll(kDir + "/again_gt.txt");
+  EXPECT_NE(header.find("# mission 2 (second survey, missions.csv) from frame 60: seed 1001, "
+                        "speed 0.8 m/s"),
+            std::string::npos)
+      << header;
+}
+
+TEST_F(GeneratePipeSequence, TheUsageDescribesTheAgainOptions) {
+  ASSERT_EQ(run(kGenerator + " --help", kDir + "/help.log"), 0);
+  const std::string usage = readAll(kDir + "/help.log");
+  for (const char* flag : {"--again ", "--again-marks-changed F", "--again-seed N",
+                           "--again-speed MPS", "--again-route-nodes LIST"}) {
+    EXPECT_NE(usage.find(flag), std::string::npos) << flag;
+  }
+}
+
+TEST_F(GeneratePipeSequence, BadAgainOptionsAreRefusedNamingTheFlag) {
+  const std::string log = kDir + "/bad_again.log";
+  const auto refused = [&](const std::string& options, const std::string& message) {
+    EXPECT_NE(run(kGenerator + " --images " + kDir + "/bad_again --frames 2 " + options, log), 0)
+        << options;
+    EXPECT_NE(readAll(log).find(message), std::string::npos) << options << ": " << readAll(log);
+  };
+  refused("--again-marks-changed 1.5", "--again-marks-changed must be in [0, 1], not 1.5");
+  refused("--again-marks-changed -0.1", "--again-marks-changed must be in [0, 1]");
+  refused("--again-marks-changed nan", "--again-marks-changed");
+  refused("--again-speed -0.2", "--again-speed must be > 0, not -0.2");
+  refused("--again-speed 0", "--again-speed must be > 0");
+  refused("--speed -1", "--speed must be > 0, not -1");
+  refused("--again-seed -1", "--again-seed must be >= 0");
+  refused("--again-route-nodes 0,2", "--again-route-nodes 0,2: ");
+  refused("--again-route-nodes", "--again-route-nodes: missing value");
 }
 
 }  // namespace

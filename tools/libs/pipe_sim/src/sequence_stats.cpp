@@ -11,13 +11,20 @@ double median(std::vector<double> values) {
   return values[values.size() / 2];
 }
 
-SequenceStats sequenceStats(const std::vector<FrameState>& frames) {
+SequenceStats sequenceStats(const std::vector<FrameState>& frames,
+                            const std::vector<int>& drive_starts) {
   SequenceStats s;
   s.frames = static_cast<int>(frames.size());
   if (frames.empty()) return s;
   s.driven_m = frames.back().odometer;
   std::vector<double> spacing;
-  for (std::size_t i = 1; i < frames.size(); ++i) spacing.push_back(frames[i].distance - frames[i - 1].distance);
+  for (std::size_t i = 1; i < frames.size(); ++i) {
+    if (std::find(drive_starts.begin(), drive_starts.end(), static_cast<int>(i)) !=
+        drive_starts.end()) {
+      continue;
+    }
+    spacing.push_back(frames[i].distance - frames[i - 1].distance);
+  }
   if (spacing.empty()) return s;
   const auto range = std::minmax_element(spacing.begin(), spacing.end());
   s.spacing_min_m = *range.first;

@@ -70,6 +70,9 @@ void WallTextureOptions::validate() const {
   if (!(marks_per_metre >= 0)) {
     throw std::invalid_argument("WallTextureOptions.marks_per_metre must be >= 0");
   }
+  if (!(marks_changed >= 0 && marks_changed <= 1)) {
+    throw std::invalid_argument("WallTextureOptions.marks_changed must be in [0, 1]");
+  }
   if (!(grain_repeat >= 0 && grain_repeat <= 1)) {
     throw std::invalid_argument("WallTextureOptions.grain_repeat must be in [0, 1]");
   }
@@ -88,6 +91,10 @@ WallTexture::WallTexture(const PipeNetwork& network, const WallTextureOptions& o
   options_.validate();
   network.validate();
   bakeTile();
+  marks_ = placeMarks(network, options_.marks_per_metre, options_.seed);
+  if (options_.marks_changed > 0) {
+    marks_ = changeMarks(marks_, network, options_.marks_changed, options_.marks_change_seed);
+  }
 
   const int cols = options_.circumference_texels;
   const int tile_rows = tile_.rows;
@@ -110,22 +117,10 @@ WallTexture::WallTexture(const PipeNetwork& network, const WallTextureOptions& o
       }
       section.row(static_cast<int>(t - k * tile_rows)).copyTo(tex.row(r));
     }
-    // Unique marks, placed by a generator seeded with (seed, edge) so that
-    // an edge's marks do not depend on the other edges.
-    Random rng(hashCombine(options_.seed, 0x6d61726bULL, e));
-    const double expected = options_.marks_per_metre * length;
-    const int count = static_cast<int>(std::floor(expected + rng.uniform()));
-    for (int i = 0; i < count; ++i) {
-      WallMark mark;
-      mark.edge = static_cast<int>(e);
-      mark.s = rng.uniform(0.0, length);
-      mark.theta = rng.uniform(0.0, kTwoPi);
-      mark.type = static_cast<WallMark::Type>(rng.index(3));
-      mark.size_m = mark.type == WallMark::Type::kCrack ? rng.uniform(0.06, 0.18)
-                    : mark.type == WallMark::Type::kStain ? rng.uniform(0.025, 0.06)
-                                                          : rng.uniform(0.012, 0.03);
-      drawMark(tex, mark, rng.next());
-      marks_.push_back(mark);
+    // Every mark of this edge, drawn in the order of marks_ (a new mark
+    // over an old one).
+    for (const WallMark& mark : marks_) {
+      if (mark.edge == static_cast<int>(e)) drawMark(tex, mark);
     }
     cv::Mat tex8;
     tex.convertTo(tex8, CV_8U, 255.0);
@@ -286,8 +281,8 @@ void WallTexture::addJointAndSeam(cv::Mat& tex) const {
   }
 }
 
-void WallTexture::drawMark(cv::Mat& tex, const WallMark& mark, std::uint64_t seed) const {
-  Random rng(seed);
+void WallTexture::drawMark(cv::Mat& tex, const WallMark& mark) const {
+  Random rng(mark.shape_seed);
   const int cols = options_.circumference_texels;
   const double texel_theta_m = kTwoPi * radius_ / cols;  // arc length of one column
   const int row = static_cast<int>(std::lround((mark.s + options_.margin_m) / options_.texel_m));

@@ -19,7 +19,11 @@ struct SequenceStats {
   double spacing_min_m = 0, spacing_median_m = 0, spacing_max_m = 0;
 };
 
-SequenceStats sequenceStats(const std::vector<FrameState>& frames);
+/// `drive_starts`: positions in `frames` where another drive begins (the
+/// next mission of a re-inspection, its route position from 0 again); the
+/// spacing is measured within drives only.
+SequenceStats sequenceStats(const std::vector<FrameState>& frames,
+                            const std::vector<int>& drive_starts = {});
 
 /// The upper median (element size / 2 of the sorted values), 0 when empty.
 double median(std::vector<double> values);

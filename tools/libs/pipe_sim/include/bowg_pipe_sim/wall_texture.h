@@ -14,7 +14,8 @@
 //  - a longitudinal weld seam along every pipe at the same angle;
 //  - and, fixed to places, sparse unique marks (stains, cracks, deposits),
 //    `marks_per_metre` of them on average, which are what tells a true
-//    revisit from a look-alike.
+//    revisit from a look-alike (wall_marks.h); a later inspection of the
+//    same network sees a share `marks_changed` of them replaced by others.
 // Everything is baked into one texture per edge (plus two half-resolution
 // mip levels) so that rendering is a lookup.
 #pragma once
@@ -27,6 +28,7 @@
 
 #include "bowg_pipe_sim/pipe_network.h"
 #include "bowg_pipe_sim/quilted_grain.h"
+#include "bowg_pipe_sim/wall_marks.h"
 
 namespace bowg {
 namespace pipe_sim {
@@ -37,6 +39,11 @@ struct WallTextureOptions {
   int circumference_texels = 512;
   double joint_spacing_m = 0.5;  ///< distance between circumferential joints
   double marks_per_metre = 1.0;  ///< unique marks per metre of pipe, >= 0
+  /// Share of the marks, in [0, 1], removed and replaced by as many new ones
+  /// (changeMarks, drawn from marks_change_seed): the same network inspected
+  /// again months later. 0 = the marks of `seed` as they are.
+  double marks_changed = 0.0;
+  std::uint64_t marks_change_seed = 0;
   /// Fraction of the grain shared by every section, in [0, 1]: 1 = every
   /// section's grain is a pixel-identical copy, 0 = every section has its own.
   double grain_repeat = 0.5;
@@ -48,15 +55,6 @@ struct WallTextureOptions {
   /// radius past the node).
   double margin_m = 0.12;
   void validate() const;  ///< throws std::invalid_argument naming the field
-};
-
-/// One unique mark, for documentation and tests.
-struct WallMark {
-  enum class Type { kStain, kCrack, kDeposit };
-  Type type = Type::kStain;
-  int edge = 0;
-  double s = 0, theta = 0;  ///< centre (m, rad)
-  double size_m = 0;        ///< rough extent
 };
 
 class WallTexture {
@@ -72,6 +70,8 @@ class WallTexture {
   /// Bilinear albedo in [0, 1] at a wall point (theta wraps, s clamps).
   float albedo(int edge, double s, double theta, int level = 0) const;
 
+  /// The unique marks drawn, sorted by edge (placeMarks, then changeMarks
+  /// when marks_changed > 0).
   const std::vector<WallMark>& marks() const { return marks_; }
   const WallTextureOptions& options() const { return options_; }
   /// What every section has in common (rows = one joint spacing): the shared
@@ -88,7 +88,7 @@ class WallTexture {
   void addGrain(cv::Mat& tex, std::uint64_t seed, double weight) const;
   void addGrainFeatures(cv::Mat& tex, std::uint64_t seed, double fraction) const;
   void addJointAndSeam(cv::Mat& tex) const;
-  void drawMark(cv::Mat& texture, const WallMark& mark, std::uint64_t seed) const;
+  void drawMark(cv::Mat& texture, const WallMark& mark) const;
 
   WallTextureOptions options_;
   double radius_ = 0.076;
