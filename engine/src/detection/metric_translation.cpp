@@ -38,11 +38,14 @@ std::vector<EntryId> chooseScaleNeighbours(const std::deque<DatabaseEntry>& entr
   std::vector<EntryId> out;
   if (match >= entries.size() || !std::isfinite(entries[match].odometer)) return out;
   const double at = entries[match].odometer;
+  const std::uint32_t run = entries[match].odometry_run;
   // Odometers never decrease, so each direction stops at the first entry
-  // beyond max_baseline_m.
+  // beyond max_baseline_m. The odometer measures the baseline within one
+  // odometry run only: across a restart or a mission boundary the next
+  // entry may be anywhere.
   for (std::size_t j = match + 1; j < entries.size(); ++j) {
     const double d = entries[j].odometer - at;
-    if (!std::isfinite(d) || d > options.max_baseline_m) break;
+    if (entries[j].odometry_run != run || !std::isfinite(d) || d > options.max_baseline_m) break;
     if (d >= options.min_baseline_m) {
       out.push_back(static_cast<EntryId>(j));
       break;
@@ -50,7 +53,7 @@ std::vector<EntryId> chooseScaleNeighbours(const std::deque<DatabaseEntry>& entr
   }
   for (std::size_t j = match; j-- > 0;) {
     const double d = at - entries[j].odometer;
-    if (!std::isfinite(d) || d > options.max_baseline_m) break;
+    if (entries[j].odometry_run != run || !std::isfinite(d) || d > options.max_baseline_m) break;
     if (d >= options.min_baseline_m) {
       out.push_back(static_cast<EntryId>(j));
       break;

@@ -274,6 +274,12 @@ TEST(MetricTranslation, TheNeighboursAreTheNearestKeyframesAtLeastTheMinimumBase
   EXPECT_EQ(chooseScaleNeighbours(entriesAt({0, 0.1, 0.2}), 1, o), Ids({2, 0}));
   const double nan = std::numeric_limits<double>::quiet_NaN();
   EXPECT_EQ(chooseScaleNeighbours(entriesAt({nan, nan, nan}), 0, o), Ids());
+  // Another odometry run (a restart, a merged mission whose odometer
+  // continues this one's) is no baseline: 3 is 4 cm on but in run 1.
+  auto runs = entriesAt({0, 0.01, 0.02, 0.06});
+  runs[3].odometry_run = 1;
+  EXPECT_EQ(chooseScaleNeighbours(runs, 2, o), Ids());
+  EXPECT_EQ(chooseScaleNeighbours(runs, 3, o), Ids());
 }
 
 TEST(MetricTranslation, ASecondNeighbourAddsThePointsTheFirstDoesNotSee) {

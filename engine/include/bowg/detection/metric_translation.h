@@ -94,7 +94,9 @@ MetricTranslation estimateMetricTranslation(const std::vector<Correspondence>& l
 /// The neighbours of database entry `match` to take baselines from: the
 /// nearest entry after it and the nearest before it whose odometer differs
 /// from the match's by at least min_baseline_m and at most max_baseline_m
-/// (after first; none when the match's odometer is unknown).
+/// (after first; none when the match's odometer is unknown), in the match's
+/// odometry run (another run's odometer is no baseline: a restart, another
+/// mission).
 std::vector<EntryId> chooseScaleNeighbours(const std::deque<DatabaseEntry>& entries, EntryId match,
                                            const MetricTranslationOptions& options);
 
