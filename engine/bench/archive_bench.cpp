@@ -224,12 +224,7 @@ struct QueryTotals {
   double max_ms = 0, loops = 0, candidates = 0, n = 0;
 
   void add(const LoopResult& r) {
-    sum.transform_ms += r.timings.transform_ms;
-    sum.word_groups_ms += r.timings.word_groups_ms;
-    sum.query_ms += r.timings.query_ms;
-    sum.islands_ms += r.timings.islands_ms;
-    sum.verification_ms += r.timings.verification_ms;
-    sum.total_ms += r.timings.total_ms;
+    bench::addStageTimes(r.timings, &sum);
     max_ms = std::max(max_ms, r.timings.total_ms);
     loops += r.status == LoopStatus::kLoopDetected ? 1 : 0;
     candidates += r.candidates_scored;

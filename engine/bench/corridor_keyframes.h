@@ -56,5 +56,16 @@ inline LoopDetectorOptions corridorPresetOptions(int recent_exclusion) {
   return o;
 }
 
+/// Adds one keyframe's stage times to `sum` (the benchmarks' per-keyframe
+/// means divide it by the keyframes counted).
+inline void addStageTimes(const StageTimings& t, StageTimings* sum) {
+  sum->transform_ms += t.transform_ms;
+  sum->word_groups_ms += t.word_groups_ms;
+  sum->query_ms += t.query_ms;
+  sum->islands_ms += t.islands_ms;
+  sum->verification_ms += t.verification_ms;
+  sum->total_ms += t.total_ms;
+}
+
 }  // namespace bench
 }  // namespace bowg

@@ -202,12 +202,7 @@ void runPipeline(benchmark::State& state, Pipeline& p) {
     const LoopResult r = p.detector->process(batch[b]);
     features += batch[b].features.size();
     ++b;
-    sum.transform_ms += r.timings.transform_ms;
-    sum.word_groups_ms += r.timings.word_groups_ms;
-    sum.query_ms += r.timings.query_ms;
-    sum.islands_ms += r.timings.islands_ms;
-    sum.verification_ms += r.timings.verification_ms;
-    sum.total_ms += r.timings.total_ms;
+    bench::addStageTimes(r.timings, &sum);
     total_max = std::max(total_max, r.timings.total_ms);
     candidates += r.candidates_scored;
     loops += r.status == LoopStatus::kLoopDetected ? 1 : 0;
