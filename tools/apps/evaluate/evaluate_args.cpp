@@ -46,6 +46,20 @@ const char* const kUsage =
     "                             first_frame,mission_id,name; the generator's missions.csv):\n"
     "                             each mission is started as the nodelet's ~mission_name starts\n"
     "                             one, and the summary scores the loops across missions\n"
+    "  --mission-name NAME        the run's mission (as the nodelet's ~mission_name), e.g.\n"
+    "                             the survey date [with --map: the input's file name]\n"
+    "  --mission-id N             its id (as ~mission_id) [the next free one]\n"
+    "  --skip-frames N            leave out the input's first N frames (after --max-frames;\n"
+    "                             the ground truth, odometry and missions still index the\n"
+    "                             input) [0]\n"
+    "Re-inspection (docs/evaluation.md, \"Reference maps\"):\n"
+    "  --map FILE                 an earlier mission's saved database (the nodelet's, a\n"
+    "                             bowg_merge_databases output or --save-map), repeatable:\n"
+    "                             every run starts on them as the nodelet starts on\n"
+    "                             ~reference_maps; their keyframes are entries 0..M-1, the\n"
+    "                             input's frames follow (the ground truth is moved to match)\n"
+    "  --save-map FILE            after the run, save the last row's detector (atomic): a\n"
+    "                             map for a later --map or for the nodelet\n"
     "Engine:\n"
     "  --vocabulary FILE          any format bowg::loadVocabulary reads (required)\n"
     "  --config FILE              parameter file, e.g. config/pipe.yaml [engine defaults]\n"
@@ -176,7 +190,19 @@ Args parseArgs(int argc, char** argv) {
       a.odometry_poses = v;
     else if (flag == "--missions")
       a.missions = v;
-    else if (flag == "--odometer-topic")
+    else if (flag == "--map")
+      a.maps.push_back(v);
+    else if (flag == "--save-map")
+      a.save_map = v;
+    else if (flag == "--skip-frames")
+      a.skip_frames = static_cast<long>(eval::numberArgument(flag, v));
+    else if (flag == "--mission-name")
+      a.mission_name = v;
+    else if (flag == "--mission-id") {
+      const double id = eval::numberArgument(flag, v);
+      if (id != std::floor(id)) throw std::invalid_argument("--mission-id must be an integer");
+      a.mission_id = static_cast<long long>(id);
+    } else if (flag == "--odometer-topic")
       a.odometer_topic = v;
     else if (flag == "--intrinsics")
       a.intrinsics = v;
@@ -207,6 +233,22 @@ Args parseArgs(int argc, char** argv) {
     throw std::invalid_argument("--intrinsics is for --images (a bag's camera_info gives them)");
   }
   if (a.max_frames < 0) throw std::invalid_argument("--max-frames must be >= 0");
+  if (a.skip_frames < 0) throw std::invalid_argument("--skip-frames must be >= 0");
+  if (a.max_frames > 0 && a.skip_frames >= a.max_frames) {
+    throw std::invalid_argument("--skip-frames must be below --max-frames");
+  }
+  if (a.mission_id < -1 || a.mission_id > 4294967295LL) {
+    throw std::invalid_argument("--mission-id must be in [0, 2^32) (or -1: the next free one)");
+  }
+  if (!a.missions.empty() && (!a.mission_name.empty() || a.mission_id != -1)) {
+    throw std::invalid_argument("give --missions FILE or --mission-name/--mission-id, not both");
+  }
+  if (a.mission_id != -1 && a.mission_name.empty()) {
+    throw std::invalid_argument("--mission-id needs --mission-name");
+  }
+  if (!a.dump_candidates.empty() && (!a.maps.empty() || !a.save_map.empty())) {
+    throw std::invalid_argument("--dump-candidates does not take --map or --save-map");
+  }
   if (!a.odometer_topic.empty() && a.bag.empty()) {
     throw std::invalid_argument("--odometer-topic is for --bag (an image folder takes --odometry)");
   }

@@ -14,9 +14,14 @@ struct Args {
   std::string images, vocabulary, config, gt, output = "bowg_evaluation", sweep = "rerun";
   std::string odometry;
   std::string odometry_poses;
-  std::string odometer_topic;  ///< --odometer-topic: std_msgs/Float64 readings in the bag
-  std::string missions;        ///< --missions: the frames where each mission starts
-  std::string intrinsics;      ///< --intrinsics: fx,fy,cx,cy of folder images
+  std::string odometer_topic;     ///< --odometer-topic: std_msgs/Float64 readings in the bag
+  std::string missions;           ///< --missions: the frames where each mission starts
+  std::vector<std::string> maps;  ///< --map (repeatable): earlier missions to start from
+  std::string save_map;           ///< --save-map: the last row's detector after the run
+  long skip_frames = 0;           ///< --skip-frames: input frames left out first
+  std::string mission_name;       ///< --mission-name: the run's mission ("" = none given)
+  long long mission_id = -1;      ///< --mission-id (-1 = the next free one)
+  std::string intrinsics;         ///< --intrinsics: fx,fy,cx,cy of folder images
   std::string dump_candidates;
   double rate = 1.0;
   long max_frames = 0;

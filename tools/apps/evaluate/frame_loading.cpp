@@ -92,6 +92,10 @@ std::vector<FrameInput> loadFrames(const Args& a, const FeatureExtractor& extrac
       files.resize(a.max_frames);
     ImageProblemCounts skipped;
     for (std::size_t i = 0; i < files.size(); ++i) {
+      if (static_cast<long>(i) < a.skip_frames) {  // left out: only its place is kept
+        add(cv::Mat(), i / a.rate, intrinsics);
+        continue;
+      }
       ImageCheck check;
       const cv::Mat grey = readGreyImageFile(files[i], extractor.options(), &check);
       if (!check.ok()) skipImage(files[i], check, &skipped);
@@ -137,6 +141,11 @@ std::vector<FrameInput> loadFrames(const Args& a, const FeatureExtractor& extrac
       if (!std::isfinite(reading->data)) continue;  // the nodelet ignores them too
       odometer = std::isnan(odometer) ? 0.0 : odometer + std::fabs(reading->data - last_reading);
       last_reading = reading->data;
+      continue;
+    }
+    if (static_cast<long>(frames.size()) < a.skip_frames) {  // left out: only its place is kept
+      add(cv::Mat(), 0.0, intrinsics);  // a stamp that never raises the next frame's
+      frames.back().odometer = odometer;
       continue;
     }
     const bowg::bag::BagImage image = bowg::bag::readBagImage(m, a.bag, extractor.options());

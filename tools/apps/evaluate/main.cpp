@@ -9,6 +9,7 @@
 // (--dump-candidates), summary_report (every output).
 #include <sys/stat.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <exception>
 #include <memory>
@@ -22,7 +23,9 @@
 #include "bowg/vocabulary/vocabulary_io.h"
 #include "bowg_evaluation/ground_truth.h"
 #include "bowg_evaluation/mission_file.h"
+#include "bowg_evaluation/reference_maps.h"
 #include "candidate_dump.h"
+#include "console_output.h"
 #include "evaluate_args.h"
 #include "frame_loading.h"
 #include "row_runs.h"
@@ -57,6 +60,53 @@ GroundTruth usedGroundTruth(const GroundTruth& gt, const Args& a, std::size_t fr
   return used;
 }
 
+// The missions of the frames used: with --max-frames, those starting beyond
+// them are left out.
+std::vector<MissionStart> usedMissions(const Args& a, std::size_t frames) {
+  std::vector<MissionStart> missions = readMissionStarts(a.missions);
+  if (a.max_frames > 0) {
+    missions.erase(std::remove_if(missions.begin(), missions.end(),
+                                  [frames](const MissionStart& m) {
+                                    return static_cast<std::size_t>(m.first_frame) >= frames;
+                                  }),
+                   missions.end());
+  }
+  return missions;
+}
+
+// The run's own mission: --mission-name, or with reference maps a new one
+// named after the input (loops into the maps are then across missions).
+void nameRunMission(const Args& a, std::vector<FrameInput>* frames) {
+  if (!a.missions.empty() || frames->empty()) return;
+  std::string name = a.mission_name;
+  if (name.empty() && !a.maps.empty()) {
+    std::string input = a.bag.empty() ? a.images : a.bag;
+    while (input.size() > 1 && input.back() == '/') input.pop_back();
+    name = input.substr(input.find_last_of('/') == std::string::npos ? 0
+                                                                     : input.find_last_of('/') + 1);
+  }
+  if (name.empty()) return;
+  FrameInput& first = frames->front();
+  first.starts_mission = true;
+  first.mission_name = name;
+  first.mission_id = a.mission_id;
+}
+
+// The summary's line on the maps: files, keyframes, missions.
+std::string describeMaps(const Args& a, const ReferenceMapSummary& maps, double stamp_shift) {
+  if (a.maps.empty()) return "";
+  std::string line = "reference maps:";
+  for (const std::string& path : a.maps) line += " " + path;
+  line += " (" + std::to_string(maps.entries) + " keyframes, entries 0-" +
+          std::to_string(maps.entries == 0 ? 0 : maps.entries - 1) + "; missions";
+  for (const Mission& m : maps.missions) {
+    line += " " + std::to_string(m.id) + " '" + m.name + "' " + std::to_string(m.entries);
+  }
+  line += ")";
+  if (stamp_shift != 0) line += "; live stamps moved " + fmt("%.3f", stamp_shift) + " s later";
+  return line;
+}
+
 int run(int argc, char** argv) {
   const Args a = parseArgs(argc, argv);
   PipelineOptions pipeline;
@@ -68,26 +118,38 @@ int run(int argc, char** argv) {
   const bool has_gt = !a.gt.empty();
   GroundTruth all_gt;
   if (has_gt) all_gt = readGroundTruth(a.gt);  // before the long feature pass
+  if (!a.mission_name.empty() && !missionNameProblem(a.mission_name).empty()) {
+    throw std::invalid_argument("--mission-name: " + missionNameProblem(a.mission_name));
+  }
+  ReferenceMapSummary maps;
+  if (!a.maps.empty()) maps = readReferenceMaps(a.maps, vocabulary, pipeline.detector);
   makeOutputFolder(a.output);
 
   std::vector<FrameInput> frames = loadFrames(a, extractor);
   if (!a.odometry.empty()) attachOdometry(a.odometry, &frames);
   if (!a.odometry_poses.empty()) attachOdometryPositions(a.odometry_poses, &frames);
-  if (!a.missions.empty()) attachMissions(readMissionStarts(a.missions), &frames);
+  if (!a.missions.empty()) attachMissions(usedMissions(a, frames.size()), &frames);
+  const GroundTruth gt = groundTruthAfterMaps(usedGroundTruth(all_gt, a, frames.size()),
+                                              static_cast<int>(a.skip_frames), maps.entries);
+  skipFrames(static_cast<int>(a.skip_frames), &frames);
+  nameRunMission(a, &frames);
+  RunInputs inputs;
+  inputs.frames = frames.size();
+  inputs.map_entries = maps.entries;
+  inputs.maps = describeMaps(a, maps, stampsAfterMaps(maps, 1.0 / a.rate, &frames));
   // Which acceptance applies: what the robot of this run has.
-  const std::string odometry =
-      std::string("odometry: ") + describeAcceptance(odometryInputOf(frames));
-  if (!a.quiet) std::printf("%s\n", odometry.c_str());
-  const GroundTruth gt = usedGroundTruth(all_gt, a, frames.size());
+  inputs.odometry = std::string("odometry: ") + describeAcceptance(odometryInputOf(frames));
+  if (!a.quiet) std::printf("%s\n", inputs.odometry.c_str());
   if (!a.dump_candidates.empty()) {
     if (!has_gt) throw std::invalid_argument("--dump-candidates needs --gt FILE");
     return dumpCandidates(a, vocabulary, pipeline.detector, frames, gt);
   }
   const double threshold = pipeline.detector.islands.min_score;
   const std::vector<double> thresholds = thresholdGrid(a.thresholds, threshold);
-  const std::vector<RowResult> results =
-      runRows(a, vocabulary, pipeline.detector, frames, has_gt ? &gt : nullptr, thresholds);
-  writeReport(a, results, frames.size(), odometry, has_gt ? &gt : nullptr, thresholds, threshold);
+  const RunMaps run_maps{a.maps, maps.entries, a.save_map};
+  const std::vector<RowResult> results = runRows(a, vocabulary, pipeline.detector, frames,
+                                                 has_gt ? &gt : nullptr, thresholds, run_maps);
+  writeReport(a, results, inputs, has_gt ? &gt : nullptr, thresholds, threshold);
   return 0;
 }
 

@@ -23,7 +23,8 @@ std::vector<DetectorRun> sweepRuns(const Args& a, std::shared_ptr<const Vocabula
                                    const std::vector<std::string>& rows,
                                    const std::vector<LoopDetectorOptions>& row_options,
                                    const std::vector<FrameInput>& frames,
-                                   const std::vector<double>& thresholds, double configured) {
+                                   const std::vector<double>& thresholds, double configured,
+                                   const RunMaps& maps) {
   std::vector<RunRequest> requests;
   for (std::size_t i = 0; i < rows.size(); ++i) {
     for (double t : thresholds) {
@@ -34,7 +35,7 @@ std::vector<DetectorRun> sweepRuns(const Args& a, std::shared_ptr<const Vocabula
     }
   }
   ProgressBar bar("sweep (" + std::to_string(requests.size()) + " runs)", a.quiet);
-  return runDetectorsInParallel(vocabulary, requests, frames, a.jobs, std::ref(bar));
+  return runDetectorsInParallel(vocabulary, requests, frames, a.jobs, std::ref(bar), maps);
 }
 
 }  // namespace
@@ -51,7 +52,9 @@ std::vector<double> thresholdGrid(std::vector<double> thresholds, double configu
 std::vector<RowResult> runRows(const Args& a, std::shared_ptr<const Vocabulary> vocabulary,
                                const LoopDetectorOptions& configured,
                                const std::vector<FrameInput>& frames, const GroundTruth* gt,
-                               const std::vector<double>& thresholds) {
+                               const std::vector<double>& thresholds, const RunMaps& maps) {
+  RunMaps load_only = maps;
+  load_only.save.clear();
   const std::vector<std::string> rows = a.ablation ? a.rows : std::vector<std::string>{"bowg"};
   const double threshold = configured.islands.min_score;
   std::vector<RowResult> results;
@@ -62,7 +65,9 @@ std::vector<RowResult> runRows(const Args& a, std::shared_ptr<const Vocabulary> 
     row_options.push_back(a.ablation ? LoopDetectorOptions::ablation(row, configured) : configured);
     RowResult r;
     ProgressBar bar(row + " @" + fmt("%.2f", threshold), a.quiet);
-    r.run = runDetector(vocabulary, row_options.back(), frames, row, std::ref(bar));
+    const bool last = results.size() + 1 == rows.size();
+    r.run = runDetector(vocabulary, row_options.back(), frames, row, std::ref(bar),
+                        last ? maps : load_only);
     if (gt) r.at_threshold = operatingPoint(r.run, *gt);
     results.push_back(std::move(r));
   }
@@ -70,7 +75,8 @@ std::vector<RowResult> runRows(const Args& a, std::shared_ptr<const Vocabulary> 
   // 2. The PR curves.
   std::vector<DetectorRun> sweep_runs;
   if (a.sweep == "rerun") {
-    sweep_runs = sweepRuns(a, vocabulary, rows, row_options, frames, thresholds, threshold);
+    sweep_runs =
+        sweepRuns(a, vocabulary, rows, row_options, frames, thresholds, threshold, load_only);
   }
   std::size_t next_sweep_run = 0;
   for (std::size_t i = 0; i < rows.size(); ++i) {
@@ -84,9 +90,10 @@ std::vector<RowResult> runRows(const Args& a, std::shared_ptr<const Vocabulary> 
       LoopDetectorOptions o = row_options[i];
       o.islands.min_score = thresholds.back();  // the lowest
       ProgressBar b(rows[i] + " @" + fmt("%.2f", o.islands.min_score), a.quiet);
-      const DetectorRun low = same(o.islands.min_score, threshold)
-                                  ? r.run
-                                  : runDetector(vocabulary, o, frames, rows[i], std::ref(b));
+      const DetectorRun low =
+          same(o.islands.min_score, threshold)
+              ? r.run
+              : runDetector(vocabulary, o, frames, rows[i], std::ref(b), load_only);
       r.curve = precisionRecallCurve(detectionsOf(low), *gt);
     }
     r.full_precision = recallAtFullPrecision(r.curve);

@@ -30,12 +30,14 @@ struct RowResult {
 /// preset's own result.
 std::vector<double> thresholdGrid(std::vector<double> requested, double configured);
 
-/// Runs every row; with a ground truth (`gt` not null) also its PR curve
-/// over `thresholds` and its recall at 100 % precision.
+/// Runs every row, each run starting on `maps` (the last row's saving the
+/// map when maps.save names a file); with a ground truth (`gt` not null)
+/// also its PR curve over `thresholds` and its recall at 100 % precision.
 std::vector<RowResult> runRows(const Args& a, std::shared_ptr<const Vocabulary> vocabulary,
                                const LoopDetectorOptions& configured,
                                const std::vector<eval::FrameInput>& frames,
-                               const eval::GroundTruth* gt, const std::vector<double>& thresholds);
+                               const eval::GroundTruth* gt, const std::vector<double>& thresholds,
+                               const eval::RunMaps& maps);
 
 }  // namespace evaluate_app
 }  // namespace bowg

@@ -58,7 +58,7 @@ void accuracyTable(const Args& a, const std::vector<RowResult>& results, const G
         detectionsOf(r.run).size());
     s << line;
   }
-  if (!a.missions.empty()) crossMissionTable(results, gt, s);
+  if (!a.missions.empty() || !a.maps.empty()) crossMissionTable(results, gt, s);
   if (a.ablation && results.front().run.name == "bow" &&
       results.back().run.name == "distribution") {
     // The comparison the paper's ablation is for, in one line (bow first,
@@ -73,13 +73,18 @@ void accuracyTable(const Args& a, const std::vector<RowResult>& results, const G
 }
 
 // Without a ground truth: keyframes per status and every loop.
-void countsTable(const std::vector<RowResult>& results, std::ostream& s) {
+void countsTable(const std::vector<RowResult>& results, std::size_t map_entries, std::ostream& s) {
   s << "\nno ground truth: counts only\n";
   for (const RowResult& r : results) {
     std::map<std::string, int> counts;
-    for (const KeyframeRecord& k : r.run.keyframes) ++counts[toString(k.status)];
+    int into_maps = 0;
+    for (const KeyframeRecord& k : r.run.keyframes) {
+      ++counts[toString(k.status)];
+      if (k.match >= 0 && static_cast<std::size_t>(k.match) < map_entries) ++into_maps;
+    }
     s << r.run.name << ":";
     for (const auto& kv : counts) s << " " << kv.first << "=" << kv.second;
+    if (map_entries > 0) s << "  (" << into_maps << " into the reference maps)";
     s << "\n";
     for (const KeyframeRecord& k : r.run.keyframes) {
       if (k.match < 0) continue;
@@ -144,9 +149,9 @@ void memoryVersusSize(const Args& a, const std::vector<RowResult>& results, std:
 
 }  // namespace
 
-void writeReport(const Args& a, const std::vector<RowResult>& results, std::size_t frames,
-                 const std::string& odometry, const GroundTruth* gt,
-                 const std::vector<double>& thresholds, double threshold) {
+void writeReport(const Args& a, const std::vector<RowResult>& results, const RunInputs& inputs,
+                 const GroundTruth* gt, const std::vector<double>& thresholds, double threshold) {
+  const std::size_t frames = inputs.frames;
   for (const RowResult& r : results) {
     writeFileAtomically(a.output + "/keyframes_" + r.run.name + ".csv", keyframesCsv(r.run, gt));
     writeFileAtomically(a.output + "/detections_" + r.run.name + ".csv",
@@ -159,11 +164,12 @@ void writeReport(const Args& a, const std::vector<RowResult>& results, std::size
     << "vocabulary: " << a.vocabulary
     << "  config: " << (a.config.empty() ? "(defaults)" : a.config) << "  min_score: " << threshold
     << "\n"
-    << odometry << "\n";
+    << inputs.odometry << "\n";
+  if (!inputs.maps.empty()) s << inputs.maps << "\n";
   if (gt) {
     accuracyTable(a, results, *gt, thresholds, threshold, s);
   } else {
-    countsTable(results, s);
+    countsTable(results, inputs.map_entries, s);
   }
   timingTable(results, s);
   timeVersusSize(a, results, s);

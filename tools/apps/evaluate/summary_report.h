@@ -13,12 +13,21 @@
 namespace bowg {
 namespace evaluate_app {
 
-/// Writes every output into a.output and prints the summary, which names the
-/// odometry the run had (`odometry`, one line). `gt` is null without a ground
-/// truth (counts only).
-void writeReport(const Args& a, const std::vector<RowResult>& results, std::size_t frames,
-                 const std::string& odometry, const eval::GroundTruth* gt,
-                 const std::vector<double>& thresholds, double threshold);
+/// What the summary says about the run's inputs beyond the command line.
+struct RunInputs {
+  std::size_t frames = 0;  ///< the live frames run
+  std::string odometry;    ///< the acceptance the odometry gives (one line)
+  /// The reference maps (--map): their keyframes (entries 0..map_entries-1)
+  /// and a line naming them and their missions ("" without maps).
+  std::size_t map_entries = 0;
+  std::string maps;
+};
+
+/// Writes every output into a.output and prints the summary. `gt` is null
+/// without a ground truth (counts only).
+void writeReport(const Args& a, const std::vector<RowResult>& results, const RunInputs& inputs,
+                 const eval::GroundTruth* gt, const std::vector<double>& thresholds,
+                 double threshold);
 
 }  // namespace evaluate_app
 }  // namespace bowg

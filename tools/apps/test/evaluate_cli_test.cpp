@@ -111,6 +111,69 @@ TEST_F(EvaluateCli, MissionsAreStartedAndTheLoopsAcrossThemScoredOnTheirOwn) {
       << readAll(log);
 }
 
+// The "across missions" row of a summary ("" when it has none).
+std::string acrossMissionsRow(const std::string& summary) {
+  const std::size_t table = summary.find("across missions");
+  if (table == std::string::npos) return "";
+  const std::size_t row = summary.find("\nbowg ", table);
+  if (row == std::string::npos) return "";
+  return summary.substr(row + 1, summary.find('\n', row + 1) - row - 1);
+}
+
+// The first mission saved as a map and the second run on it (--skip-frames
+// keeps the folder's numbering): the loops into the first mission are those
+// of the run in one go.
+TEST_F(EvaluateCli, TheFirstMissionAsAMapGivesTheLoopsOfOneRun) {
+  writeFile(kDir + "/two_missions.csv", "0,1,first\n150,2,second\n");
+  const std::string missions = " --thresholds 0.7 --missions " + kDir + "/two_missions.csv";
+  ASSERT_EQ(run(evaluate(missions, "one_go"), kDir + "/one_go.log"), 0)
+      << readAll(kDir + "/one_go.log");
+  ASSERT_EQ(run(evaluate(missions + " --max-frames 150 --save-map " + kDir + "/first.map", "first"),
+                kDir + "/first.log"),
+            0)
+      << readAll(kDir + "/first.log");
+  ASSERT_EQ(run(evaluate(missions + " --skip-frames 150 --map " + kDir + "/first.map", "second"),
+                kDir + "/second.log"),
+            0)
+      << readAll(kDir + "/second.log");
+  const std::string one_go = acrossMissionsRow(readAll(kDir + "/one_go/summary.txt"));
+  const std::string second = readAll(kDir + "/second/summary.txt");
+  ASSERT_FALSE(one_go.empty());
+  EXPECT_EQ(acrossMissionsRow(second), one_go) << second;
+  EXPECT_NE(second.find("(150 frames)"), std::string::npos) << second;
+  EXPECT_NE(second.find("reference maps: " + kDir +
+                        "/first.map (150 keyframes, entries 0-149; "
+                        "missions 1 'first' 150)"),
+            std::string::npos)
+      << second;
+  int tp = 0;
+  ASSERT_EQ(std::sscanf(one_go.c_str(), "bowg %*f %*f %d", &tp), 1) << one_go;
+  EXPECT_GT(tp, 0) << one_go;
+  // Without a ground truth: the loops into the maps are counted.
+  ASSERT_EQ(run(evaluateFolder(kDir + "/frames", kDir + "/config.yaml", kDir + "/counts") +
+                    " --skip-frames 150 --mission-name again --map " + kDir + "/first.map",
+                kDir + "/counts.log"),
+            0)
+      << readAll(kDir + "/counts.log");
+  EXPECT_NE(readAll(kDir + "/counts/summary.txt").find(" into the reference maps)"),
+            std::string::npos)
+      << readAll(kDir + "/counts/summary.txt");
+}
+
+TEST_F(EvaluateCli, BadMapOptionsAreRefusedNamingTheCause) {
+  const std::string log = kDir + "/bad_map.log";
+  EXPECT_NE(run(evaluate("--thresholds 0.7 --map " + kDir + "/no_such.map", "bad_map"), log), 0);
+  EXPECT_NE(readAll(log).find("no_such.map"), std::string::npos) << readAll(log);
+  EXPECT_NE(run(evaluate("--thresholds 0.7 --mission-id 4", "bad_map"), log), 0);
+  EXPECT_NE(readAll(log).find("--mission-id needs --mission-name"), std::string::npos)
+      << readAll(log);
+  EXPECT_NE(run(evaluate("--thresholds 0.7 --skip-frames 300", "bad_map"), log), 0);
+  EXPECT_NE(readAll(log).find("leaves none of the 300 frames"), std::string::npos) << readAll(log);
+  EXPECT_NE(
+      run(evaluate("--thresholds 0.7 --mission-name " + std::string(300, 'x'), "bad_map"), log), 0);
+  EXPECT_NE(readAll(log).find("--mission-name"), std::string::npos) << readAll(log);
+}
+
 TEST_F(EvaluateCli, TheSweepDoesNotDependOnTheNumberOfThreads) {
   ASSERT_EQ(run(evaluate("--thresholds 0.3,0.5,0.9 --jobs 1", "one_thread")), 0);
   ASSERT_EQ(run(evaluate("--thresholds 0.3,0.5,0.9 --jobs 2", "two_threads")), 0);

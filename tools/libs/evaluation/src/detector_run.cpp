@@ -5,6 +5,7 @@
 #include <iomanip>
 #include <limits>
 #include <sstream>
+#include <stdexcept>
 
 #include "bowg/core/resident_memory.h"
 #include "bowg/database/database.h"
@@ -24,11 +25,21 @@ KeyframeInput toKeyframeInput(const FrameInput& frame) {
 
 DetectorRun runDetector(std::shared_ptr<const Vocabulary> vocabulary,
                         const LoopDetectorOptions& options, const std::vector<FrameInput>& frames,
-                        const std::string& name, const ProgressCallback& progress) {
+                        const std::string& name, const ProgressCallback& progress,
+                        const RunMaps& maps) {
   DetectorRun run;
   run.name = name;
   run.options = options;
-  LoopDetector detector(std::move(vocabulary), options);
+  LoopDetector detector(vocabulary, options);
+  if (!maps.load.empty()) {
+    detector.adopt(LoopDetector::readMerged(maps.load, vocabulary, options));
+    if (detector.database().size() != maps.load_entries) {
+      throw std::logic_error("runDetector: the reference maps changed since they were counted");
+    }
+  }
+  const std::size_t first_entry = detector.database().size();
+  for (const DatabaseEntry& e : detector.database().entries())
+    run.map_missions.push_back(e.mission);
   run.keyframes.reserve(frames.size());
   run.memory.reserve(frames.size() / kMemorySampleEvery + 2);
   const auto sample = [&]() {
@@ -40,18 +51,18 @@ DetectorRun runDetector(std::shared_ptr<const Vocabulary> vocabulary,
   for (std::size_t i = 0; i < frames.size(); ++i) {
     const KeyframeInput input = toKeyframeInput(frames[i]);
     KeyframeRecord k;
-    k.frame = static_cast<int>(i);
+    k.frame = static_cast<int>(first_entry + i);
     k.stamp = frames[i].stamp;
     k.features = frames[i].features.size();
     k.feature_ms = frames[i].feature_ms;
-    k.database_size = i;
+    k.database_size = first_entry + i;
     if (frames[i].starts_mission) {
       detector.startMission(frames[i].mission_name, frames[i].mission_id);
     }
     const LoopResult r = detector.process(input);
     k.mission = r.mission;
     // Entries are numbered in insertion order, and every frame is inserted
-    // (also those without features), so entry id == frame index.
+    // (also those without features), so entry id == first_entry + frame index.
     k.status = r.status;
     k.has_candidate = r.has_candidate;
     if (r.has_candidate) {
@@ -81,7 +92,14 @@ DetectorRun runDetector(std::shared_ptr<const Vocabulary> vocabulary,
   }
   run.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (!frames.empty()) sample();
+  if (!maps.save.empty()) detector.save(maps.save);
   return run;
+}
+
+std::uint32_t missionOfEntry(const DetectorRun& run, int entry) {
+  const std::size_t maps = run.map_missions.size();
+  if (entry >= 0 && static_cast<std::size_t>(entry) < maps) return run.map_missions[entry];
+  return run.keyframes.at(static_cast<std::size_t>(entry) - maps).mission;
 }
 
 std::vector<Detection> detectionsOf(const DetectorRun& run) {

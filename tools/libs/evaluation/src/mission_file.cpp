@@ -79,7 +79,7 @@ void attachMissions(const std::vector<MissionStart>& missions, std::vector<Frame
 }
 
 PrPoint crossMissionPoint(const DetectorRun& run, const GroundTruth& gt) {
-  const auto mission = [&run](int frame) { return run.keyframes.at(frame).mission; };
+  const auto mission = [&run](int entry) { return missionOfEntry(run, entry); };
   GroundTruth cross;
   for (const auto& q : gt.loops) {
     for (int m : q.second) {

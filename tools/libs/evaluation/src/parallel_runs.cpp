@@ -14,8 +14,12 @@ namespace eval {
 std::vector<DetectorRun> runDetectorsInParallel(std::shared_ptr<const Vocabulary> vocabulary,
                                                 const std::vector<RunRequest>& requests,
                                                 const std::vector<FrameInput>& frames, int jobs,
-                                                const ProgressCallback& progress) {
+                                                const ProgressCallback& progress,
+                                                const RunMaps& maps) {
   if (jobs < 0) throw std::invalid_argument("runDetectorsInParallel: jobs must be >= 0");
+  if (!maps.save.empty()) {
+    throw std::invalid_argument("runDetectorsInParallel: runs side by side cannot save one map");
+  }
   if (jobs == 0) jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   std::vector<DetectorRun> runs(requests.size());
   std::atomic<std::size_t> next(0);
@@ -25,7 +29,8 @@ std::vector<DetectorRun> runDetectorsInParallel(std::shared_ptr<const Vocabulary
   auto worker = [&]() {
     for (std::size_t i = next++; i < requests.size(); i = next++) {
       try {
-        runs[i] = runDetector(vocabulary, requests[i].options, frames, requests[i].name);
+        runs[i] =
+            runDetector(vocabulary, requests[i].options, frames, requests[i].name, nullptr, maps);
       } catch (...) {
         std::lock_guard<std::mutex> lock(mutex);
         if (!error) error = std::current_exception();

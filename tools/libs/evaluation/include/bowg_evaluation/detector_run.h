@@ -23,7 +23,8 @@ namespace bowg {
 namespace eval {
 
 /// One image, ready for the detector. Every image is a keyframe: database
-/// entry n is frame n (the ground truth's indexing).
+/// entry n is frame n (the ground truth's indexing; after reference maps of
+/// M keyframes, entry M + n).
 struct FrameInput {
   double stamp = 0;  ///< seconds, strictly increasing
   ImageFeatures features;
@@ -36,7 +37,8 @@ struct FrameInput {
   /// The frame starts a mission (mission_file.h): the detector starts it
   /// (LoopDetector::startMission) before processing the frame.
   bool starts_mission = false;
-  std::uint32_t mission_id = 0;
+  /// Its id, or LoopDetector::kNextMissionId for the current or next free one.
+  std::int64_t mission_id = LoopDetector::kNextMissionId;
   std::string mission_name;
 };
 
@@ -45,7 +47,7 @@ KeyframeInput toKeyframeInput(const FrameInput& frame);
 
 /// The per-keyframe outcome (LoopResult without the correspondences).
 struct KeyframeRecord {
-  int frame = 0;
+  int frame = 0;  ///< its database entry (the frame's index after the maps')
   double stamp = 0;
   LoopStatus status = LoopStatus::kNoFeatures;
   bool has_candidate = false;
@@ -75,6 +77,9 @@ struct DetectorRun {
   std::string name;
   LoopDetectorOptions options;
   std::vector<KeyframeRecord> keyframes;
+  /// The mission of each reference-map keyframe (entries 0..; RunMaps): the
+  /// records' frames follow them.
+  std::vector<std::uint32_t> map_missions;
   double wall_seconds = 0;
   /// Before the first keyframe, every kMemorySampleEvery keyframes and after
   /// the last. The resident set is the process's: meaningful for a run alone
@@ -87,11 +92,28 @@ constexpr std::size_t kMemorySampleEvery = 1000;
 /// Called after every keyframe with (done, total).
 using ProgressCallback = std::function<void(std::size_t, std::size_t)>;
 
+/// What a run starts from and leaves behind (reference_maps.h).
+struct RunMaps {
+  /// Earlier missions read into the detector before the first frame
+  /// (LoopDetector::readMerged); the frames are then entries
+  /// load_entries.. (KeyframeRecord::frame).
+  std::vector<std::string> load;
+  std::size_t load_entries = 0;
+  /// Where the detector is saved after the last frame ("": nowhere).
+  std::string save;
+};
+
 /// Throws what LoopDetector throws (InvalidParameter for bad options,
-/// std::invalid_argument for non-increasing stamps).
+/// std::invalid_argument for non-increasing stamps), and std::logic_error
+/// when the maps no longer hold load_entries keyframes.
 DetectorRun runDetector(std::shared_ptr<const Vocabulary> vocabulary,
                         const LoopDetectorOptions& options, const std::vector<FrameInput>& frames,
-                        const std::string& name, const ProgressCallback& progress = nullptr);
+                        const std::string& name, const ProgressCallback& progress = nullptr,
+                        const RunMaps& maps = RunMaps());
+
+/// The mission of entry `entry` of the run: a reference map's keyframe or a
+/// frame's (std::out_of_range beyond them).
+std::uint32_t missionOfEntry(const DetectorRun& run, int entry);
 
 /// The loops a run found, scored by their final score eta.
 std::vector<Detection> detectionsOf(const DetectorRun& run);

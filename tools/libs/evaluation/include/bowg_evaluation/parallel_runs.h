@@ -27,11 +27,13 @@ struct RunRequest {
 /// (finished runs, total runs), from one thread at a time. The per-stage
 /// timings of runs made side by side include the contention between them:
 /// measure timing with runDetector() alone. Rethrows the first exception a
-/// run threw, after every thread has stopped.
+/// run threw, after every thread has stopped. Every run starts from `maps`
+/// (std::invalid_argument when it names a file to save: one run saves).
 std::vector<DetectorRun> runDetectorsInParallel(std::shared_ptr<const Vocabulary> vocabulary,
                                                 const std::vector<RunRequest>& requests,
                                                 const std::vector<FrameInput>& frames, int jobs,
-                                                const ProgressCallback& progress = nullptr);
+                                                const ProgressCallback& progress = nullptr,
+                                                const RunMaps& maps = RunMaps());
 
 /// The exact PR curve of one options set: one run per min_score in
 /// `thresholds`, each evaluated against `gt` (points in the thresholds' order).

@@ -1,0 +1,147 @@
+// Reference maps in the offline run (reference_maps.h): the ground truth
+// moved onto the run's numbering and the frames left out, by hand; a
+// sequence run in one go equals its first mission saved as a map and the
+// second run on it.
+#include "bowg_evaluation/reference_maps.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+#include "bowg_evaluation/mission_file.h"
+#include "synthetic_sequence.h"
+#include "synthetic_vocabulary.h"
+
+namespace bowg {
+namespace eval {
+namespace {
+
+// The maps are the skipped frames (a re-inspection folder's first mission):
+// the numbering stays the input's; skipped queries are left out.
+TEST(ReferenceMaps, GroundTruthOfTheSkippedFramesKeepsItsNumbers) {
+  GroundTruth gt;
+  gt.loops = {{2, {0}}, {5, {1, 3}}, {7, {6}}};
+  const GroundTruth moved = groundTruthAfterMaps(gt, 4, 4);
+  ASSERT_EQ(moved.loops.size(), 2u);
+  EXPECT_EQ(moved.loops.at(5), (std::vector<int>{1, 3}));
+  EXPECT_EQ(moved.loops.at(7), (std::vector<int>{6}));
+}
+
+// Maps of 10 keyframes before an input whose first 4 frames are left out:
+// input frame k >= 4 is entry 10 + (k - 4) = k + 6.
+TEST(ReferenceMaps, GroundTruthMovesBehindOtherMaps) {
+  GroundTruth gt;
+  gt.loops = {{5, {4}}, {9, {5, 7}}};
+  const GroundTruth moved = groundTruthAfterMaps(gt, 4, 10);
+  ASSERT_EQ(moved.loops.size(), 2u);
+  EXPECT_EQ(moved.loops.at(11), (std::vector<int>{10}));
+  EXPECT_EQ(moved.loops.at(15), (std::vector<int>{11, 13}));
+  // No frame left out, maps of 3: everything 3 later.
+  const GroundTruth after3 = groundTruthAfterMaps(gt, 0, 3);
+  EXPECT_EQ(after3.loops.at(8), (std::vector<int>{7}));
+  EXPECT_EQ(after3.loops.at(12), (std::vector<int>{8, 10}));
+}
+
+TEST(ReferenceMaps, AMatchAmongSkippedFramesThatAreNotTheMapsIsRefused) {
+  GroundTruth gt;
+  gt.loops = {{6, {1}}};
+  try {
+    groundTruthAfterMaps(gt, 4, 10);
+    ADD_FAILURE() << "accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("frame 6 a match at frame 1"), std::string::npos)
+        << e.what();
+  }
+}
+
+TEST(ReferenceMaps, SkippingKeepsTheMissionStartedAmongTheSkippedFrames) {
+  std::vector<FrameInput> frames(6);
+  for (int i = 0; i < 6; ++i) frames[i].stamp = i;
+  frames[0].starts_mission = true;
+  frames[0].mission_id = 1;
+  frames[0].mission_name = "a";
+  frames[2].starts_mission = true;
+  frames[2].mission_id = 2;
+  frames[2].mission_name = "b";
+  skipFrames(3, &frames);
+  ASSERT_EQ(frames.size(), 3u);
+  EXPECT_DOUBLE_EQ(frames[0].stamp, 3.0);
+  EXPECT_TRUE(frames[0].starts_mission);
+  EXPECT_EQ(frames[0].mission_id, 2);
+  EXPECT_EQ(frames[0].mission_name, "b");
+  EXPECT_THROW(skipFrames(3, &frames), std::invalid_argument);  // none would be left
+}
+
+TEST(ReferenceMaps, LiveStampsMoveBehindTheMapsOnlyWhenNeeded) {
+  ReferenceMapSummary maps;
+  maps.entries = 5;
+  maps.last_stamp = 10.0;
+  std::vector<FrameInput> frames(3);
+  for (int i = 0; i < 3; ++i) frames[i].stamp = 0.5 * i;
+  EXPECT_DOUBLE_EQ(stampsAfterMaps(maps, 0.5, &frames), 10.5);
+  EXPECT_DOUBLE_EQ(frames[0].stamp, 10.5);
+  EXPECT_DOUBLE_EQ(frames[2].stamp, 11.5);
+  EXPECT_DOUBLE_EQ(stampsAfterMaps(maps, 0.5, &frames), 0.0);  // already after
+  EXPECT_DOUBLE_EQ(frames[0].stamp, 10.5);
+}
+
+void expectSameRecord(const KeyframeRecord& a, const KeyframeRecord& b) {
+  EXPECT_EQ(a.frame, b.frame);
+  EXPECT_EQ(a.status, b.status) << "frame " << a.frame;
+  EXPECT_EQ(a.candidate, b.candidate) << "frame " << a.frame;
+  EXPECT_DOUBLE_EQ(a.candidate_score, b.candidate_score) << "frame " << a.frame;
+  EXPECT_EQ(a.match, b.match) << "frame " << a.frame;
+  EXPECT_EQ(a.inliers, b.inliers) << "frame " << a.frame;
+  EXPECT_EQ(a.mission, b.mission) << "frame " << a.frame;
+  EXPECT_EQ(a.database_size, b.database_size) << "frame " << a.frame;
+}
+
+TEST(ReferenceMaps, FirstMissionAsAMapGivesTheSameSecondMission) {
+  std::vector<FrameInput> frames = testing_data::syntheticSequence();  // 60 frames
+  attachMissions(parseMissionStarts("0,3,first\n30,9,second\n", "m"), &frames);
+  auto vocabulary = std::make_shared<const Vocabulary>(testing::makeSyntheticVocabulary(6, 3));
+  LoopDetectorOptions options;
+  options.islands.recent_exclusion = 5;
+  options.temporal_verification.k = 1;
+  options.geometric.direct_index_level = 2;
+  const DetectorRun whole = runDetector(vocabulary, options, frames, "whole");
+
+  const std::string path = ::testing::TempDir() + "/reference_maps_test_first.map";
+  const std::vector<FrameInput> first(frames.begin(), frames.begin() + 30);
+  RunMaps save;
+  save.save = path;
+  runDetector(vocabulary, options, first, "first", nullptr, save);
+  const ReferenceMapSummary summary = readReferenceMaps({path}, vocabulary, options);
+  EXPECT_EQ(summary.entries, 30u);
+  EXPECT_DOUBLE_EQ(summary.last_stamp, frames[29].stamp);
+  ASSERT_EQ(summary.missions.size(), 1u);
+  EXPECT_EQ(summary.missions[0].id, 3u);
+  EXPECT_EQ(summary.missions[0].name, "first");
+
+  const std::vector<FrameInput> second(frames.begin() + 30, frames.end());
+  const DetectorRun on_map =
+      runDetector(vocabulary, options, second, "second", nullptr, RunMaps{{path}, 30, ""});
+  ASSERT_EQ(on_map.keyframes.size(), 30u);
+  ASSERT_EQ(on_map.map_missions.size(), 30u);
+  EXPECT_EQ(missionOfEntry(on_map, 0), 3u);
+  EXPECT_EQ(missionOfEntry(on_map, 30), 9u);
+  for (int i = 0; i < 30; ++i) expectSameRecord(on_map.keyframes[i], whole.keyframes[30 + i]);
+  // Loops into the map were found, and score alike across missions.
+  GroundTruth gt;
+  for (int i = 0; i < 10; ++i) gt.loops[40 + i] = {10 + i};
+  const PrPoint a = crossMissionPoint(whole, gt), b = crossMissionPoint(on_map, gt);
+  EXPECT_GT(b.true_positives, 0);
+  EXPECT_EQ(a.true_positives, b.true_positives);
+  EXPECT_EQ(a.false_positives, b.false_positives);
+  // A map that no longer holds what was counted is refused.
+  EXPECT_THROW(runDetector(vocabulary, options, second, "x", nullptr, RunMaps{{path}, 29, ""}),
+               std::logic_error);
+  std::remove(path.c_str());
+}
+
+}  // namespace
+}  // namespace eval
+}  // namespace bowg
