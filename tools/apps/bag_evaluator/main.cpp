@@ -6,6 +6,12 @@
 // (docs/evaluation.md, "Live evaluation"), the loops (detections_nodelet.csv)
 // and their relative poses (loop_poses_nodelet.csv).
 //
+// Against reference maps (~map_bags: the bags the nodelet's ~reference_maps
+// were recorded from, every image a keyframe, in order), the maps' images
+// are frames 0..M-1 and the played bag's follow: the numbering of
+// `bowg_evaluate --map` and of a ground truth over the maps' bags and the
+// played one together.
+//
 // The bag is over when the first of these happens:
 //  - the KeyframeStatus of the bag's last image arrived (plus ~grace, for
 //    the LoopClosure of that frame, which travels on another connection);
@@ -29,14 +35,15 @@
 
 #include "bowg/core/atomic_file.h"
 #include "bowg/core/errors.h"
+#include "bowg_bag_reading/bag_images.h"
 #include "bowg_evaluation/ground_truth.h"
 #include "bowg_evaluation/loop_pose_file.h"
 #include "bowg_evaluation/metrics.h"
 #include "bowg_evaluation/online_run.h"
+#include "bowg_evaluation/reference_maps.h"
 #include "bowg_evaluation/stamp_index.h"
 #include "bowg_ros/KeyframeStatus.h"
 #include "bowg_ros/LoopClosure.h"
-#include "bowg_bag_reading/bag_images.h"
 
 namespace {
 
@@ -73,6 +80,10 @@ class BagEvaluator {
     if (!pnh.getParam("bag", bag_path) || bag_path.empty()) {
       throw std::invalid_argument("~bag (the played bag file) is required");
     }
+    std::vector<std::string> map_bags;
+    if (pnh.hasParam("map_bags") && !pnh.getParam("map_bags", map_bags)) {
+      throw std::invalid_argument("~map_bags must be a list of bag files");
+    }
     pnh.param<std::string>("image_topic", image_topic, "/camera/image_raw");
     pnh.param<std::string>("gt", gt_path, "");
     pnh.param<std::string>("output_dir", output_dir_, "bowg_bag_evaluation");
@@ -89,16 +100,35 @@ class BagEvaluator {
           "~stamp_tolerance >= 0");
     }
 
-    index_.reset(new StampIndex(imageStamps(bag_path, image_topic)));
+    // The maps' images first, then the played bag's.
+    std::vector<std::int64_t> stamps;
+    std::string maps_line;
+    for (const std::string& path : map_bags) {
+      const std::vector<std::int64_t> map_stamps = imageStamps(path, image_topic);
+      stamps.insert(stamps.end(), map_stamps.begin(), map_stamps.end());
+      maps_line += " " + path + " (" + std::to_string(map_stamps.size()) + ")";
+    }
+    const int first_frame = static_cast<int>(stamps.size());
+    const std::vector<std::int64_t> played = imageStamps(bag_path, image_topic);
+    stamps.insert(stamps.end(), played.begin(), played.end());
+    index_.reset(new StampIndex(stamps));
     // Never so wide that a stamp could reach two frames.
     tolerance_ns_ = index_->safeTolerance(bowg::eval::secondsToNanoseconds(tolerance_s));
-    run_.reset(new bowg::eval::OnlineRun(index_->frames()));
+    run_.reset(new bowg::eval::OnlineRun(played.size(), first_frame));
     has_gt_ = !gt_path.empty();
-    if (has_gt_) gt_ = bowg::eval::readGroundTruth(gt_path);
-    title_ = "bag: " + bag_path + " (" + std::to_string(index_->frames()) + " images on " +
-             image_topic + ")\n" + (has_gt_ ? "ground truth: " + gt_path + "\n" : "");
+    // Only the played frames are queries.
+    if (has_gt_) {
+      gt_ = bowg::eval::groundTruthAfterMaps(bowg::eval::readGroundTruth(gt_path), first_frame,
+                                             static_cast<std::size_t>(first_frame));
+    }
+    title_ = "bag: " + bag_path + " (" + std::to_string(played.size()) + " images on " +
+             image_topic + ")\n" +
+             (map_bags.empty() ? ""
+                               : "map bags (frames 0-" + std::to_string(first_frame - 1) +
+                                     "):" + maps_line + "\n") +
+             (has_gt_ ? "ground truth: " + gt_path + "\n" : "");
     ROS_INFO("bowg_bag_evaluator: %zu images in %s; waiting for the nodelet's outputs",
-             index_->frames(), bag_path.c_str());
+             played.size(), bag_path.c_str());
     start_ = ros::WallTime::now();
     timer_ = nh.createWallTimer(ros::WallDuration(0.1), &BagEvaluator::check, this);
   }
@@ -119,7 +149,12 @@ class BagEvaluator {
         index_->find(static_cast<std::int64_t>(msg->query_stamp.toNSec()), tolerance_ns_);
     const int match =
         index_->find(static_cast<std::int64_t>(msg->match_stamp.toNSec()), tolerance_ns_);
-    run_->addLoop(query, match, msg->score);
+    // Counted per mission where missions matter: a named one or another
+    // mission than the query's.
+    const bool named = !msg->match_mission_name.empty() || msg->match_mission != msg->query_mission;
+    run_->addLoop(
+        query, match, msg->score,
+        named ? std::to_string(msg->match_mission) + " '" + msg->match_mission_name + "'" : "");
     if (query >= 0 && match >= 0 && msg->has_relative_pose) {
       loop_poses_.push_back(loopPoseOf(*msg, query, match));
     }

@@ -234,6 +234,73 @@ TEST_F(BagAgreement, WithTheBagsOdometryTheNodeletMeasuresMetricLoops) {
   EXPECT_GE(images_recall, 0.9 * odometry_recall);
 }
 
+// Re-inspection: a bag of two surveys of the same pipes (the generator's
+// --again, 150 images each). The first survey, saved by the offline tool as a
+// database, is the reference map of a nodelet that is played the second
+// survey's bag alone; it publishes the offline tool's loops (bowg_evaluate
+// --map over the same frames), and each loop names the survey its match is
+// from as the offline run has it.
+TEST_F(BagAgreement, AgainstTheFirstSurveysMapTheNodeletFindsTheOfflineToolsLoops) {
+  const std::string bin = BOWG_TOOLS_BIN_DIR;
+  const std::string dir = kDir + "/again";
+  ASSERT_EQ(run("mkdir -p " + dir + " && " + bin + "/bowg_generate_pipe_sequence --bag " + dir +
+                    "/both.bag --again --frames 150 --speed 1.0 --width 320 --height 240",
+                dir + "/generate.log"),
+            0)
+      << readAll(dir + "/generate.log");
+  // The second survey's first image is frame 150, 15 s after the first.
+  ASSERT_EQ(run("cd " + dir + " && start=$(rosbag info -y -k start both.bag) && " +
+                    "rosbag filter both.bag first.bag \"t.to_sec() < $start + 14.95\" && " +
+                    "rosbag filter both.bag second.bag \"t.to_sec() >= $start + 14.95\"",
+                dir + "/split.log"),
+            0)
+      << readAll(dir + "/split.log");
+  const std::string offline = bin + "/bowg_evaluate --quiet --sweep score --bag " + dir +
+                              "/both.bag --gt " + dir + "/both_gt.txt --missions " + dir +
+                              "/both_missions.csv --vocabulary " + vocabulary() + " --config " +
+                              config();
+  ASSERT_EQ(run(offline + " --max-frames 150 --save-map " + dir + "/first.bowgdb --output " + dir +
+                    "/first",
+                dir + "/first.log"),
+            0)
+      << readAll(dir + "/first.log");
+  ASSERT_EQ(run(offline + " --skip-frames 150 --map " + dir + "/first.bowgdb --output " + dir +
+                    "/offline",
+                dir + "/offline.log"),
+            0)
+      << readAll(dir + "/offline.log");
+  const auto offline_loops = loopsOf(dir + "/offline/detections_bowg.csv");
+  int into_first = 0;
+  for (const auto& l : offline_loops) into_first += l.first.second < 150 ? 1 : 0;
+  EXPECT_GT(into_first, 0) << "the second survey revisits the first";
+
+  const int port = freePort();
+  ASSERT_GT(port, 0);
+  const std::string launch = "env ROS_MASTER_URI=http://127.0.0.1:" + std::to_string(port) +
+                             " ROS_HOME=" + dir + "/ros_home timeout -s INT 240 roslaunch -p " +
+                             std::to_string(port) + " bowg_ros evaluate_bag.launch bag:=" + dir +
+                             "/second.bag gt:=" + dir + "/both_gt.txt vocabulary:=" + vocabulary() +
+                             " config:=" + config() +
+                             " rate:=1 queue_size:=100000 idle_timeout:=30 output_dir:=" + dir +
+                             "/live" + " reference_maps:=[" + dir + "/first.bowgdb] map_bags:=[" +
+                             dir + "/first.bag]" + " mission_name:='second survey' mission_id:=2";
+  run(launch, dir + "/live.log");
+  const std::string summary = readAll(dir + "/live/summary.txt");
+  ASSERT_FALSE(summary.empty()) << readAll(dir + "/live.log");
+  EXPECT_NE(summary.find("images in bag: 150\n"), std::string::npos) << summary;
+  EXPECT_NE(summary.find("frames dropped: 0\n"), std::string::npos) << summary;
+  EXPECT_NE(summary.find("unmapped stamps: 0\n"), std::string::npos) << summary;
+  expectSameLoops(offline_loops, loopsOf(dir + "/live/detections_nodelet.csv"));
+  // Every loop's match mission, as the offline numbering has it: frames
+  // 0-149 are the first survey's.
+  std::string by_mission =
+      "loops by match mission: 1 'first survey' " + std::to_string(into_first) + ";";
+  if (static_cast<int>(offline_loops.size()) > into_first) {
+    by_mission += " 2 'second survey' " + std::to_string(offline_loops.size() - into_first) + ";";
+  }
+  EXPECT_NE(summary.find(by_mission + "\n"), std::string::npos) << by_mission << "\n" << summary;
+}
+
 }  // namespace
 }  // namespace eval
 }  // namespace bowg

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <iterator>
 #include <limits>
 #include <sstream>
 
@@ -16,7 +17,8 @@ void OnlineRun::addKeyframe(int frame) {
   keyframes_.insert(frame);
 }
 
-void OnlineRun::addLoop(int query, int match, double score) {
+void OnlineRun::addLoop(int query, int match, double score, const std::string& match_mission) {
+  if (!match_mission.empty()) ++by_mission_[match_mission];
   if (query < 0 || match < 0) {
     ++unmapped_;
     return;
@@ -25,13 +27,15 @@ void OnlineRun::addLoop(int query, int match, double score) {
 }
 
 std::size_t OnlineRun::framesDropped() const {
-  return keyframes_.size() >= images_ ? 0 : images_ - keyframes_.size();
+  const std::size_t seen = std::distance(keyframes_.lower_bound(first_), keyframes_.end());
+  return seen >= images_ ? 0 : images_ - seen;
 }
 
 std::vector<int> OnlineRun::missingFrames() const {
   std::vector<int> missing;
-  for (std::size_t f = 0; f < images_; ++f) {
-    if (!keyframes_.count(static_cast<int>(f))) missing.push_back(static_cast<int>(f));
+  for (std::size_t i = 0; i < images_; ++i) {
+    const int f = first_ + static_cast<int>(i);
+    if (!keyframes_.count(f)) missing.push_back(f);
   }
   return missing;
 }
@@ -69,8 +73,13 @@ std::string summarizeOnlineRun(const OnlineRun& run, const GroundTruth* gt,
     for (std::size_t i = 0; i < missing.size() && i < 20; ++i) s << " " << missing[i];
     s << (missing.size() > 20 ? " ...\n" : "\n");
   }
-  s << "unmapped stamps: " << run.unmappedStamps() << "\n"
-    << "loops (query -> match, score" << (gt ? ", correct" : "") << "):\n";
+  s << "unmapped stamps: " << run.unmappedStamps() << "\n";
+  if (!run.loopsByMission().empty()) {
+    s << "loops by match mission:";
+    for (const auto& m : run.loopsByMission()) s << " " << m.first << " " << m.second << ";";
+    s << "\n";
+  }
+  s << "loops (query -> match, score" << (gt ? ", correct" : "") << "):\n";
   for (const Detection& d : run.detections()) {
     char line[128];
     std::snprintf(line, sizeof(line), "  loop %d -> %d  score %.3f", d.query, d.match, d.score);
