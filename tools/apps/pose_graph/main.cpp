@@ -24,6 +24,7 @@
 #include "bowg_pose_graph/trajectory_error.h"
 #include "bowg_pose_graph/trajectory_file.h"
 #include "bowg_pose_graph/trajectory_plot.h"
+#include "mission_frames.h"
 #include "pose_graph_args.h"
 
 namespace bowg {
@@ -199,13 +200,28 @@ void writeOutputs(const std::string& dir, const Frames& f, const Tracks& t, cons
   std::cout << "outputs in " << dir << ": trajectories.csv, summary.txt, trajectories.png\n";
 }
 
+// The surveys of --missions (one spanning every frame without it).
+std::vector<MissionSpan> spansOf(const Args& a, const Frames& f) {
+  std::vector<int> frame_of_node;
+  for (const auto& p : f.odometry) frame_of_node.push_back(p.frame);
+  std::vector<eval::MissionStart> starts{eval::MissionStart{f.odometry.front().frame, 0, ""}};
+  if (!a.missions.empty()) starts = eval::readMissionStarts(a.missions);
+  return missionSpans(starts, frame_of_node, a.missions);
+}
+
 int run(const Args& a) {
   const Frames f = readFrames(a);
   const Loops loops = loopEdges(a, f);
+  const std::vector<MissionSpan> spans = spansOf(a, f);
+  pose_graph::PoseVector odometry;
+  for (const auto& p : f.odometry) odometry.push_back(p.isometry());
+  const pose_graph::PoseVector initial = initialPoses(spans, odometry, loops.nodes);
   pose_graph::PoseGraph graph(a.graph);
-  for (const auto& p : f.odometry) graph.addPose(p.isometry());
-  for (std::size_t i = 1; i < f.odometry.size(); ++i) {
-    graph.addOdometry(i - 1, i, f.odometry[i - 1].isometry().inverse() * f.odometry[i].isometry());
+  for (const Eigen::Isometry3d& p : initial) graph.addPose(p);
+  for (std::size_t i = 1; i < odometry.size(); ++i) {
+    // No odometry edge between two surveys: their frames are their own.
+    if (!sameMission(spans, i - 1, i)) continue;
+    graph.addOdometry(i - 1, i, odometry[i - 1].inverse() * odometry[i]);
   }
   for (const pose_graph::LoopEdge& edge : loops.edges) graph.addLoop(edge);
   const pose_graph::SolveSummary summary = graph.optimize();
@@ -214,7 +230,12 @@ int run(const Args& a) {
   for (std::size_t i = 0; i < graph.size(); ++i) t.optimised.push_back(graph.pose(i).translation());
   t.truth = positions(f.truth);
   t.odometry = positions(f.odometry);
-  const std::string text = report(a, t, loops, summary);
+  std::string text = report(a, t, loops, summary);
+  if (spans.size() > 1) {
+    std::vector<Eigen::Vector3d> placed;
+    for (const Eigen::Isometry3d& p : initial) placed.push_back(p.translation());
+    text += missionReport(spans, t.truth, t.odometry, placed, t.optimised, loops.nodes);
+  }
   std::cout << text;
   if (!a.output.empty()) writeOutputs(a.output, f, t, loops, text);
   return 0;

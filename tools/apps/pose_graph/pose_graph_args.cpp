@@ -10,7 +10,7 @@ namespace pose_graph_app {
 const char* const kUsage =
     "usage: bowg_pose_graph --truth POSES.csv --odometry ODOMETRY.csv --loops DETECTIONS.csv\n"
     "                       [--loop-poses LOOP_POSES.csv] [--output DIR] [--loop-sigma M]\n"
-    "                       [--odometry-sigma FRACTION] [--robust SIGMAS]\n"
+    "                       [--odometry-sigma FRACTION] [--robust SIGMAS] [--missions FILE]\n"
     "\n"
     "The pose-graph example: one node per frame of the odometry, odometry edges between\n"
     "consecutive frames, one loop edge per detection (the query at the match's place,\n"
@@ -29,7 +29,11 @@ const char* const kUsage =
     "  --output DIR        writes trajectories.csv, summary.txt and trajectories.png\n"
     "  --loop-sigma M      sigma of the query's position at the match's place [0.15]\n"
     "  --odometry-sigma F  sigma of an odometry step's position, fraction of its length [0.05]\n"
-    "  --robust SIGMAS     Cauchy loss scale on the loops, in sigmas; 0 = none [3]\n";
+    "  --robust SIGMAS     Cauchy loss scale on the loops, in sigmas; 0 = none [3]\n"
+    "  --missions FILE     where each survey starts (first_frame,mission_id,name; the\n"
+    "                      generator's missions.csv): each survey's odometry is a frame of\n"
+    "                      its own, placed by its loops into the earlier ones; prints each\n"
+    "                      later survey's error in its own frame, placed and optimised\n";
 
 Args parseArgs(int argc, char** argv) {
   Args a;
@@ -49,6 +53,8 @@ Args parseArgs(int argc, char** argv) {
       a.loop_poses = value();
     } else if (flag == "--output") {
       a.output = value();
+    } else if (flag == "--missions") {
+      a.missions = value();
     } else if (flag == "--loop-sigma") {
       a.graph.loop_position_sigma = eval::numberArgument(flag, value());
     } else if (flag == "--odometry-sigma") {

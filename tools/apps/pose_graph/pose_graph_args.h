@@ -16,7 +16,10 @@ struct Args {
   /// translation become metric edges (camera at the body's origin, looking
   /// along x: the generator's camera).
   std::string loop_poses;
-  std::string output;    ///< --output DIR: trajectories.csv, summary.txt, trajectories.png
+  std::string output;  ///< --output DIR: trajectories.csv, summary.txt, trajectories.png
+  /// --missions: where each survey starts (the generator's missions.csv):
+  /// each has an odometry frame of its own (mission_frames.h).
+  std::string missions;
   pose_graph::PoseGraphOptions graph;
 };
 

@@ -72,6 +72,70 @@ TEST(PoseGraphCli, LoopsBringTheTrajectoryBackToTheTruth) {
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 601);
 }
 
+// The two laps as two surveys: lap 2's odometry restarted in a frame of its
+// own (turned 70 deg, moved by (5, -3)). Placed by its loops into lap 1 and
+// optimised, it ends where it would have with the frames shared: the result
+// does not depend on where the second frame lies. A survey with no loop into
+// an earlier one cannot be placed and is refused by name.
+TEST(PoseGraphCli, ASecondSurveyInItsOwnFrameIsPlacedByItsLoops) {
+  run("mkdir -p " + kOut);
+  std::vector<Pose2> truth, odometry;
+  tool_test::twoLapCircuit(&truth, &odometry);
+  std::vector<Pose2> moved = odometry;
+  const double yaw = 70 * 3.14159265358979323846 / 180, c = std::cos(yaw), s = std::sin(yaw);
+  for (std::size_t i = 300; i < moved.size(); ++i) {
+    const Pose2& o = odometry[i];
+    moved[i] = {c * o.x - s * o.y + 5, s * o.x + c * o.y - 3, o.yaw + yaw};
+  }
+  writePoses(kOut + "/m_poses.csv", truth);
+  writePoses(kOut + "/m_odometry.csv", odometry);
+  writePoses(kOut + "/m_moved.csv", moved);
+  {
+    std::ofstream f(kOut + "/m_detections.csv");
+    f << "query,match,score\n";
+    for (int q = 310; q < 600; q += 10) f << q << "," << q - 300 << ",1.0\n";
+    std::ofstream m(kOut + "/missions.csv");
+    m << "0,1,lap one\n300,2,lap two\n";
+  }
+  const std::string bin = std::string(BOWG_POSE_GRAPH_BIN) + " --truth " + kOut +
+                          "/m_poses.csv --loops " + kOut + "/m_detections.csv --missions " + kOut +
+                          "/missions.csv --odometry " + kOut;
+  ASSERT_EQ(run(bin + "/m_moved.csv", kOut + "/moved.log"), 0) << readAll(kOut + "/moved.log");
+  ASSERT_EQ(run(bin + "/m_odometry.csv", kOut + "/shared.log"), 0) << readAll(kOut + "/shared.log");
+  const std::string moved_out = readAll(kOut + "/moved.log");
+  const std::string shared_out = readAll(kOut + "/shared.log");
+  std::printf("%s", moved_out.c_str());
+  EXPECT_NE(moved_out.find("mission 2 'lap two': 300 frames, 29 loops into earlier missions"),
+            std::string::npos)
+      << moved_out;
+  const double own = number(moved_out, "in its own odometry frame: RMSE ");
+  const double placed = number(moved_out, "placed by its loops      : RMSE ");
+  const double after = number(moved_out, "pose graph + loops       : RMSE ");
+  const double after_shared = number(shared_out, "pose graph + loops       : RMSE ");
+  ASSERT_TRUE(std::isfinite(own) && std::isfinite(placed) && std::isfinite(after)) << moved_out;
+  EXPECT_GT(own, 5.0);  // metres away in a frame of its own
+  EXPECT_LT(placed, 0.5 * own);
+  // Each lap is one pass with no loop of its own: lap 2 lands on lap 1 as
+  // lap 1's odometry drew it (its drift stays, nothing measures it), and
+  // the graph keeps it there.
+  EXPECT_LE(after, placed + 0.01);
+  EXPECT_NEAR(after, after_shared, 0.01);
+  {
+    std::ofstream f(kOut + "/m_lap1_only.csv");
+    f << "query,match,score\n";
+    for (int q = 100; q < 300; q += 10) f << q << "," << q - 50 << ",1.0\n";
+  }
+  const std::string log = kOut + "/no_cross.log";
+  EXPECT_EQ(run(std::string(BOWG_POSE_GRAPH_BIN) + " --truth " + kOut + "/m_poses.csv --loops " +
+                    kOut + "/m_lap1_only.csv --missions " + kOut + "/missions.csv --odometry " +
+                    kOut + "/m_moved.csv",
+                log),
+            1);
+  EXPECT_NE(readAll(log).find("mission 2 'lap two' has no loop into an earlier mission"),
+            std::string::npos)
+      << readAll(log);
+}
+
 // Out 2 m and back along x, facing +x; the last frame stands 4 cm ahead of
 // the first. A metric loop that says so (optical z forward: the match camera
 // 4 cm behind the query, X_Q = X_M + (0, 0, -0.04)) is reported with no
