@@ -1,15 +1,15 @@
 // Engine types <-> ROS messages (see ros_conversions.h).
 #include "bowg_ros/ros_conversions.h"
 
-#include "bowg/features/descriptor_conversion.h"
-#include "bowg/features/feature_arrays.h"
-
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <stdexcept>
 #include <string>
+
+#include "bowg/features/descriptor_conversion.h"
+#include "bowg/features/feature_arrays.h"
 
 namespace bowg_ros {
 
@@ -24,8 +24,7 @@ bowg::CameraIntrinsics toIntrinsics(const sensor_msgs::CameraInfo& info) {
   return k;
 }
 
-bowg::ImageFeatures fromMessage(const KeyframeFeatures& msg,
-                                const bowg::FeatureOptions& options) {
+bowg::ImageFeatures fromMessage(const KeyframeFeatures& msg, const bowg::FeatureOptions& options) {
   static_assert(KeyframeFeatures::DESCRIPTOR_BYTES == bowg::kDescriptorBytes,
                 "the message's descriptor rows are the engine's");
   bowg::FeatureArrays a;
@@ -158,6 +157,8 @@ KeyframeStatus toKeyframeStatus(const bowg::LoopResult& r, const std_msgs::Heade
   s.database_size = static_cast<std::uint32_t>(database_size);
   s.candidates_scored = static_cast<std::uint32_t>(r.candidates_scored);
   s.candidates_gated = static_cast<std::uint32_t>(r.candidates_gated);
+  s.candidates_gated_cross_run = static_cast<std::uint32_t>(r.candidates_gated_cross_run);
+  s.query_mission = r.mission;
   s.has_candidate = r.has_candidate;
   if (r.has_candidate) {
     s.best_id = r.best.entry;
@@ -166,6 +167,8 @@ KeyframeStatus toKeyframeStatus(const bowg::LoopResult& r, const std_msgs::Heade
     s.best_score_word = r.best.eta_w;
     s.best_score_group = r.best.eta_g;
     s.best_score_distribution = r.best.eta_d;
+    s.best_mission = r.best_mission;
+    s.best_mission_name = r.best_mission_name;
     s.island_first = r.island_first;
     s.island_last = r.island_last;
   }

@@ -271,6 +271,10 @@ TEST(RosConversions, KeyframeStatusEchoesResultAndOptions) {
   r.timings.total_ms = 4.0;
   r.timings.query_ms = 1.5;
   r.candidates_gated = 6;
+  r.candidates_gated_cross_run = 2;
+  r.mission = 5;
+  r.best_mission = 3;
+  r.best_mission_name = "2025-05-12";
   r.word_normaliser = 0.05;
   r.word_divisor = 0.08;  // floored
   r.group_divisor = 0.011;
@@ -286,7 +290,11 @@ TEST(RosConversions, KeyframeStatusEchoesResultAndOptions) {
   EXPECT_EQ(s.num_features, 321u);
   EXPECT_EQ(s.database_size, 43u);
   EXPECT_EQ(s.candidates_gated, 6u);
+  EXPECT_EQ(s.candidates_gated_cross_run, 2u);
+  EXPECT_EQ(s.query_mission, 5u);
   EXPECT_EQ(s.best_id, 7u);
+  EXPECT_EQ(s.best_mission, 3u);
+  EXPECT_EQ(s.best_mission_name, "2025-05-12");
   EXPECT_EQ(s.best_score_sim, 0.85);
   EXPECT_EQ(s.match_id, 7u);
   EXPECT_EQ(s.query_ms, 1.5);

@@ -17,22 +17,25 @@ std::vector<AnchorEntries> loopAnchors(const QueryContext& ctx) {
   return anchors;
 }
 
-std::size_t applyOdometryGates(const QueryContext& ctx, const DatabaseEntry& query_entry,
-                               const std::vector<AnchorEntries>& anchors,
-                               std::vector<std::pair<EntryId, double>>* etas) {
+void applyOdometryGates(const QueryContext& ctx, const DatabaseEntry& query_entry,
+                        const std::vector<AnchorEntries>& anchors,
+                        std::vector<std::pair<EntryId, double>>* etas, LoopResult* r) {
   const IslandOptions& io = ctx.options.islands;
   const bool anchored = !anchors.empty();
-  if (!(io.odometry_gate_m > 0.0) && !anchored) return 0;
+  if (!(io.odometry_gate_m > 0.0) && !anchored) return;
   const auto outside = [&](const std::pair<EntryId, double>& c) {
     if (c.second < io.min_score) return false;
     const DatabaseEntry& e = ctx.database.entry(c.first);
+    if (anchored && !withinCrossRunAnchors(query_entry, e, anchors, io)) {
+      ++r->candidates_gated_cross_run;
+      return true;
+    }
     return !withinOdometryGate(query_entry, e, io) ||
            (anchored && !withinLoopAnchors(query_entry, e, anchors, io));
   };
   const auto end = std::remove_if(etas->begin(), etas->end(), outside);
-  const std::size_t gated = static_cast<std::size_t>(etas->end() - end);
+  r->candidates_gated = static_cast<std::size_t>(etas->end() - end);
   etas->erase(end, etas->end());
-  return gated;
 }
 
 }  // namespace query_steps

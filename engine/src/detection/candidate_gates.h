@@ -19,10 +19,11 @@ namespace query_steps {
 /// them (none when it is off).
 std::vector<AnchorEntries> loopAnchors(const QueryContext& ctx);
 
-/// Removes the gated candidates from `etas`; returns how many.
-std::size_t applyOdometryGates(const QueryContext& ctx, const DatabaseEntry& query_entry,
-                               const std::vector<AnchorEntries>& anchors,
-                               std::vector<std::pair<EntryId, double>>* etas);
+/// Removes the gated candidates from `etas`; counts them in
+/// r->candidates_gated (and r->candidates_gated_cross_run).
+void applyOdometryGates(const QueryContext& ctx, const DatabaseEntry& query_entry,
+                        const std::vector<AnchorEntries>& anchors,
+                        std::vector<std::pair<EntryId, double>>* etas, LoopResult* r);
 
 }  // namespace query_steps
 }  // namespace bowg

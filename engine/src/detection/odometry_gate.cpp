@@ -56,13 +56,15 @@ double positionDistanceSquared(const DatabaseEntry& a, const DatabaseEntry& b) {
 }
 
 // The anchor that judges `entry` (the smallest radius among those that
-// apply) and its radius; nullptr when none applies.
-const AnchorEntries* bestAnchor(const DatabaseEntry& query, const DatabaseEntry& entry,
-                                const std::vector<AnchorEntries>& anchors,
-                                const IslandOptions& options, double* radius) {
+// `applies` to it) and its radius; nullptr when none applies.
+template <typename Applies>
+const AnchorEntries* bestAnchorWhere(const DatabaseEntry& query, const DatabaseEntry& entry,
+                                     const std::vector<AnchorEntries>& anchors,
+                                     const IslandOptions& options, Applies applies,
+                                     double* radius) {
   const AnchorEntries* best = nullptr;
   for (const AnchorEntries& a : anchors) {
-    if (!anchorApplies(query, entry, *a.query, *a.match)) continue;
+    if (!applies(query, entry, *a.query, *a.match)) continue;
     const double r = anchorRadius(query, entry, *a.query, *a.match, options);
     if (best == nullptr || r < *radius) {
       best = &a;
@@ -70,6 +72,30 @@ const AnchorEntries* bestAnchor(const DatabaseEntry& query, const DatabaseEntry&
     }
   }
   return best;
+}
+
+// The loop-anchored gate's anchor of `entry` within the query's run.
+const AnchorEntries* bestAnchor(const DatabaseEntry& query, const DatabaseEntry& entry,
+                                const std::vector<AnchorEntries>& anchors,
+                                const IslandOptions& options, double* radius) {
+  return bestAnchorWhere(query, entry, anchors, options, anchorApplies, radius);
+}
+
+// Whether anchor (aq, am) ties the query's run to `entry`'s, another one,
+// with the positions and odometers the cross-run gate needs.
+bool crossAnchorApplies(const DatabaseEntry& query, const DatabaseEntry& entry,
+                        const DatabaseEntry& aq, const DatabaseEntry& am) {
+  return entry.odometry_run != query.odometry_run && placed(query, query.odometry_run) &&
+         placed(aq, query.odometry_run) && placed(entry, entry.odometry_run) &&
+         placed(am, entry.odometry_run);
+}
+
+// How much farther (or nearer) the entry lies from the anchor's match than
+// the query from the anchor's query, in straight lines: no rotation needed.
+double crossRunMismatch(const DatabaseEntry& query, const DatabaseEntry& entry,
+                        const DatabaseEntry& aq, const DatabaseEntry& am) {
+  return std::fabs(std::sqrt(positionDistanceSquared(query, aq)) -
+                   std::sqrt(positionDistanceSquared(entry, am)));
 }
 
 }  // namespace
@@ -98,6 +124,16 @@ bool withinLoopAnchors(const DatabaseEntry& query, const DatabaseEntry& entry,
   double radius = 0.0;
   const AnchorEntries* best = bestAnchor(query, entry, anchors, options, &radius);
   return best == nullptr || anchoredWithin(query, entry, *best->query, *best->match, radius);
+}
+
+bool withinCrossRunAnchors(const DatabaseEntry& query, const DatabaseEntry& entry,
+                           const std::vector<AnchorEntries>& anchors,
+                           const IslandOptions& options) {
+  if (!(options.odometry_anchor_m > 0.0)) return true;
+  double radius = 0.0;
+  const AnchorEntries* best =
+      bestAnchorWhere(query, entry, anchors, options, crossAnchorApplies, &radius);
+  return best == nullptr || crossRunMismatch(query, entry, *best->query, *best->match) <= radius;
 }
 
 bool anchoredByRecentLoop(const DatabaseEntry& query, const DatabaseEntry& entry,

@@ -39,6 +39,13 @@ std::vector<Island> islandsOf(const QueryContext& ctx,
   return islands;
 }
 
+// The candidate the keyframe's status is about, and its mission.
+void setBest(const QueryContext& ctx, const CandidateScores& best, LoopResult* r) {
+  r->best = best;
+  r->best_mission = ctx.database.entry(best.entry).mission;
+  r->best_mission_name = ctx.database.missions().find(r->best_mission)->name;
+}
+
 // The chosen island in the result, and its best entry's scores as r->best.
 void recordIsland(const QueryContext& ctx, const Island& island, LoopResult* r) {
   r->island_first = island.first;
@@ -47,7 +54,7 @@ void recordIsland(const QueryContext& ctx, const Island& island, LoopResult* r) 
   const auto it =
       std::lower_bound(ctx.candidates.begin(), ctx.candidates.end(), island.best_entry,
                        [](const CandidateScores& c, EntryId id) { return c.entry < id; });
-  if (it != ctx.candidates.end() && it->entry == island.best_entry) r->best = *it;
+  if (it != ctx.candidates.end() && it->entry == island.best_entry) setBest(ctx, *it, r);
 }
 
 // What the verified chain says of a query that the odometry positions do
@@ -96,12 +103,14 @@ void runQuery(const QueryContext& ctx, const DatabaseQuery& q, const DatabaseEnt
     return;
   }
   r->has_candidate = true;
-  r->best = *std::max_element(
-      ctx.candidates.begin(), ctx.candidates.end(),
-      [](const CandidateScores& a, const CandidateScores& b) { return a.eta < b.eta; });
+  setBest(ctx,
+          *std::max_element(
+              ctx.candidates.begin(), ctx.candidates.end(),
+              [](const CandidateScores& a, const CandidateScores& b) { return a.eta < b.eta; }),
+          r);
   // 2. The odometry gates.
   const std::vector<AnchorEntries> anchors = loopAnchors(ctx);
-  r->candidates_gated = applyOdometryGates(ctx, query_entry, anchors, &etas);
+  applyOdometryGates(ctx, query_entry, anchors, &etas, r);
   // 3. Islands, and the choice among them by geometric re-ranking.
   std::vector<Island> islands = islandsOf(ctx, std::move(etas));
   if (islands.empty()) {

@@ -3,6 +3,7 @@
 // missions section of the detector file (version 9).
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstring>
 #include <string>
 
@@ -52,6 +53,70 @@ TEST(Missions, KeyframesAndLoopsSayTheirMission) {
   EXPECT_NE(d.database().entry(39).odometry_run, d.database().entry(40).odometry_run);
   EXPECT_EQ(d.database().entry(0).mission, 1u);
   EXPECT_EQ(d.database().entry(64).mission, 2u);
+}
+
+// Mission A at corridor x = i, position (i, 0, 0); mission B drives back
+// (x = 39.5 - j) with positions in a frame of its own, turned and moved:
+// (5, 3 + j, 0), plus `jump` metres in y from its keyframe 10 on (an
+// odometry that suddenly says the robot is elsewhere). The cross-run
+// anchors compare how far each side moved from the last loop into A.
+struct CrossRunOutcome {
+  int loops_into_a = 0, loops_after_jump = 0, wrong_loops = 0;
+  std::size_t gated_after_jump = 0;
+  LoopResult last;
+};
+CrossRunOutcome runAcrossFrames(double jump) {
+  LoopDetectorOptions o = options();
+  o.islands.odometry_anchor_m = 0.3;
+  o.islands.odometry_gate_drift = 0.05;
+  LoopDetector d(testing::vocabulary(), o);
+  std::vector<KeyframeInput> kfs = keyframes();
+  for (int i = 0; i < 40; ++i) {
+    kfs[i].position = OdometryPosition{double(i), 0.0, 0.0};
+    kfs[i].odometer = i;
+  }
+  for (int j = 0; j < 25; ++j) {
+    kfs[40 + j].position = OdometryPosition{5.0, 3.0 + j + (j >= 10 ? jump : 0.0), 0.0};
+    kfs[40 + j].odometer = 100.0 + j;
+  }
+  CrossRunOutcome out;
+  d.startMission("A", 1);
+  for (int i = 0; i < 40; ++i) d.process(kfs[i]);
+  d.startMission("B", 2);
+  for (int j = 0; j < 25; ++j) {
+    out.last = d.process(kfs[40 + j]);
+    const bool into_a = out.last.status == LoopStatus::kLoopDetected && out.last.match_id < 40;
+    out.loops_into_a += into_a ? 1 : 0;
+    // B's keyframe j sees x = 39.5 - j: A's keyframes 39 - j and 40 - j.
+    if (into_a && std::abs(static_cast<double>(out.last.match_id) - (39.5 - j)) > 2) {
+      ++out.wrong_loops;
+    }
+    if (j >= 12) {
+      out.loops_after_jump += into_a ? 1 : 0;
+      out.gated_after_jump += out.last.candidates_gated_cross_run;
+    }
+  }
+  return out;
+}
+
+TEST(Missions, LoopsIntoAnEarlierMissionAnchorTheNextOnes) {
+  // Where B's odometry agrees, the anchors keep the true places (and
+  // refuse the corridor's far look-alikes above min_score).
+  const CrossRunOutcome agreed = runAcrossFrames(0.0);
+  EXPECT_GT(agreed.loops_after_jump, 0);
+  EXPECT_EQ(agreed.wrong_loops, 0);
+  // B's odometry jumps 20 m: A's true places now lie ~20 m off the ring the
+  // last loops draw, and are refused; the status says whose they were.
+  const CrossRunOutcome jumped = runAcrossFrames(20.0);
+  EXPECT_GT(jumped.loops_into_a, 0) << "the loops before the jump";
+  EXPECT_EQ(jumped.loops_after_jump, 0);
+  EXPECT_GT(jumped.gated_after_jump, agreed.gated_after_jump);
+  EXPECT_EQ(jumped.wrong_loops, 0);
+  ASSERT_TRUE(jumped.last.has_candidate);
+  EXPECT_EQ(jumped.last.best_mission, 1u);
+  EXPECT_EQ(jumped.last.best_mission_name, "A");
+  EXPECT_EQ(jumped.last.mission, 2u);
+  EXPECT_NE(jumped.last.status, LoopStatus::kLoopDetected);
 }
 
 TEST(Missions, ANameFindsItsMissionAgainAndAnIdOrNameIsNeverShared) {

@@ -50,7 +50,7 @@ TEST(OdometryGate, WithoutComparablePositionsEverythingPasses) {
   const DatabaseEntry query = at(0, 0, 0, 30.0);
   const DatabaseEntry far = at(100, 0, 0, 29.0);
   EXPECT_FALSE(withinOdometryGate(query, far, gate(0.5, 0.1)));
-  EXPECT_TRUE(withinOdometryGate(query, far, gate(0.0, 0.1)));  // gate off
+  EXPECT_TRUE(withinOdometryGate(query, far, gate(0.0, 0.1)));              // gate off
   EXPECT_TRUE(withinOdometryGate(query, DatabaseEntry(), gate(0.5, 0.1)));  // unknown position
   EXPECT_TRUE(withinOdometryGate(DatabaseEntry(), far, gate(0.5, 0.1)));
   // Another odometry run: another frame, positions not comparable.
@@ -178,6 +178,58 @@ TEST(LoopAnchor, OnlyARecentLoopAnchorsThePlace) {
 }
 
 // The metric translation's bound: what the gates assume of the odometry.
+// A loop from run 1 (the live mission) into run 0 (an earlier one, whose
+// frame is turned and moved): q0 = (0, 0, 0) odometer 10 was at the place of
+// m0 = (5, 5, 0) odometer 40. The query drove 1 m to (1, 0, 0). An entry of
+// run 0 must lie as far from m0 as the query from q0 (1 m), within 0.3 +
+// 0.05 * (1 + |driven m0..e|).
+TEST(CrossRunAnchor, TheEntryMustLieAsFarFromTheMatchAsTheQueryFromItsLoop) {
+  const IslandOptions o = anchor(0.3, 0.05);
+  const DatabaseEntry q0 = at(0, 0, 0, 10.0, 1), m0 = at(5, 5, 0, 40.0, 0);
+  const DatabaseEntry q = at(1, 0, 0, 11.0, 1);
+  // (5, 6, 0), 1 m from m0: 0 m off (radius 0.4), whatever the direction
+  // (the frames' rotation is unknown): (4, 5, 0) too.
+  EXPECT_TRUE(withinCrossRunAnchors(q, at(5, 6, 0, 41.0, 0), loop(q0, m0), o));
+  EXPECT_TRUE(withinCrossRunAnchors(q, at(4, 5, 0, 39.0, 0), loop(q0, m0), o));
+  // A look-alike 5 m on, (8, 9, 0): 4 m off, radius 0.3 + 0.05 * 6 = 0.6.
+  EXPECT_FALSE(withinCrossRunAnchors(q, at(8, 9, 0, 45.0, 0), loop(q0, m0), o));
+  // (5, 6.5, 0): 0.5 m off, radius 0.3 + 0.05 * 2.5 = 0.425: outside;
+  // (5, 6.4, 0): 0.4 m off, radius 0.42: inside.
+  EXPECT_FALSE(withinCrossRunAnchors(q, at(5, 6.5, 0, 41.5, 0), loop(q0, m0), o));
+  EXPECT_TRUE(withinCrossRunAnchors(q, at(5, 6.4, 0, 41.4, 0), loop(q0, m0), o));
+  // The loop-anchored gate of one run says nothing here.
+  EXPECT_TRUE(withinLoopAnchors(q, at(8, 9, 0, 45.0, 0), loop(q0, m0), o));
+}
+
+// Without positions (an odometer alone) the gate does not apply: metres
+// driven from the anchor's match say nothing once the two surveys part at a
+// junction (the earlier one may have taken the other pipe).
+TEST(CrossRunAnchor, AnOdometerAloneIsNotEnough) {
+  const IslandOptions o = anchor(0.3, 0.05);
+  DatabaseEntry q0, m0, q, e;
+  q0.odometer = 10.0;
+  q0.odometry_run = 1;
+  q = q0;
+  q.odometer = 12.0;
+  m0.odometer = 40.0;
+  e = m0;
+  e.odometer = 45.0;  // 5 m from m0 after 2 m: the ring would refuse it
+  EXPECT_TRUE(withinCrossRunAnchors(q, e, loop(q0, m0), o));
+}
+
+TEST(CrossRunAnchor, WithoutAnAnchorIntoTheEntrysRunEverythingPasses) {
+  const IslandOptions o = anchor(0.3, 0.05);
+  const DatabaseEntry q0 = at(0, 0, 0, 10.0, 1), m0 = at(5, 5, 0, 40.0, 0);
+  const DatabaseEntry q = at(1, 0, 0, 11.0, 1), far = at(8, 9, 0, 45.0, 0);
+  EXPECT_TRUE(withinCrossRunAnchors(q, far, {}, o));                             // no loop
+  EXPECT_TRUE(withinCrossRunAnchors(q, far, loop(q0, m0), anchor(0, 0.05)));     // gate off
+  EXPECT_TRUE(withinCrossRunAnchors(q, at(8, 9, 0, 45.0, 2), loop(q0, m0), o));  // run 2
+  EXPECT_TRUE(withinCrossRunAnchors(q, at(8, 9, 0, 15.0, 1), loop(q0, m0), o));  // own run
+  DatabaseEntry no_odometer = far;
+  no_odometer.odometer = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_TRUE(withinCrossRunAnchors(q, no_odometer, loop(q0, m0), o));
+}
+
 TEST(OdometryDistanceBound, TheGatesDistancePlusTheirRadius) {
   const double inf = std::numeric_limits<double>::infinity();
   const DatabaseEntry query = at(0, 0, 0, 30.0);

@@ -97,6 +97,10 @@ struct LoopResult {
   /// Best candidate before verification (valid when has_candidate).
   bool has_candidate = false;
   CandidateScores best;
+  /// The mission `best` belongs to and its name (valid when has_candidate):
+  /// with `status`, why a candidate of an earlier mission was refused.
+  std::uint32_t best_mission = 0;
+  std::string best_mission_name;
   /// Best island (valid when has_candidate).
   EntryId island_first = 0, island_last = 0;
   double island_score = 0;
@@ -132,9 +136,12 @@ struct LoopResult {
   /// normaliser floor where they were unusually small (0 when not queried).
   double word_divisor = 0, group_divisor = 0, distribution_divisor = 0;
   std::size_t candidates_scored = 0;
-  /// Of those, the candidates above min_score the odometry gate removed
-  /// (IslandOptions::odometry_gate_m).
+  /// Of those, the candidates above min_score the odometry gates removed
+  /// (IslandOptions::odometry_gate_m, odometry_anchor_m), and of these the
+  /// ones of another odometry run (an earlier mission) that the cross-run
+  /// anchors refused (withinCrossRunAnchors).
   std::size_t candidates_gated = 0;
+  std::size_t candidates_gated_cross_run = 0;
   StageTimings timings;
 };
 

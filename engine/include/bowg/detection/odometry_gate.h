@@ -68,6 +68,21 @@ struct AnchorEntries {
 bool withinLoopAnchors(const DatabaseEntry& query, const DatabaseEntry& entry,
                        const std::vector<AnchorEntries>& anchors, const IslandOptions& options);
 
+/// The cross-run gate: after an accepted loop (q0, m0) from the query's
+/// odometry run into another one (a later mission into an earlier one's
+/// keyframes, a restarted robot into its loaded ones), nothing relates the
+/// two frames but the loops, and one loop fixes no rotation between them.
+/// What no frame changes is how far: an entry e of m0's run is a candidate
+/// of query q only when e's straight-line distance from m0 differs from q's
+/// from q0 by at most loopAnchorRadius(q0..q, m0..e). Judged by the
+/// cross-run anchor into e's run that gives e the smallest radius; true
+/// when none applies (no such loop, positions or odometers missing, e in the
+/// query's run) or the gate is off (odometry_anchor_m 0). Positions only:
+/// metres driven would compare two passes along routes that part at a
+/// junction, and refuse every true place after it.
+bool withinCrossRunAnchors(const DatabaseEntry& query, const DatabaseEntry& entry,
+                           const std::vector<AnchorEntries>& anchors, const IslandOptions& options);
+
 /// Whether a recent loop places `entry` where the query is: the anchor that
 /// judges it (withinLoopAnchors) has a radius of at most twice
 /// odometry_anchor_m (its drift allowance no larger than the base: at 5 %
