@@ -137,6 +137,53 @@ std::vector<std::string> splitList(const std::string& v) {
   return out;
 }
 
+// What one flag cannot say alone: the input and the engine's.
+void checkInput(const Args& a) {
+  if (a.bag.empty() == a.images.empty()) {
+    throw std::invalid_argument("give exactly one of --bag FILE and --images DIR (see --help)");
+  }
+  if (a.vocabulary.empty()) throw std::invalid_argument("--vocabulary FILE is required");
+  if (a.sweep != "rerun" && a.sweep != "score") {
+    throw std::invalid_argument("--sweep must be rerun or score, not " + a.sweep);
+  }
+  if (!(a.rate > 0)) throw std::invalid_argument("--rate must be > 0");
+  if (!a.intrinsics.empty() && a.images.empty()) {
+    throw std::invalid_argument("--intrinsics is for --images (a bag's camera_info gives them)");
+  }
+  if (a.max_frames < 0) throw std::invalid_argument("--max-frames must be >= 0");
+  if (!a.odometer_topic.empty() && a.bag.empty()) {
+    throw std::invalid_argument("--odometer-topic is for --bag (an image folder takes --odometry)");
+  }
+  if (!a.odometer_topic.empty() && !a.odometry.empty()) {
+    throw std::invalid_argument("give one of --odometer-topic and --odometry, not both");
+  }
+}
+
+// The missions, maps and frames left out.
+void checkMissions(const Args& a) {
+  if (a.skip_frames < 0) throw std::invalid_argument("--skip-frames must be >= 0");
+  if (a.max_frames > 0 && a.skip_frames >= a.max_frames) {
+    throw std::invalid_argument("--skip-frames must be below --max-frames");
+  }
+  if (a.mission_id < -1 || a.mission_id > 4294967295LL) {
+    throw std::invalid_argument("--mission-id must be in [0, 2^32) (or -1: the next free one)");
+  }
+  if (!a.missions.empty() && (!a.mission_name.empty() || a.mission_id != -1)) {
+    throw std::invalid_argument("give --missions FILE or --mission-name/--mission-id, not both");
+  }
+  if (a.mission_id != -1 && a.mission_name.empty()) {
+    throw std::invalid_argument("--mission-id needs --mission-name");
+  }
+  if (!a.dump_candidates.empty() && (!a.maps.empty() || !a.save_map.empty())) {
+    throw std::invalid_argument("--dump-candidates does not take --map or --save-map");
+  }
+}
+
+void checkArgs(const Args& a) {
+  checkInput(a);
+  checkMissions(a);
+}
+
 }  // namespace
 
 Args parseArgs(int argc, char** argv) {
@@ -221,40 +268,7 @@ Args parseArgs(int argc, char** argv) {
     } else
       throw std::invalid_argument("unknown option " + flag + " (see --help)");
   }
-  if (a.bag.empty() == a.images.empty()) {
-    throw std::invalid_argument("give exactly one of --bag FILE and --images DIR (see --help)");
-  }
-  if (a.vocabulary.empty()) throw std::invalid_argument("--vocabulary FILE is required");
-  if (a.sweep != "rerun" && a.sweep != "score") {
-    throw std::invalid_argument("--sweep must be rerun or score, not " + a.sweep);
-  }
-  if (!(a.rate > 0)) throw std::invalid_argument("--rate must be > 0");
-  if (!a.intrinsics.empty() && a.images.empty()) {
-    throw std::invalid_argument("--intrinsics is for --images (a bag's camera_info gives them)");
-  }
-  if (a.max_frames < 0) throw std::invalid_argument("--max-frames must be >= 0");
-  if (a.skip_frames < 0) throw std::invalid_argument("--skip-frames must be >= 0");
-  if (a.max_frames > 0 && a.skip_frames >= a.max_frames) {
-    throw std::invalid_argument("--skip-frames must be below --max-frames");
-  }
-  if (a.mission_id < -1 || a.mission_id > 4294967295LL) {
-    throw std::invalid_argument("--mission-id must be in [0, 2^32) (or -1: the next free one)");
-  }
-  if (!a.missions.empty() && (!a.mission_name.empty() || a.mission_id != -1)) {
-    throw std::invalid_argument("give --missions FILE or --mission-name/--mission-id, not both");
-  }
-  if (a.mission_id != -1 && a.mission_name.empty()) {
-    throw std::invalid_argument("--mission-id needs --mission-name");
-  }
-  if (!a.dump_candidates.empty() && (!a.maps.empty() || !a.save_map.empty())) {
-    throw std::invalid_argument("--dump-candidates does not take --map or --save-map");
-  }
-  if (!a.odometer_topic.empty() && a.bag.empty()) {
-    throw std::invalid_argument("--odometer-topic is for --bag (an image folder takes --odometry)");
-  }
-  if (!a.odometer_topic.empty() && !a.odometry.empty()) {
-    throw std::invalid_argument("give one of --odometer-topic and --odometry, not both");
-  }
+  checkArgs(a);
   return a;
 }
 }  // namespace evaluate_app

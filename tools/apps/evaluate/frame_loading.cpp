@@ -67,45 +67,62 @@ void reportSkipped(const ImageProblemCounts& skipped, std::size_t images) {
                skipped.summary().c_str());
 }
 
-}  // namespace
-
-std::vector<FrameInput> loadFrames(const Args& a, const FeatureExtractor& extractor) {
-  std::vector<FrameInput> frames;
-  auto add = [&](const cv::Mat& grey, double stamp, const CameraIntrinsics& k) {
+// Frames in the order they come, each with its features extracted once.
+class FrameCollector {
+ public:
+  FrameCollector(const FeatureExtractor& extractor, std::vector<FrameInput>* frames)
+      : extractor_(extractor), frames_(frames) {}
+  // `grey` empty: a frame without features (unreadable, or left out).
+  void add(const cv::Mat& grey, double stamp, const CameraIntrinsics& k) {
     FrameInput f;
     // rosbag stamps may repeat (several cameras, a replayed clock): keep
     // them strictly increasing as the detector requires.
-    f.stamp = frames.empty() ? stamp : std::max(stamp, frames.back().stamp + 1e-6);
+    f.stamp = frames_->empty() ? stamp : std::max(stamp, frames_->back().stamp + 1e-6);
     f.intrinsics = k;
     const auto t0 = std::chrono::steady_clock::now();
-    f.features = grey.empty() ? ImageFeatures() : extractor.extract(grey);
+    f.features = grey.empty() ? ImageFeatures() : extractor_.extract(grey);
     f.feature_ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-    frames.push_back(std::move(f));
-  };
-  ProgressBar bar("features", a.quiet);
-  if (!a.images.empty()) {
-    const CameraIntrinsics intrinsics =
-        a.intrinsics.empty() ? CameraIntrinsics() : eval::readIntrinsics(a.intrinsics);
-    std::vector<std::string> files = listImages(a.images);
-    if (a.max_frames > 0 && files.size() > static_cast<std::size_t>(a.max_frames))
-      files.resize(a.max_frames);
-    ImageProblemCounts skipped;
-    for (std::size_t i = 0; i < files.size(); ++i) {
-      if (static_cast<long>(i) < a.skip_frames) {  // left out: only its place is kept
-        add(cv::Mat(), i / a.rate, intrinsics);
-        continue;
-      }
-      ImageCheck check;
-      const cv::Mat grey = readGreyImageFile(files[i], extractor.options(), &check);
-      if (!check.ok()) skipImage(files[i], check, &skipped);
-      add(grey, i / a.rate, intrinsics);
-      bar(i + 1, files.size());
-    }
-    reportSkipped(skipped, files.size());
-    if (skipped.total() == files.size()) throw FormatError("no readable image in " + a.images);
-    return frames;
+    frames_->push_back(std::move(f));
   }
+
+ private:
+  const FeatureExtractor& extractor_;
+  std::vector<FrameInput>* frames_;
+};
+
+std::vector<FrameInput> loadFolder(const Args& a, const FeatureExtractor& extractor) {
+  std::vector<FrameInput> frames;
+  FrameCollector collect(extractor, &frames);
+  ProgressBar bar("features", a.quiet);
+  const CameraIntrinsics intrinsics =
+      a.intrinsics.empty() ? CameraIntrinsics() : eval::readIntrinsics(a.intrinsics);
+  std::vector<std::string> files = listImages(a.images);
+  if (a.max_frames > 0 && files.size() > static_cast<std::size_t>(a.max_frames))
+    files.resize(a.max_frames);
+  ImageProblemCounts skipped;
+  for (std::size_t i = 0; i < files.size(); ++i) {
+    if (static_cast<long>(i) < a.skip_frames) {  // left out: only its place is kept
+      collect.add(cv::Mat(), i / a.rate, intrinsics);
+      continue;
+    }
+    ImageCheck check;
+    const cv::Mat grey = readGreyImageFile(files[i], extractor.options(), &check);
+    if (!check.ok()) skipImage(files[i], check, &skipped);
+    collect.add(grey, i / a.rate, intrinsics);
+    bar(i + 1, files.size());
+  }
+  const std::size_t used = files.size() - std::min<std::size_t>(files.size(), a.skip_frames);
+  reportSkipped(skipped, used);
+  // (Nothing used: skipFrames says why.)
+  if (used > 0 && skipped.total() == used) throw FormatError("no readable image in " + a.images);
+  return frames;
+}
+
+std::vector<FrameInput> loadBag(const Args& a, const FeatureExtractor& extractor) {
+  std::vector<FrameInput> frames;
+  FrameCollector collect(extractor, &frames);
+  ProgressBar bar("features", a.quiet);
   rosbag::Bag bag;
   try {
     bag.open(a.bag, rosbag::bagmode::Read);
@@ -144,7 +161,7 @@ std::vector<FrameInput> loadFrames(const Args& a, const FeatureExtractor& extrac
       continue;
     }
     if (static_cast<long>(frames.size()) < a.skip_frames) {  // left out: only its place is kept
-      add(cv::Mat(), 0.0, intrinsics);  // a stamp that never raises the next frame's
+      collect.add(cv::Mat(), 0.0, intrinsics);  // a stamp that never raises the next frame's
       frames.back().odometer = odometer;
       continue;
     }
@@ -152,12 +169,18 @@ std::vector<FrameInput> loadFrames(const Args& a, const FeatureExtractor& extrac
     if (!image.check.ok()) {
       skipImage("frame " + std::to_string(frames.size()), image.check, &skipped);
     }
-    add(image.grey, image.stamp.toSec(), intrinsics);
+    collect.add(image.grey, image.stamp.toSec(), intrinsics);
     frames.back().odometer = odometer;
     bar(frames.size(), total);
   }
   reportSkipped(skipped, frames.size());
   return frames;
+}
+
+}  // namespace
+
+std::vector<FrameInput> loadFrames(const Args& a, const FeatureExtractor& extractor) {
+  return a.images.empty() ? loadBag(a, extractor) : loadFolder(a, extractor);
 }
 
 namespace {
