@@ -36,6 +36,7 @@
 #include "bowg_ros/KeyframeFeatures.h"
 #include "bowg_ros/KeyframeStatus.h"
 #include "bowg_ros/LoadDatabase.h"
+#include "bowg_ros/LoadReferenceMaps.h"
 #include "bowg_ros/LoopClosure.h"
 #include "bowg_ros/MergeDatabases.h"
 #include "bowg_ros/SaveDatabase.h"
@@ -90,9 +91,8 @@ class Detector {
     const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(20);
     while (loaded_ && ros::WallTime::now() < end &&
            ((compressed_ ? compressed_pub_ : image_pub_).getNumSubscribers() == 0 ||
-            info_pub_.getNumSubscribers() == 0 ||
-            odom_pub_.getNumSubscribers() == 0 || status_sub_.getNumPublishers() == 0 ||
-            loop_sub_.getNumPublishers() == 0)) {
+            info_pub_.getNumSubscribers() == 0 || odom_pub_.getNumSubscribers() == 0 ||
+            status_sub_.getNumPublishers() == 0 || loop_sub_.getNumPublishers() == 0)) {
       ros::WallDuration(0.05).sleep();
     }
   }

@@ -353,5 +353,59 @@ TEST(LoopDetectorNodelet, ReferenceMapsOfTwoSurveysAreSearchedTogether) {
       << load.response.message;
 }
 
+// A survey already under way loads an earlier survey as its reference map
+// (~load_reference_maps): its keyframes so far are kept, after the map's, and
+// its next frames find loops into the map, each naming the earlier survey. A
+// file that cannot be read is refused by name and the running database kept.
+TEST(LoopDetectorNodelet, ReferenceMapsLoadedLiveKeepTheRunningSurvey) {
+  const std::string map = std::string(BOWG_TEST_OUTPUT_DIR) + "/bowg_rostest_live_map.bin";
+  std::remove(map.c_str());
+  const cv::Mat world = test::makeWorld(kForward * kStep + kViewWidth + kOffset, kViewHeight, 5);
+  const std::vector<int> xs = test::trajectory(kForward, kRevisit, kStep, kOffset);
+  {
+    Detector first("/live_map_survey", {{"database_save_path", XmlRpc::XmlRpcValue(map)},
+                                        {"mission_name", XmlRpc::XmlRpcValue("survey A")},
+                                        {"mission_id", XmlRpc::XmlRpcValue(1)}});
+    ASSERT_TRUE(first.loaded());
+    ASSERT_TRUE(first.run(world, std::vector<int>(xs.begin(), xs.begin() + kForward), 1000.0));
+  }  // saved at shutdown
+  Detector d("/live_map", {{"mission_name", XmlRpc::XmlRpcValue("survey B")},
+                           {"mission_id", XmlRpc::XmlRpcValue(4)}});
+  ASSERT_TRUE(d.loaded());
+  const auto revisit = xs.begin() + kForward;
+  ASSERT_TRUE(d.run(world, std::vector<int>(revisit, revisit + 3), 2000.0));
+
+  LoadReferenceMaps load;
+  load.request.paths = {map + ".missing"};
+  ASSERT_TRUE(ros::service::call(d.name() + "/load_reference_maps", load));
+  EXPECT_FALSE(load.response.success);
+  EXPECT_NE(load.response.message.find(map + ".missing"), std::string::npos)
+      << load.response.message;
+  load.request.paths = {map};
+  ASSERT_TRUE(ros::service::call(d.name() + "/load_reference_maps", load));
+  EXPECT_TRUE(load.response.success) << load.response.message;
+  EXPECT_NE(load.response.message.find(std::to_string(kForward + 3) + " keyframes"),
+            std::string::npos)
+      << load.response.message;
+  d.clear();
+  ASSERT_TRUE(d.run(world, std::vector<int>(revisit + 3, xs.end()), 2100.0,
+                    std::vector<int>(kRevisit - 3, 12)));
+  ros::WallDuration(0.3).sleep();
+  const std::vector<KeyframeStatus> s = d.statuses();
+  ASSERT_FALSE(s.empty());
+  EXPECT_EQ(s.front().database_size, static_cast<std::uint32_t>(kForward + 4));
+  EXPECT_EQ(s.front().query_mission, 4u);
+  const std::vector<LoopClosure> loops = d.loops();
+  EXPECT_GE(loops.size(), 5u) << "the running survey finds the map's places";
+  for (const LoopClosure& l : loops) {
+    EXPECT_EQ(l.query_mission, 4u);
+    if (l.match_id < static_cast<std::uint32_t>(kForward)) {
+      EXPECT_EQ(l.match_mission, 1u);
+      EXPECT_EQ(l.match_mission_name, "survey A");
+    }
+  }
+  expectRightIds(loops);
+}
+
 }  // namespace
 }  // namespace bowg_ros

@@ -190,6 +190,8 @@ void LoopDetectorNodelet::advertiseInterfaces(ros::NodeHandle& nh, ros::NodeHand
   load_srv_ = load_pnh.advertiseService("load_database", &LoopDetectorNodelet::loadDatabase, this);
   merge_srv_ =
       load_pnh.advertiseService("merge_databases", &LoopDetectorNodelet::mergeDatabases, this);
+  reference_srv_ = load_pnh.advertiseService("load_reference_maps",
+                                             &LoopDetectorNodelet::loadReferenceMaps, this);
   load_spinner_.reset(new ros::AsyncSpinner(1, &load_queue_));
   load_spinner_->start();
 

@@ -74,6 +74,7 @@
 #include "bowg_ros/KeyframeFeatures.h"
 #include "bowg_ros/KeyframeStatus.h"
 #include "bowg_ros/LoadDatabase.h"
+#include "bowg_ros/LoadReferenceMaps.h"
 #include "bowg_ros/LoopClosure.h"
 #include "bowg_ros/MergeDatabases.h"
 #include "bowg_ros/SaveDatabase.h"
@@ -190,6 +191,7 @@ class LoopDetectorNodelet : public nodelet::Nodelet {
   bool loadDatabase(LoadDatabase::Request& req, LoadDatabase::Response& res);
   /// Files only (the vocabulary is read-only after start): no detector lock.
   bool mergeDatabases(MergeDatabases::Request& req, MergeDatabases::Response& res);
+  bool loadReferenceMaps(LoadReferenceMaps::Request& req, LoadReferenceMaps::Response& res);
   bool resetDatabase(std_srvs::Trigger::Request& req, std_srvs::Trigger::Response& res);
   /// The diagnostics timer: the rest of the nodelet's state, read under its
   /// locks one at a time, handed to diagnostics_.
@@ -269,7 +271,7 @@ class LoopDetectorNodelet : public nodelet::Nodelet {
   // neither save nor reset waits for it.
   ros::CallbackQueue load_queue_;
   std::unique_ptr<ros::AsyncSpinner> load_spinner_;
-  ros::ServiceServer save_srv_, load_srv_, merge_srv_, reset_srv_;
+  ros::ServiceServer save_srv_, load_srv_, merge_srv_, reference_srv_, reset_srv_;
   std::unique_ptr<LiveTuningServer> reconfigure_server_;
   std::unique_ptr<diagnostic_updater::Updater> updater_;
   ros::WallTimer diagnostics_timer_;

@@ -142,6 +142,41 @@ bool LoopDetectorNodelet::mergeDatabases(MergeDatabases::Request& req,
   return true;
 }
 
+bool LoopDetectorNodelet::loadReferenceMaps(LoadReferenceMaps::Request& req,
+                                            LoadReferenceMaps::Response& res) {
+  try {
+    // The running database as bytes under the lock; the maps read and
+    // merged with them without it (large files take seconds). If keyframes
+    // came meanwhile, the merge is made again under the lock: none is lost.
+    std::string running;
+    std::size_t keyframes = 0;
+    {
+      std::lock_guard<std::mutex> lock(detector_mutex_);
+      running = detector_->serialize();
+      keyframes = detector_->database().size();
+    }
+    bowg::SavedDetector merged =
+        bowg::LoopDetector::readMergedWithRunning(req.paths, running, vocabulary_);
+    std::lock_guard<std::mutex> lock(detector_mutex_);
+    if (detector_->database().size() != keyframes) {
+      merged =
+          bowg::LoopDetector::readMergedWithRunning(req.paths, detector_->serialize(), vocabulary_);
+    }
+    detector_->adopt(std::move(merged));
+    restartRun(RunStart::kLoaded);
+    res.success = true;
+    res.message = "loaded " + std::to_string(req.paths.size()) +
+                  " reference map(s): " + std::to_string(detector_->database().size()) +
+                  " keyframes; " + startMission();
+    NODELET_INFO("load_reference_maps: %s", res.message.c_str());
+  } catch (const std::exception& e) {
+    res.success = false;
+    res.message = std::string(e.what()) + " (the running database is kept)";
+    NODELET_ERROR("load_reference_maps: %s", res.message.c_str());
+  }
+  return true;
+}
+
 void LoopDetectorNodelet::restartRun(RunStart start) {
   if (start != RunStart::kLoaded) detector_->reset();
   debug_images_.forgetKeyframeImages();

@@ -371,7 +371,15 @@ std::unique_ptr<Database> loadDetectorFile(const std::string& path,
                                            ScoringType scoring, int direct_index_level,
                                            int fan_bins, DetectorState* state,
                                            ScoringType* stored_scoring_out) {
-  const std::string bytes = readDatabaseFile(path);
+  return decodeDetectorFile(readDatabaseFile(path), path, std::move(vocabulary), scoring,
+                            direct_index_level, fan_bins, state, stored_scoring_out);
+}
+
+std::unique_ptr<Database> decodeDetectorFile(const std::string& bytes, const std::string& path,
+                                             std::shared_ptr<const Vocabulary> vocabulary,
+                                             ScoringType scoring, int direct_index_level,
+                                             int fan_bins, DetectorState* state,
+                                             ScoringType* stored_scoring_out) {
   std::uint64_t payload = 0;
   const std::uint32_t version = checkHeader(path, bytes, *vocabulary, &payload);
   Reader p(path, bytes.data() + kHeaderBytes, static_cast<std::size_t>(payload));

@@ -21,15 +21,20 @@ struct Part {
   ScoringType scoring = ScoringType::kL1;
 };
 
-Part readPart(const std::string& path, const std::shared_ptr<const Vocabulary>& vocabulary) {
+// A part from its file, or from bytes in memory when `bytes` is given.
+Part readPart(const std::string& path, const std::shared_ptr<const Vocabulary>& vocabulary,
+              const std::string* bytes = nullptr) {
   // The options-dependent parts are rebuilt from the words: any level and
   // fan size reads the file; the merged file keeps only the words.
   const LoopDetectorOptions defaults;
   Part part;
   part.path = path;
-  part.database =
-      loadDetectorFile(path, vocabulary, ScoringType::kL1, defaults.geometric.direct_index_level,
-                       defaults.distribution.fan_bins, &part.state, &part.scoring);
+  const int level = defaults.geometric.direct_index_level;
+  const int fans = defaults.distribution.fan_bins;
+  part.database = bytes ? decodeDetectorFile(*bytes, path, vocabulary, ScoringType::kL1, level,
+                                             fans, &part.state, &part.scoring)
+                        : loadDetectorFile(path, vocabulary, ScoringType::kL1, level, fans,
+                                           &part.state, &part.scoring);
   return part;
 }
 
@@ -94,14 +99,9 @@ void appendPart(const Part& part, std::uint32_t run_offset, Database* merged,
   }
 }
 
-}  // namespace
-
-std::unique_ptr<Database> mergeDetectorFiles(const std::vector<std::string>& paths,
-                                             std::shared_ptr<const Vocabulary> vocabulary,
-                                             DetectorState* state) {
-  if (paths.size() < 2) throw std::invalid_argument("a merge takes two files or more");
-  std::vector<Part> parts;
-  for (const std::string& path : paths) parts.push_back(readPart(path, vocabulary));
+std::unique_ptr<Database> mergeParts(std::vector<Part> parts,
+                                     std::shared_ptr<const Vocabulary> vocabulary,
+                                     DetectorState* state) {
   orderAndCheck(&parts);
 
   const LoopDetectorOptions defaults;
@@ -124,6 +124,28 @@ std::unique_ptr<Database> mergeDetectorFiles(const std::vector<std::string>& pat
   }
   state->place_links.restore(std::move(parents));
   return merged;
+}
+
+}  // namespace
+
+std::unique_ptr<Database> mergeDetectorFiles(const std::vector<std::string>& paths,
+                                             std::shared_ptr<const Vocabulary> vocabulary,
+                                             DetectorState* state) {
+  if (paths.size() < 2) throw std::invalid_argument("a merge takes two files or more");
+  std::vector<Part> parts;
+  for (const std::string& path : paths) parts.push_back(readPart(path, vocabulary));
+  return mergeParts(std::move(parts), std::move(vocabulary), state);
+}
+
+std::unique_ptr<Database> mergeWithRunningDetector(const std::vector<std::string>& paths,
+                                                   const std::string& running,
+                                                   std::shared_ptr<const Vocabulary> vocabulary,
+                                                   DetectorState* state) {
+  if (paths.empty()) throw std::invalid_argument("no reference map given");
+  std::vector<Part> parts;
+  for (const std::string& path : paths) parts.push_back(readPart(path, vocabulary));
+  parts.push_back(readPart("the running database", vocabulary, &running));
+  return mergeParts(std::move(parts), std::move(vocabulary), state);
 }
 
 std::string mergeDetectorFiles(const std::vector<std::string>& paths,

@@ -163,9 +163,27 @@ SavedDetector LoopDetector::readMerged(const std::vector<std::string>& paths,
                                        std::shared_ptr<const Vocabulary> vocabulary,
                                        const LoopDetectorOptions& options) {
   if (paths.size() == 1) return read(paths.front(), std::move(vocabulary), options);
+  return fromMerge(
+      [&](DetectorState* state) { return mergeDetectorFiles(paths, vocabulary, state); },
+      vocabulary);
+}
+
+SavedDetector LoopDetector::readMergedWithRunning(const std::vector<std::string>& paths,
+                                                  const std::string& running,
+                                                  std::shared_ptr<const Vocabulary> vocabulary) {
+  return fromMerge(
+      [&](DetectorState* state) {
+        return mergeWithRunningDetector(paths, running, vocabulary, state);
+      },
+      vocabulary);
+}
+
+SavedDetector LoopDetector::fromMerge(
+    const std::function<std::unique_ptr<Database>(DetectorState*)>& merge,
+    std::shared_ptr<const Vocabulary> vocabulary) {
   SavedDetector saved;
   saved.state_.reset(new DetectorState);
-  saved.database_ = mergeDetectorFiles(paths, vocabulary, saved.state_.get());
+  saved.database_ = merge(saved.state_.get());
   saved.vocabulary_ = std::move(vocabulary);
   return saved;
 }

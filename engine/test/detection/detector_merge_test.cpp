@@ -39,6 +39,47 @@ std::string missionFile(const std::string& name, const std::string& mission, std
   return path;
 }
 
+// Reference maps loaded beside a running survey: the running detector's
+// keyframes (mission "2026", keyframes 40-51 of the corridor run, driving
+// back over the first survey's places) come after the map's, stay its
+// current mission, and its next keyframes find loops into the map. A map
+// holding the running mission's id is refused naming both.
+TEST(DetectorMerge, AMapLoadedBesideARunningSurveyKeepsTheSurvey) {
+  const std::string a = missionFile("running_a.bowgdb", "2025", 1, 0, 40);
+  const auto vocabulary = testing::vocabulary();
+  LoopDetector d(vocabulary, options());
+  d.startMission("2026", 2);
+  const auto kfs = keyframes();
+  for (int i = 40; i < 46; ++i) d.process(kfs[i]);
+  d.adopt(LoopDetector::readMergedWithRunning({a}, d.serialize(), vocabulary));
+  const Database& db = d.database();
+  ASSERT_EQ(db.size(), 46u);
+  EXPECT_EQ(db.entry(0).mission, 1u);
+  EXPECT_EQ(db.entry(40).mission, 2u);
+  EXPECT_EQ(d.mission().id, 2u);
+  EXPECT_EQ(d.mission().name, "2026");
+  int into_map = 0;
+  for (std::size_t i = 46; i < kfs.size(); ++i) {
+    const LoopResult r = d.process(kfs[i]);
+    EXPECT_EQ(r.mission, 2u);
+    if (r.status == LoopStatus::kLoopDetected && r.match_mission == 1u) ++into_map;
+  }
+  EXPECT_GT(into_map, 0);
+
+  LoopDetector same_id(vocabulary, options());
+  same_id.startMission("another 2025", 1);
+  same_id.process(kfs[40]);
+  try {
+    LoopDetector::readMergedWithRunning({a}, same_id.serialize(), vocabulary);
+    ADD_FAILURE() << "a map holding the running mission's id was merged";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("the running database"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find(a), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(LoopDetector::readMergedWithRunning({}, d.serialize(), vocabulary),
+               std::invalid_argument);
+}
+
 TEST(DetectorMerge, TheMergedDatabaseHoldsBothMissionsAndFindsLoopsBetweenThem) {
   const std::string a = missionFile("merge_a.bowgdb", "2025", 1, 0, 40);
   const std::string b = missionFile("merge_b.bowgdb", "2026", 2, 40, 52);

@@ -40,5 +40,12 @@ std::unique_ptr<Database> loadDetectorFile(const std::string& path,
                                            ScoringType scoring, int direct_index_level,
                                            int fan_bins, DetectorState* state,
                                            ScoringType* stored_scoring = nullptr);
+/// loadDetectorFile() of bytes already in memory (encodeDetectorFile()'s:
+/// a running detector's), `source` naming them in errors.
+std::unique_ptr<Database> decodeDetectorFile(const std::string& bytes, const std::string& source,
+                                             std::shared_ptr<const Vocabulary> vocabulary,
+                                             ScoringType scoring, int direct_index_level,
+                                             int fan_bins, DetectorState* state,
+                                             ScoringType* stored_scoring = nullptr);
 
 }  // namespace bowg

@@ -38,4 +38,15 @@ std::unique_ptr<Database> mergeDetectorFiles(const std::vector<std::string>& pat
                                              std::shared_ptr<const Vocabulary> vocabulary,
                                              DetectorState* state);
 
+/// The reference maps at `paths` merged with a running detector's database
+/// (`running`: its LoopDetector::serialize() bytes, named "the running
+/// database" in errors), as mergeDetectorFiles merges files: the running
+/// keyframes come after the maps' (their stamps are later), keep their
+/// mission as the current one and their place links, and lose the memory
+/// of previous queries. Throws as mergeDetectorFiles (no map: std::invalid_argument).
+std::unique_ptr<Database> mergeWithRunningDetector(const std::vector<std::string>& paths,
+                                                   const std::string& running,
+                                                   std::shared_ptr<const Vocabulary> vocabulary,
+                                                   DetectorState* state);
+
 }  // namespace bowg

@@ -8,6 +8,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <memory>
 #include <string>
@@ -193,6 +194,13 @@ class LoopDetector {
   static SavedDetector readMerged(const std::vector<std::string>& paths,
                                   std::shared_ptr<const Vocabulary> vocabulary,
                                   const LoopDetectorOptions& options);
+  /// Reference maps loaded beside a running survey: the files at `paths`
+  /// merged with `running`, the running detector's serialize() bytes
+  /// (mergeWithRunningDetector, detector_merge.h); read without touching any
+  /// detector, for adopt(). Throws as readMerged().
+  static SavedDetector readMergedWithRunning(const std::vector<std::string>& paths,
+                                             const std::string& running,
+                                             std::shared_ptr<const Vocabulary> vocabulary);
   /// Puts a read file in use in place of the database and the memory of
   /// previous queries (cheap: no file access; the options in force now
   /// apply). Throws InvalidParameter, keeping the current state, when
@@ -220,6 +228,10 @@ class LoopDetector {
 
  private:
   struct State;
+  // A SavedDetector of what `merge` builds (into the state it is given).
+  static SavedDetector fromMerge(
+      const std::function<std::unique_ptr<Database>(DetectorState*)>& merge,
+      std::shared_ptr<const Vocabulary> vocabulary);
   std::shared_ptr<const Vocabulary> vocabulary_;
   LoopDetectorOptions options_;
   std::unique_ptr<Database> database_;
