@@ -93,7 +93,8 @@ void nameRunMission(const Args& a, std::vector<FrameInput>* frames) {
 }
 
 // The summary's line on the maps: files, keyframes, missions.
-std::string describeMaps(const Args& a, const ReferenceMapSummary& maps, double stamp_shift) {
+std::string describeMaps(const Args& a, const ReferenceMapSummary& maps, double stamp_shift,
+                         double odometer_shift) {
   if (a.maps.empty()) return "";
   std::string line = "reference maps:";
   for (const std::string& path : a.maps) line += " " + path;
@@ -104,6 +105,9 @@ std::string describeMaps(const Args& a, const ReferenceMapSummary& maps, double 
   }
   line += ")";
   if (stamp_shift != 0) line += "; live stamps moved " + fmt("%.3f", stamp_shift) + " s later";
+  if (odometer_shift != 0) {
+    line += "; live odometers continue the maps' (+" + fmt("%.3f", odometer_shift) + " m)";
+  }
   return line;
 }
 
@@ -136,7 +140,8 @@ int run(int argc, char** argv) {
   RunInputs inputs;
   inputs.frames = frames.size();
   inputs.map_entries = maps.entries;
-  inputs.maps = describeMaps(a, maps, stampsAfterMaps(maps, 1.0 / a.rate, &frames));
+  const double stamp_shift = stampsAfterMaps(maps, 1.0 / a.rate, &frames);
+  inputs.maps = describeMaps(a, maps, stamp_shift, odometersAfterMaps(maps, &frames));
   // Which acceptance applies: what the robot of this run has.
   inputs.odometry = std::string("odometry: ") + describeAcceptance(odometryInputOf(frames));
   if (!a.quiet) std::printf("%s\n", inputs.odometry.c_str());

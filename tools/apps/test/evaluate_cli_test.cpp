@@ -160,6 +160,30 @@ TEST_F(EvaluateCli, TheFirstMissionAsAMapGivesTheLoopsOfOneRun) {
       << readAll(kDir + "/counts/summary.txt");
 }
 
+// A new survey's odometer starts at 0 again, below the map's last keyframe's:
+// it continues from the map's, as the nodelet's does after a load.
+TEST_F(EvaluateCli, ANewSurveysOdometerContinuesTheMaps) {
+  const std::string odometry = " --odometry " + kDir + "/frames/odometry.csv --odometry-poses " +
+                               kDir + "/frames/odometry.csv";
+  ASSERT_EQ(run(evaluate("--thresholds 0.7 --max-frames 150 --save-map " + kDir +
+                             "/odometry_first.map" + odometry,
+                         "odometry_first"),
+                kDir + "/odometry_first.log"),
+            0)
+      << readAll(kDir + "/odometry_first.log");
+  copyFirstFrames(kDir + "/again_frames", 100);
+  const std::string log = kDir + "/odometry_again.log";
+  ASSERT_EQ(
+      run(evaluateFolder(kDir + "/again_frames", kDir + "/config.yaml", kDir + "/odometry_again") +
+              odometry + " --map " + kDir + "/odometry_first.map",
+          log),
+      0)
+      << readAll(log);
+  EXPECT_NE(readAll(kDir + "/odometry_again/summary.txt").find("live odometers continue the maps'"),
+            std::string::npos)
+      << readAll(kDir + "/odometry_again/summary.txt");
+}
+
 TEST_F(EvaluateCli, BadMapOptionsAreRefusedNamingTheCause) {
   const std::string log = kDir + "/bad_map.log";
   EXPECT_NE(run(evaluate("--thresholds 0.7 --map " + kDir + "/no_such.map", "bad_map"), log), 0);

@@ -1,6 +1,7 @@
 #include "bowg_evaluation/reference_maps.h"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 #include <utility>
 
@@ -18,6 +19,7 @@ ReferenceMapSummary readReferenceMaps(const std::vector<std::string>& paths,
   const Database& db = detector.database();
   summary.entries = db.size();
   if (!db.entries().empty()) summary.last_stamp = db.entries().back().stamp;
+  if (db.lastOdometer() >= 0) summary.last_odometer = db.lastOdometer();
   summary.missions = db.missions().all();
   return summary;
 }
@@ -69,6 +71,16 @@ double stampsAfterMaps(const ReferenceMapSummary& maps, double step,
   if (maps.entries == 0 || frames->empty() || frames->front().stamp > maps.last_stamp) return 0;
   const double shift = maps.last_stamp + step - frames->front().stamp;
   for (FrameInput& f : *frames) f.stamp += shift;
+  return shift;
+}
+
+double odometersAfterMaps(const ReferenceMapSummary& maps, std::vector<FrameInput>* frames) {
+  if (!std::isfinite(maps.last_odometer)) return 0;
+  const auto first = std::find_if(frames->begin(), frames->end(),
+                                  [](const FrameInput& f) { return std::isfinite(f.odometer); });
+  if (first == frames->end() || first->odometer > maps.last_odometer) return 0;
+  const double shift = maps.last_odometer - first->odometer;
+  for (FrameInput& f : *frames) f.odometer += shift;  // NaN stays NaN
   return shift;
 }
 

@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <memory>
 #include <stdexcept>
@@ -86,6 +87,28 @@ TEST(ReferenceMaps, LiveStampsMoveBehindTheMapsOnlyWhenNeeded) {
   EXPECT_DOUBLE_EQ(frames[2].stamp, 11.5);
   EXPECT_DOUBLE_EQ(stampsAfterMaps(maps, 0.5, &frames), 0.0);  // already after
   EXPECT_DOUBLE_EQ(frames[0].stamp, 10.5);
+}
+
+// A new survey's odometer counts from 0 again; the maps' last keyframe
+// drove 28.4 m: the live odometers continue from there (0 -> 28.4, 1.5 ->
+// 29.9), a frame without one keeps none; odometers already beyond stay.
+TEST(ReferenceMaps, LiveOdometersContinueTheMaps) {
+  ReferenceMapSummary maps;
+  maps.entries = 5;
+  maps.last_odometer = 28.4;
+  std::vector<FrameInput> frames(3);
+  frames[0].odometer = 0.0;
+  frames[2].odometer = 1.5;
+  EXPECT_DOUBLE_EQ(odometersAfterMaps(maps, &frames), 28.4);
+  EXPECT_DOUBLE_EQ(frames[0].odometer, 28.4);
+  EXPECT_TRUE(std::isnan(frames[1].odometer));
+  EXPECT_DOUBLE_EQ(frames[2].odometer, 29.9);
+  EXPECT_DOUBLE_EQ(odometersAfterMaps(maps, &frames), 0.0);  // 28.4 is not above: shift 0
+  frames[0].odometer = 30.0;
+  EXPECT_DOUBLE_EQ(odometersAfterMaps(maps, &frames), 0.0);
+  EXPECT_DOUBLE_EQ(frames[0].odometer, 30.0);
+  ReferenceMapSummary without;  // maps without odometers
+  EXPECT_DOUBLE_EQ(odometersAfterMaps(without, &frames), 0.0);
 }
 
 void expectSameRecord(const KeyframeRecord& a, const KeyframeRecord& b) {

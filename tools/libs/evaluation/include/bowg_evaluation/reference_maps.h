@@ -14,6 +14,7 @@
 #pragma once
 
 #include <cstddef>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -31,6 +32,8 @@ namespace eval {
 struct ReferenceMapSummary {
   std::size_t entries = 0;  ///< keyframes: the run's entries 0..entries-1
   double last_stamp = 0;    ///< the latest keyframe's stamp (s); 0 without keyframes
+  /// The metres driven of the latest keyframe with an odometer; NaN: none.
+  double last_odometer = std::numeric_limits<double>::quiet_NaN();
   std::vector<Mission> missions;
 };
 
@@ -59,6 +62,13 @@ void skipFrames(int skipped, std::vector<FrameInput>* frames);
 /// Returns the shift (0 when none was needed).
 double stampsAfterMaps(const ReferenceMapSummary& maps, double step,
                        std::vector<FrameInput>* frames);
+
+/// Moves the live frames' odometers to continue from the maps' last one when
+/// they start at or below it, as the nodelet's odometer continues from a
+/// loaded database's (a robot's new survey counts from 0 again): every
+/// odometer shifted by the same amount, the first one landing on the maps'
+/// last. Returns the shift (0 when none was needed or nothing has one).
+double odometersAfterMaps(const ReferenceMapSummary& maps, std::vector<FrameInput>* frames);
 
 }  // namespace eval
 }  // namespace bowg
