@@ -61,8 +61,11 @@ fi
 tools="${BOWG_TOOLS_DIR:-$ws/devel/lib/bowg_ros}"
 generator_hash="$(sha256sum "$tools/bowg_generate_pipe_sequence" | cut -d' ' -f1)"
 # Maps are an option of newer bowg_evaluate builds; "other" pairs need them.
+# (The help is read whole: grep -q would close the pipe early and pipefail
+# turn the tool's SIGPIPE into "no maps".)
 has_maps=0
-if "$tools/bowg_evaluate" --help 2>&1 | grep -q -- '--save-map'; then has_maps=1; fi
+help_text="$("$tools/bowg_evaluate" --help 2>&1 || true)"
+if [[ "$help_text" == *--save-map* ]]; then has_maps=1; fi
 mkdir -p "$out/sequences" "$out/results"
 trim() { local s="$1"; s="${s#"${s%%[![:space:]]*}"}"; echo "${s%"${s##*[![:space:]]}"}"; }
 
@@ -163,7 +166,13 @@ while IFS= read -r line; do
           "${inputs[@]}" --save-map "$result/A.map"
         # Network B against it: B's ground truth has no frame of A, so every
         # loop into the map is false; B's own revisits are scored as usual.
+        # The detector's odometer never decreases: B's goes on after A's.
         mode_inputs "$seq_dir/B" "$mode"
+        if [ "$mode" != images ]; then
+          /usr/bin/python3 "$repo/tools/suite/continue_odometer.py" "$seq_dir/A/odometry.csv" \
+            "$seq_dir/B/odometry.csv" "$result/B_odometer.csv"
+          inputs[1]="$result/B_odometer.csv"
+        fi
         evaluate "$result" "$seq_dir/B" "$rate" --gt "$seq_dir/B/ground_truth.txt" \
           "${inputs[@]}" --map "$result/A.map"
         echo "   $mode: $(sed -n '/^across missions/,/^$/p' "$result/summary.txt" | grep '^configured' | tr -s ' ') ($(( $(date +%s) - t0 )) s)"
