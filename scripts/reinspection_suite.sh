@@ -13,8 +13,6 @@
 #   kind "other": two different networks of the same textures: A is run and
 #                 saved as a map (--save-map), B is run against it (--map);
 #                 B has no place of A, so every loop into the map is false.
-#                 Needs a bowg_evaluate with --map/--save-map; without them
-#                 the pair is rendered and skipped with a message.
 # Prints per pair and mode the cross-mission figure and all loops at the
 # threshold, then the median cross-mission recall per half and mode; writes
 # reinspection.csv (tools/suite/reinspection_report.py).
@@ -60,12 +58,6 @@ if [ "${BOWG_SKIP_BUILD:-0}" != 1 ]; then
 fi
 tools="${BOWG_TOOLS_DIR:-$ws/devel/lib/bowg_ros}"
 generator_hash="$(sha256sum "$tools/bowg_generate_pipe_sequence" | cut -d' ' -f1)"
-# Maps are an option of newer bowg_evaluate builds; "other" pairs need them.
-# (The help is read whole: grep -q would close the pipe early and pipefail
-# turn the tool's SIGPIPE into "no maps".)
-has_maps=0
-help_text="$("$tools/bowg_evaluate" --help 2>&1 || true)"
-if [[ "$help_text" == *--save-map* ]]; then has_maps=1; fi
 mkdir -p "$out/sequences" "$out/results"
 trim() { local s="$1"; s="${s#"${s%%[![:space:]]*}"}"; echo "${s%"${s##*[![:space:]]}"}"; }
 
@@ -153,9 +145,6 @@ while IFS= read -r line; do
       render "$seq_dir/A" "$args_a" || { echo "-- $name: skipped, needs $shared (absent)"; continue; }
       rate_a="$rate"
       render "$seq_dir/B" "$args_b" || { echo "-- $name: skipped, needs $shared (absent)"; continue; }
-      if [ "$has_maps" != 1 ]; then
-        echo "-- $name: skipped, $tools/bowg_evaluate has no --save-map/--map"; continue
-      fi
       for mode in "${mode_list[@]}"; do
         t0=$(date +%s)
         result="$out/results/$name/$mode"
@@ -166,13 +155,9 @@ while IFS= read -r line; do
           "${inputs[@]}" --save-map "$result/A.map"
         # Network B against it: B's ground truth has no frame of A, so every
         # loop into the map is false; B's own revisits are scored as usual.
-        # The detector's odometer never decreases: B's goes on after A's.
+        # (B's odometer starts at 0 again: bowg_evaluate continues it from
+        # the map's, as the nodelet does after a load.)
         mode_inputs "$seq_dir/B" "$mode"
-        if [ "$mode" != images ]; then
-          /usr/bin/python3 "$repo/tools/suite/continue_odometer.py" "$seq_dir/A/odometry.csv" \
-            "$seq_dir/B/odometry.csv" "$result/B_odometer.csv"
-          inputs[1]="$result/B_odometer.csv"
-        fi
         evaluate "$result" "$seq_dir/B" "$rate" --gt "$seq_dir/B/ground_truth.txt" \
           "${inputs[@]}" --map "$result/A.map"
         echo "   $mode: $(sed -n '/^across missions/,/^$/p' "$result/summary.txt" | grep '^configured' | tr -s ' ') ($(( $(date +%s) - t0 )) s)"
