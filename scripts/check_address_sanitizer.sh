@@ -17,7 +17,7 @@
 # run); bowg_tools_startup_test (it loads the nodelet into Debian's nodelet
 # manager, which is not instrumented: the ASan runtime cannot enter it
 # unless preloaded, as scripts/check_thread_sanitizer.sh does for TSan); and
-# the tests of scripts and Python helpers only (peer_ratios,
+# the tests of scripts and Python helpers only (peer_ratios, cpu_budget,
 # benchmark_table, install_deps: nothing instrumented runs in them).
 # Environment: BOWG_WS (workspace; the ASan one is its asan_ros/ folder),
 # BOWG_JOBS (build jobs).

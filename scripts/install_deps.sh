@@ -24,6 +24,7 @@ PACKAGES=(
   libgtest-dev googletest librostest-dev python3-rostest libros-rosgraph-msgs-dev
   libbenchmark-dev python3-numpy python3-yaml python3-matplotlib
   clang libclang-rt-14-dev
+  g++-aarch64-linux-gnu qemu-user
   libceres-dev libtf2-ros-dev libtf2-eigen-dev libvisualization-msgs-dev
   rviz ros-image-view libimage-view-dev
 )

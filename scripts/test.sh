@@ -29,6 +29,15 @@ bash "$repo/scripts/build.sh" tests
 # catkin_test_results below.
 bash "$repo/scripts/build.sh" run_tests -j1 || true
 
+echo "== arm64: the engine cross-built with Debian's aarch64 toolchain, its unit tests under qemu-user"
+# Their gtest results join the others', so catkin_test_results counts them
+# (and their failures); status 3 means only that some of them failed.
+arm64_status=0
+BOWG_ARM64_RESULTS="$ws/build/test_results/bowg_ros_arm64" bash "$repo/scripts/check_arm64.sh" "$ws/arm64" \
+  || arm64_status=$?
+arm64_failed=0
+[ "$arm64_status" -eq 0 ] || [ "$arm64_status" -eq 3 ] || arm64_failed=1
+
 echo "== bounded inputs: special files, huge files and bombs against the converter, the evaluator and the node"
 bounded_failed=0
 bash "$repo/scripts/check_bounded_inputs.sh" "$ws" || bounded_failed=1
@@ -91,11 +100,11 @@ if [ -z "$tests" ] || [ "$tests" -eq 0 ]; then
   echo "FAIL: no test ran" >&2
   exit 1
 fi
-# Besides catkin's tests: the asan tests, the ROS layer's and tools' ASan
+# Besides catkin's tests (the arm64 ones among them): the asan tests, the ROS layer's and tools' ASan
 # check, the bounded-inputs replay, the fuzz run, the workspace, the install
 # space and the ThreadSanitizer checks.
 bad=$(( ${errors:-0} + ${failures:-0} + asan_failed + asan_ros_failed + bounded_failed
-  + fuzz_failed + link_failed + install_failed + tsan_failed ))
+  + fuzz_failed + link_failed + install_failed + tsan_failed + arm64_failed ))
 echo "$(( tests + ${#asan_tests[@]} + 6 - bad - ${skipped:-0} )) passed, $bad failed, ${skipped:-0} skipped"
 [ "$asan_failed" -eq 0 ] || exit 1
 [ "$asan_ros_failed" -eq 0 ] || exit 1
@@ -104,4 +113,5 @@ echo "$(( tests + ${#asan_tests[@]} + 6 - bad - ${skipped:-0} )) passed, $bad fa
 [ "$install_failed" -eq 0 ] || exit 1
 [ "$tsan_failed" -eq 0 ] || exit 1
 [ "$bounded_failed" -eq 0 ] || exit 1
+[ "$arm64_status" -eq 0 ] || exit 1
 exit $status

@@ -5,7 +5,8 @@ Each argument is one round, NAME:PEER_RUN:OURS_OUTPUT: a `peer.sh run` folder
 (its summary.json) and a `bowg_evaluate` output folder (its summary.txt), made
 one after the other on the same images. Per round the ratio ours / peer of the
 per-keyframe detection time (mean and max; ours = detector_total, the peer =
-detectLoop: both without feature extraction) and of the feature time (mean);
+detectLoop: both without feature extraction), of the feature time (mean)
+and of the whole keyframe (features + detection, mean: what a robot pays);
 per sequence the median [min-max] of those ratios over its rounds, beside the
 target (docs/benchmarks.md), and the loops each found at its operating point.
 Ratios, not absolute times: on a shared machine both sides of an alternated
@@ -21,42 +22,28 @@ import statistics
 import sys
 
 sys.dont_write_bytecode = True  # no __pycache__ beside the sources
-from csv_rows import write_rows_atomically  # noqa: E402 (after the line above)
+import summary_timing  # noqa: E402 (after the line above)
+from csv_rows import write_rows_atomically  # noqa: E402
 
 # Measure -> (target ratio ours / peer, what the target says).
 TARGETS = {
     "detection mean": (1.0 / 3.0, "<= 1/3"),
     "detection max": (1.0 / 3.0, "<= 1/3"),
     "features mean": (1.0, "<= 1"),
+    "whole-keyframe mean": (0.5, "<= 0.5"),
 }
 
 
 def fail(message):
-    sys.exit("peer_ratios: " + message)
-
-
-def read_text(path):
-    try:
-        with open(path) as f:
-            return f.read()
-    except OSError as e:
-        fail("cannot read %s: %s" % (path, e))
+    summary_timing.fail("peer_ratios", message)
 
 
 def parse_ours(folder):
     """{'detection': {mean, max}, 'features': {mean, max}, 'tp': n, 'fp': n} of one summary.txt."""
     path = os.path.join(folder, "summary.txt")
-    text = read_text(path)
-    timing = text.split("per-keyframe timing", 1)
-    if len(timing) != 2:
-        fail("%s: no per-keyframe timing" % path)
-    stats = {}
-    for name, key in (("detector_total", "detection"), ("features", "features")):
-        m = re.search(r"^\s+%s\s+([\d.]+)\s+([\d.]+)\s+([\d.]+)\s+([\d.]+)\s*$" % name, timing[1],
-                      re.M)
-        if not m:
-            fail("%s: no %s timing" % (path, name))
-        stats[key] = {"mean": float(m.group(1)), "max": float(m.group(4))}
+    text = summary_timing.read_text("peer_ratios", path)
+    stats = {key: summary_timing.stage_timing("peer_ratios", path, text, name)
+             for name, key in (("detector_total", "detection"), ("features", "features"))}
     # The row table: "row precision recall F1 TP FP ..." then one line per row.
     m = re.search(r"^\S+\s+[\d.]+\s+[\d.]+\s+[\d.]+\s+(\d+)\s+(\d+)\s", text, re.M)
     if not m:
@@ -81,6 +68,13 @@ def parse_peer(folder):
         fail("%s: missing field %s" % (path, e))
 
 
+def per_keyframe(stats, part, stat):
+    """One side's figure of a round: a stage's, or the whole keyframe's mean."""
+    if part == "whole-keyframe":
+        return stats["features"][stat] + stats["detection"][stat]
+    return stats[part][stat]
+
+
 def ratio(a, b):
     return a / b if b > 0 else float("nan")
 
@@ -101,9 +95,8 @@ def main(argv):
     for name, pairs in by_sequence.items():
         for measure in TARGETS:
             part, stat = measure.split()
-            key = "detection" if part == "detection" else "features"
-            peers = [p[key][stat] for p, _ in pairs]
-            ours = [o[key][stat] for _, o in pairs]
+            peers = [per_keyframe(p, part, stat) for p, _ in pairs]
+            ours = [per_keyframe(o, part, stat) for _, o in pairs]
             ratios = [ratio(o, p) for p, o in zip(peers, ours)]
             target, target_text = TARGETS[measure]
             med = statistics.median(ratios)

@@ -177,7 +177,6 @@ TEST(LoopAnchor, OnlyARecentLoopAnchorsThePlace) {
   EXPECT_FALSE(anchoredByRecentLoop(q, at(11.0, 0, 0, 11.0), recent, anchor(0.0, 0.0625)));
 }
 
-// The metric translation's bound: what the gates assume of the odometry.
 // A loop from run 1 (the live mission) into run 0 (an earlier one, whose
 // frame is turned and moved): q0 = (0, 0, 0) odometer 10 was at the place of
 // m0 = (5, 5, 0) odometer 40. The query drove 1 m to (1, 0, 0). An entry of
@@ -230,6 +229,7 @@ TEST(CrossRunAnchor, WithoutAnAnchorIntoTheEntrysRunEverythingPasses) {
   EXPECT_TRUE(withinCrossRunAnchors(q, no_odometer, loop(q0, m0), o));
 }
 
+// The metric translation's bound: what the gates assume of the odometry.
 TEST(OdometryDistanceBound, TheGatesDistancePlusTheirRadius) {
   const double inf = std::numeric_limits<double>::infinity();
   const DatabaseEntry query = at(0, 0, 0, 30.0);

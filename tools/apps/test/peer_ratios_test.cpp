@@ -75,6 +75,12 @@ TEST(PeerRatios, MediansOfPerRoundRatiosAgainstTheTargets) {
                        "| <= 1 | yes |"),
             std::string::npos)
       << table;
+  // Whole keyframe (features + detection mean): round 1 4.5 / 5.0 = 0.90,
+  // round 2 1.5 / 4.0 = 0.375, round 3 3.0 / 4.5 = 0.667; median 0.667 > 0.5.
+  EXPECT_NE(table.find("| seq | whole-keyframe mean ms | 4.50 | 3.00 | 0.67 [0.38-0.90] (3 rounds) "
+                       "| <= 0.5 | no |"),
+            std::string::npos)
+      << table;
   EXPECT_NE(table.find("| seq | loops TP/FP at the operating point | 38/5 | 402/2 |"),
             std::string::npos)
       << table;
