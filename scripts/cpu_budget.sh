@@ -33,7 +33,7 @@ if [ "${BOWG_SKIP_BUILD:-0}" != 1 ]; then
     { tail -n 40 "$log" >&2; echo "cpu_budget: build failed" >&2; exit 1; }
 fi
 tools="$ws/devel/lib/bowg_ros"
-mkdir -p "$out"
+mkdir -p "$out/runs"
 
 # The sequence, rendered (and cached) by the robustness suite.
 BOWG_WS="$ws" BOWG_SKIP_DEPS=1 BOWG_SKIP_BUILD=1 BOWG_SUITE_ONLY="^$sequence\$" \

@@ -41,68 +41,9 @@ list="${BOWG_REINSPECTION_LIST:-$repo/tools/suite/reinspection_suite.txt}"
 [ -r "$list" ] || { echo "reinspection: cannot read the pair list $list" >&2; exit 2; }
 export PATH="/usr/bin:$PATH"
 start=$(date +%s)
-case "$half" in tuning|test|all) ;; *) echo "BOWG_REINSPECTION_HALF must be tuning, test or all" >&2; exit 2 ;; esac
-IFS=',' read -ra mode_list <<<"$modes"
-for m in "${mode_list[@]}"; do
-  case "$m" in positions|odometer|images) ;;
-    *) echo "BOWG_REINSPECTION_MODES: unknown mode '$m' (positions, odometer, images)" >&2; exit 2 ;;
-  esac
-done
-
-if [ "${BOWG_SKIP_DEPS:-0}" != 1 ]; then "$repo/scripts/install_deps.sh"; fi
-if [ "${BOWG_SKIP_BUILD:-0}" != 1 ]; then
-  log="$ws/logs/reinspection_build.log"
-  echo "== build (scripts/build.sh, workspace $ws; log $log)"
-  BOWG_WS="$ws" BOWG_BUILD_LOG="$log" \
-    "$repo/scripts/build.sh" bowg_generate_pipe_sequence bowg_evaluate
-fi
-tools="${BOWG_TOOLS_DIR:-$ws/devel/lib/bowg_ros}"
-generator_hash="$(sha256sum "$tools/bowg_generate_pipe_sequence" | cut -d' ' -f1)"
-mkdir -p "$out/sequences" "$out/results"
-trim() { local s="$1"; s="${s#"${s%%[![:space:]]*}"}"; echo "${s%"${s##*[![:space:]]}"}"; }
-
-# render DIR ARGS: renders the generator arguments ARGS into DIR unless DIR
-# holds a render of the same generator binary and arguments (its stamp);
-# sets `rate`. Returns 1 when ARGS need the shared data and it is absent.
-render() {
-  local dir="$1" args="$2" i stamp t0
-  local -a argv
-  read -ra argv <<<"$args"
-  # Shared texture folders are named relative to the shared data folder.
-  for i in "${!argv[@]}"; do
-    if [ "${argv[$i]}" = --texture-images ]; then
-      [ -d "$shared" ] || return 1
-      argv[$((i + 1))]="$shared/${argv[$((i + 1))]}"
-    fi
-  done
-  rate=10
-  for i in "${!argv[@]}"; do [ "${argv[$i]}" != --rate ] || rate="${argv[$((i + 1))]}"; done
-  stamp="$generator_hash ${argv[*]}"
-  if [ -s "$dir/ground_truth.txt" ] && [ "$(cat "$dir/generator.stamp" 2>/dev/null)" = "$stamp" ]; then
-    return 0
-  fi
-  echo "   render $dir ($args)"
-  rm -rf "$dir"; mkdir -p "$dir"
-  t0=$(date +%s)
-  "$tools/bowg_generate_pipe_sequence" --images "$dir" --gt "$dir/ground_truth.txt" \
-    "${argv[@]}" >"$dir/generate.log" 2>&1 || { tail -n 20 "$dir/generate.log" >&2; exit 1; }
-  echo "$stamp" >"$dir/generator.stamp"
-  echo "   $(grep -E '^(frames|ground truth|missions):' "$dir/generate.log" | sed 's/ ->.*//' | paste -sd ';' - | sed 's/;/; /g') ($(( $(date +%s) - t0 )) s)"
-}
-
-# mode_inputs DIR MODE: sets `inputs`, what the robot's odometry gives in MODE,
-# all from the generator's drifting odometry.csv (slip, slip noise, heading
-# drift): its path length as the odometer, its dead-reckoned positions for
-# the odometry gates. A second survey's odometry is a new run from the true
-# start pose: the jump to it is counted as metres driven, once.
-mode_inputs() {
-  local dir="$1" mode="$2"
-  inputs=()
-  case "$mode" in
-    positions) inputs=(--odometry "$dir/odometry.csv" --odometry-poses "$dir/odometry.csv") ;;
-    odometer) inputs=(--odometry "$dir/odometry.csv") ;;
-  esac
-}
+source "$repo/scripts/suite_lib.sh"
+suite_check_inputs BOWG_REINSPECTION_HALF "$half" BOWG_REINSPECTION_MODES "$modes"
+suite_prepare reinspection_build
 
 # evaluate RESULT DIR RATE ARGS...: one bowg_evaluate run of the configured
 # method into RESULT (log next to it).
@@ -128,7 +69,7 @@ while IFS= read -r line; do
   case "$kind" in
     same)
       args="$(trim "$args")"
-      render "$seq_dir" "$args" || { echo "-- $name: skipped, needs $shared (absent)"; continue; }
+      render "$seq_dir" "$args" 10 "frames|ground truth|missions" || { echo "-- $name: skipped, needs $shared (absent)"; continue; }
       for mode in "${mode_list[@]}"; do
         mode_inputs "$seq_dir" "$mode"
         t0=$(date +%s)
@@ -142,9 +83,9 @@ while IFS= read -r line; do
     other)
       args_a="$(trim "${args%%||*}")"; args_b="$(trim "${args#*||}")"
       if [ "$args_a" = "$args" ]; then echo "reinspection: $name: 'other' needs two argument sets (A || B)" >&2; exit 2; fi
-      render "$seq_dir/A" "$args_a" || { echo "-- $name: skipped, needs $shared (absent)"; continue; }
+      render "$seq_dir/A" "$args_a" 10 "frames|ground truth|missions" || { echo "-- $name: skipped, needs $shared (absent)"; continue; }
       rate_a="$rate"
-      render "$seq_dir/B" "$args_b" || { echo "-- $name: skipped, needs $shared (absent)"; continue; }
+      render "$seq_dir/B" "$args_b" 10 "frames|ground truth|missions" || { echo "-- $name: skipped, needs $shared (absent)"; continue; }
       for mode in "${mode_list[@]}"; do
         t0=$(date +%s)
         result="$out/results/$name/$mode"

@@ -38,26 +38,9 @@ list="${BOWG_SUITE_LIST:-$repo/tools/suite/robustness_suite.txt}"
 [ -r "$list" ] || { echo "suite: cannot read the sequence list $list" >&2; exit 2; }
 export PATH="/usr/bin:$PATH"
 start=$(date +%s)
-case "$half" in tuning|test|all) ;; *) echo "BOWG_SUITE_HALF must be tuning, test or all" >&2; exit 2 ;; esac
-IFS=',' read -ra mode_list <<<"$modes"
-for m in "${mode_list[@]}"; do
-  case "$m" in positions|odometer|images) ;;
-    *) echo "BOWG_SUITE_MODES: unknown mode '$m' (positions, odometer, images)" >&2; exit 2 ;;
-  esac
-done
-
-if [ "${BOWG_SKIP_DEPS:-0}" != 1 ]; then "$repo/scripts/install_deps.sh"; fi
-if [ "${BOWG_SKIP_BUILD:-0}" != 1 ]; then
-  # The log inside the workspace: one per checkout.
-  log="$ws/logs/suite_build.log"
-  echo "== build (scripts/build.sh, workspace $ws; log $log)"
-  BOWG_WS="$ws" BOWG_BUILD_LOG="$log" \
-    "$repo/scripts/build.sh" bowg_generate_pipe_sequence bowg_evaluate
-fi
-tools="${BOWG_TOOLS_DIR:-$ws/devel/lib/bowg_ros}"
-generator_hash="$(sha256sum "$tools/bowg_generate_pipe_sequence" | cut -d' ' -f1)"
-mkdir -p "$out/sequences" "$out/results"
-trim() { local s="$1"; s="${s#"${s%%[![:space:]]*}"}"; echo "${s%"${s##*[![:space:]]}"}"; }
+source "$repo/scripts/suite_lib.sh"
+suite_check_inputs BOWG_SUITE_HALF "$half" BOWG_SUITE_MODES "$modes"
+suite_prepare suite_build
 
 ran=()
 while IFS= read -r line; do
@@ -70,31 +53,7 @@ while IFS= read -r line; do
   [ -z "${BOWG_SUITE_ONLY:-}" ] || [[ "$name" =~ $BOWG_SUITE_ONLY ]] || continue
   seq_dir="$out/sequences/$name"
   if [ "$source" = render ]; then
-    # Shared texture folders are named relative to the shared data folder.
-    read -ra argv <<<"$args"
-    for i in "${!argv[@]}"; do
-      if [ "${argv[$i]}" = --texture-images ]; then argv[$((i + 1))]="$shared/${argv[$((i + 1))]}"; fi
-    done
-    if [[ " $args " == *" --texture-images "* ]] && [ ! -d "$shared" ]; then
-      echo "-- $name: skipped, needs $shared (absent)"; continue
-    fi
-    rate=2
-    for i in "${!argv[@]}"; do [ "${argv[$i]}" != --rate ] || rate="${argv[$((i + 1))]}"; done
-    stamp="$generator_hash ${argv[*]}"
-    if [ ! -s "$seq_dir/ground_truth.txt" ] || [ "$(cat "$seq_dir/generator.stamp" 2>/dev/null)" != "$stamp" ]; then
-      echo "== $name: render ($args)"
-      rm -rf "$seq_dir"; mkdir -p "$seq_dir"
-      t0=$(date +%s)
-      "$tools/bowg_generate_pipe_sequence" --images "$seq_dir" --gt "$seq_dir/ground_truth.txt" \
-        "${argv[@]}" >"$seq_dir/generate.log" 2>&1 || { tail -n 20 "$seq_dir/generate.log" >&2; exit 1; }
-      echo "$stamp" >"$seq_dir/generator.stamp"
-      # The generator's closing summary (render time, revisits).
-      echo "   $(grep -E '^(render|ground truth):' "$seq_dir/generate.log" | sed 's/ ->.*//' | paste -sd ';' - | sed 's/;/; /g') ($(( $(date +%s) - t0 )) s)"
-    fi
-    # What the robot's odometry gives in each mode, all from the generator's
-    # drifting odometry.csv (slip, slip noise, heading drift): its path length
-    # as the odometer (the windows in metres, recent_exclusion_m) and its
-    # dead-reckoned positions (the odometry gates, odometry_gate_m).
+    render "$seq_dir" "$args" 2 "render|ground truth" || { echo "-- $name: skipped, needs $shared (absent)"; continue; }
     images="$seq_dir"
     seq_modes=("${mode_list[@]}")
   else
@@ -107,13 +66,9 @@ while IFS= read -r line; do
   fi
   for mode in "${seq_modes[@]}"; do
     [[ ",$modes," == *",$mode,"* ]] || continue
-    inputs=()
     if [ "$source" = render ]; then
-      inputs=(--gt "$seq_dir/ground_truth.txt")
-      case "$mode" in
-        positions) inputs+=(--odometry "$seq_dir/odometry.csv" --odometry-poses "$seq_dir/odometry.csv") ;;
-        odometer) inputs+=(--odometry "$seq_dir/odometry.csv") ;;
-      esac
+      mode_inputs "$seq_dir" "$mode"
+      inputs+=(--gt "$seq_dir/ground_truth.txt")
     else
       inputs=("${gt[@]}")
     fi

@@ -38,6 +38,8 @@ TEST(RobustnessSuite, RendersEvaluatesAndTabulatesAListOfSequences) {
   // per half, row and mode.
   EXPECT_NE(printed.find("circuit_twice"), std::string::npos) << printed;
   EXPECT_NE(printed.find("straight_once"), std::string::npos) << printed;
+  EXPECT_NE(printed.find("   render " + kDir + "/out/sequences/straight_once ("), std::string::npos)
+      << printed;
   for (const char* mode : {"positions", "odometer ", "images   "}) {
     EXPECT_NE(
         printed.find(std::string("tuning configured   ") + mode + " at the threshold: recall min"),
@@ -96,8 +98,8 @@ TEST(RobustnessSuite, RendersEvaluatesAndTabulatesAListOfSequences) {
       << tool_test::readAll(log);
   const std::string quick = tool_test::readAll(log);
   EXPECT_EQ(quick.find("circuit_twice"), std::string::npos) << quick;
-  EXPECT_EQ(quick.find("render ("), std::string::npos) << "re-rendered a cached sequence:\n"
-                                                       << quick;
+  EXPECT_EQ(quick.find("   render "), std::string::npos) << "re-rendered a cached sequence:\n"
+                                                         << quick;
   // An unknown input mode is an error that names it.
   EXPECT_EQ(tool_test::run(env + "BOWG_SUITE_MODES=positions,wheels " + script, log), 2);
   EXPECT_NE(tool_test::readAll(log).find("'wheels'"), std::string::npos) << tool_test::readAll(log);
