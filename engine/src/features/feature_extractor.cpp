@@ -18,6 +18,7 @@
 #include "bowg/features/image_decoding.h"
 #include "bowg/features/orb_descriptor.h"
 #include "bowg/features/orientation.h"
+#include "features/gftt_corners.h"
 
 namespace bowg {
 namespace {
@@ -92,16 +93,22 @@ Keypoint toKeypoint(const cv::KeyPoint& kp, bool oriented) {
 // with their corner quality as the response.
 std::vector<cv::KeyPoint> detectGftt(const cv::Mat& image, const cv::Mat& mask,
                                      const FeatureOptions& o) {
+  GfttCornerOptions g;
+  g.max_corners = o.gftt_max_corners;
+  g.quality_level = o.gftt_quality_level;
+  g.min_distance = o.gftt_min_distance;
+  g.block_size = o.gftt_block_size;
+  g.gradient_size = kGfttGradientSize;
+  g.use_harris = o.gftt_use_harris;
+  g.harris_k = kHarrisK;
   std::vector<cv::Point2f> corners;
   std::vector<float> quality;
-  cv::goodFeaturesToTrack(image, corners, o.gftt_max_corners, o.gftt_quality_level,
-                          o.gftt_min_distance, mask, quality, o.gftt_block_size, kGfttGradientSize,
-                          o.gftt_use_harris, kHarrisK);
+  detectGfttCorners(image, mask, g, corners, quality);
   std::vector<cv::KeyPoint> detected;
   detected.reserve(corners.size());
   for (std::size_t i = 0; i < corners.size(); ++i) {
-    detected.emplace_back(corners[i], static_cast<float>(o.gftt_keypoint_size), -1.f,
-                          i < quality.size() ? quality[i] : 0.f, 0);
+    detected.emplace_back(corners[i], static_cast<float>(o.gftt_keypoint_size), -1.f, quality[i],
+                          0);
   }
   return detected;
 }
