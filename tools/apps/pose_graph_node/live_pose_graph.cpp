@@ -129,15 +129,17 @@ void LivePoseGraph::fillGroundTruth() {
 
 void LivePoseGraph::onKeyframe(const bowg_ros::KeyframeStatus::ConstPtr& msg) {
   // The detector's ids restart after its ~reset (or a new run).
-  const std::uint32_t last = pending_keyframes_.empty()
-                                 ? (node_of_keyframe_.empty() ? 0 : node_of_keyframe_.rbegin()->first)
-                                 : pending_keyframes_.back().first;
+  const std::uint32_t last =
+      pending_keyframes_.empty()
+          ? (node_of_keyframe_.empty() ? 0 : node_of_keyframe_.rbegin()->first)
+          : pending_keyframes_.back().first;
   if ((!node_of_keyframe_.empty() || !pending_keyframes_.empty()) && msg->id <= last) {
     restart("keyframe id " + std::to_string(msg->id) + " after " + std::to_string(last));
   }
   if ((!node_of_keyframe_.empty() || !pending_keyframes_.empty()) && msg->id > last + 1) {
     lost_keyframes_ += msg->id - last - 1;
-    ROS_WARN_THROTTLE(5.0, "bowg_pose_graph_node: keyframe statuses %u..%u never arrived (%zu "
+    ROS_WARN_THROTTLE(5.0,
+                      "bowg_pose_graph_node: keyframe statuses %u..%u never arrived (%zu "
                       "lost): their odometry is bridged by one edge",
                       last + 1, msg->id - 1, lost_keyframes_);
   }
@@ -160,8 +162,10 @@ void LivePoseGraph::addCoveredKeyframes() {
     Eigen::Isometry3d odom;
     if (!odometry_.at(stamp, &odom)) {
       ++skipped_keyframes_;
-      ROS_WARN_THROTTLE(5.0, "bowg_pose_graph_node: keyframe %u at %.6f: no odometry that old "
-                        "(%zu keyframes skipped)", id, stamp, skipped_keyframes_);
+      ROS_WARN_THROTTLE(5.0,
+                        "bowg_pose_graph_node: keyframe %u at %.6f: no odometry that old "
+                        "(%zu keyframes skipped)",
+                        id, stamp, skipped_keyframes_);
       continue;
     }
     if (node_stamps_.empty()) {
@@ -266,9 +270,14 @@ void LivePoseGraph::reportTrajectoryError() {
       pose_graph::anchoredTruth(truth, 0, node_odometry_[first]);
   const pose_graph::TrajectoryError after = pose_graph::positionError(corrected, truth_here);
   const pose_graph::TrajectoryError before = pose_graph::positionError(odometry, truth_here);
-  ROS_INFO("bowg_pose_graph_node: position RMSE against the ground truth at %zu of %zu "
-           "keyframes: corrected path %.3f m, odometry %.3f m",
-           truth.size(), node_stamps_.size(), after.rmse, before.rmse);
+  // The keyframes left out of the graph are counted beside it: a status
+  // that trails the odometry by more than the horizon has no pose.
+  ROS_INFO(
+      "bowg_pose_graph_node: position RMSE against the ground truth at %zu of %zu "
+      "keyframes: corrected path %.3f m, odometry %.3f m (%zu keyframes skipped without "
+      "odometry, %zu statuses lost)",
+      truth.size(), node_stamps_.size(), after.rmse, before.rmse, skipped_keyframes_,
+      lost_keyframes_);
 }
 
 bool LivePoseGraph::cameraMounting(const bowg_ros::LoopClosure& loop,

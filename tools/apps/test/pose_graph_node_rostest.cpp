@@ -132,19 +132,27 @@ void waitFor(double timeout, double step, Done done) {
   while (!done() && ros::WallTime::now() < deadline) ros::WallDuration(step).sleep();
 }
 
-// The position-RMSE line of a solve: true when `line` is one, with its
-// counts of keyframes with truth and of keyframes (and, where asked, the
-// two errors).
-bool parseErrorLine(const std::string& line, std::size_t* with_truth, std::size_t* keyframes,
-                    double* corrected = nullptr, double* odometry = nullptr) {
-  double c = -1, o = -1;
-  const int read = std::sscanf(line.c_str(),
-                               "bowg_pose_graph_node: position RMSE against the ground truth at "
-                               "%zu of %zu keyframes: corrected path %lf m, odometry %lf m",
-                               with_truth, keyframes, &c, &o);
-  if (corrected) *corrected = c;
-  if (odometry) *odometry = o;
-  return read >= 2 && (corrected == nullptr || read == 4);
+// The position-RMSE line of a solve: its counts of keyframes with truth, of
+// keyframes in the graph and of those left out of it (skipped without
+// odometry, statuses lost), and the two errors; `read` false when `line` is
+// not one.
+struct ErrorLine {
+  bool read = false;
+  std::size_t with_truth = 0, keyframes = 0, skipped = 0, lost = 0;
+  double corrected = -1, odometry = -1;
+  // Every keyframe the node heard of: the last solve's (at the loop of
+  // keyframe 590, or of 580 when 590 itself was skipped) counts over 580.
+  std::size_t heard() const { return keyframes + skipped + lost; }
+};
+ErrorLine parseErrorLine(const std::string& line) {
+  ErrorLine e;
+  e.read =
+      std::sscanf(line.c_str(),
+                  "bowg_pose_graph_node: position RMSE against the ground truth at %zu of "
+                  "%zu keyframes: corrected path %lf m, odometry %lf m (%zu keyframes "
+                  "skipped without odometry, %zu statuses lost)",
+                  &e.with_truth, &e.keyframes, &e.corrected, &e.odometry, &e.skipped, &e.lost) == 6;
+  return e;
 }
 
 // The robot and the loop detector as the pose-graph nodes of
@@ -279,33 +287,35 @@ class PoseGraphPlayback : public ::testing::Test {
   // together), from the node given it and from no other; the last one's
   // odometry error as measured, the corrected path's far below it. /rosout
   // relays the lines with a delay of its own, longest on a loaded machine:
-  // wait (up to 20 s) for the line of the last solve, whose graph holds
-  // every keyframe up to the last loop at keyframe 590.
+  // wait (up to 20 s) for the line of the last solve, at the last loops
+  // (keyframes 580, 590). On a loaded machine a keyframe's status may trail
+  // the odometry by more than the node's 10 s horizon (200 ms of playback):
+  // the node skips it and says so in the line, so the graph may hold fewer
+  // keyframes than it heard of.
   void expectErrorLines() {
     waitFor(20.0, 0.1, [this] {
       std::lock_guard<std::mutex> l(error_lines_.mutex);
-      std::size_t with_truth = 0, keyframes = 0;
       return !error_lines_.lines.empty() &&
-             parseErrorLine(error_lines_.lines.back().second, &with_truth, &keyframes) &&
-             keyframes > 580;
+             parseErrorLine(error_lines_.lines.back().second).heard() > 580;
     });
     std::lock_guard<std::mutex> l6(error_lines_.mutex);
     ASSERT_FALSE(error_lines_.lines.empty()) << "no trajectory-error line on /rosout";
     for (const auto& line : error_lines_.lines) EXPECT_EQ(line.first, "/pose_graph_truth");
-    std::size_t with_truth = 0, keyframes = 0;
-    double corrected_rmse = -1, odometry_rmse = -1;
     const std::string& last = error_lines_.lines.back().second;
-    ASSERT_TRUE(parseErrorLine(last, &with_truth, &keyframes, &corrected_rmse, &odometry_rmse))
-        << last;
-    std::printf("[ MEASURED ] logged at %zu of %zu keyframes: corrected %.3f m, odometry %.3f m\n",
-                with_truth, keyframes, corrected_rmse, odometry_rmse);
-    // Nearly all, though the node keeps 5 s of truth and odometry: the
+    const ErrorLine e = parseErrorLine(last);
+    ASSERT_TRUE(e.read) << last;
+    std::printf(
+        "[ MEASURED ] logged at %zu of %zu keyframes (%zu skipped, %zu lost): corrected "
+        "%.3f m, odometry %.3f m\n",
+        e.with_truth, e.keyframes, e.skipped, e.lost, e.corrected, e.odometry);
+    // Nearly all, though the node keeps 10 s of truth and odometry: the
     // newest keyframes' truth may trail on its own connection (10 behind was
     // seen on a loaded machine).
-    EXPECT_GE(with_truth, keyframes * 9 / 10);
-    EXPECT_GT(keyframes, 580u);  // the last loop is at keyframe 590
-    EXPECT_GT(odometry_rmse, 1.0);
-    EXPECT_LT(corrected_rmse, odometry_rmse / 3.0);
+    EXPECT_GE(e.with_truth, e.keyframes * 9 / 10);
+    EXPECT_GT(e.heard(), 580u) << last;
+    EXPECT_GT(e.keyframes, 300u) << last;  // most of them in the graph
+    EXPECT_GT(e.odometry, 1.0);
+    EXPECT_LT(e.corrected, e.odometry / 3.0);
   }
 
   ros::NodeHandle nh_;
