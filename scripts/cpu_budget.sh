@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # A robot's CPU budget: per-keyframe milliseconds (feature extraction +
 # detection) of each preset on the same rendered pipe images, and the share
-# of one core they take at 5, 10 and 25 keyframes a second (README, "CPU
-# budget"). Rounds alternate the presets, each run alone (--jobs 1) with
+# of one core their CPU time (OpenCV's worker threads included) takes at 5,
+# 10 and 25 keyframes a second (README, "CPU budget"). Rounds alternate the presets, each run alone (--jobs 1) with
 # odometer and positions, at the preset's own min_score.
 #   ./scripts/cpu_budget.sh
 # Environment: BOWG_BUDGET_ROUNDS (default 3), BOWG_BUDGET_PRESETS (files of

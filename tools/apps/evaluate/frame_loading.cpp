@@ -14,6 +14,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <ctime>
 #include <limits>
 #include <string>
 
@@ -79,8 +80,12 @@ class FrameCollector {
     // them strictly increasing as the detector requires.
     f.stamp = frames_->empty() ? stamp : std::max(stamp, frames_->back().stamp + 1e-6);
     f.intrinsics = k;
+    // std::clock: the process's CPU time (every thread's: OpenCV's workers
+    // included); nothing else runs while the frames load.
     const auto t0 = std::chrono::steady_clock::now();
+    const std::clock_t cpu0 = std::clock();
     f.features = grey.empty() ? ImageFeatures() : extractor_.extract(grey);
+    f.feature_cpu_ms = 1000.0 * static_cast<double>(std::clock() - cpu0) / CLOCKS_PER_SEC;
     f.feature_ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     frames_->push_back(std::move(f));

@@ -55,6 +55,7 @@ DetectorRun runDetector(std::shared_ptr<const Vocabulary> vocabulary,
     k.stamp = frames[i].stamp;
     k.features = frames[i].features.size();
     k.feature_ms = frames[i].feature_ms;
+    k.feature_cpu_ms = frames[i].feature_cpu_ms;
     k.database_size = first_entry + i;
     if (frames[i].starts_mission) {
       detector.startMission(frames[i].mission_name, frames[i].mission_id);
@@ -153,18 +154,20 @@ std::string keyframesCsv(const DetectorRun& run, const GroundTruth* gt) {
 }
 
 std::vector<std::pair<std::string, TimingStats>> stageTimingStats(const DetectorRun& run) {
-  const char* names[] = {"features", "transform",    "word_groups",    "query",
-                         "islands",  "verification", "detector_total", "keyframe_total"};
-  std::vector<std::vector<double>> values(8);
+  constexpr int kStages = 9;
+  const char* names[kStages] = {"features",       "transform",      "word_groups",
+                                "query",          "islands",        "verification",
+                                "detector_total", "keyframe_total", "features_cpu"};
+  std::vector<std::vector<double>> values(kStages);
   for (const KeyframeRecord& k : run.keyframes) {
     const StageTimings& t = k.timings;
-    const double v[] = {
-        k.feature_ms, t.transform_ms,    t.word_groups_ms, t.query_ms,
-        t.islands_ms, t.verification_ms, t.total_ms,       k.feature_ms + t.total_ms};
-    for (int i = 0; i < 8; ++i) values[i].push_back(v[i]);
+    const double v[kStages] = {
+        k.feature_ms,      t.transform_ms, t.word_groups_ms,          t.query_ms,      t.islands_ms,
+        t.verification_ms, t.total_ms,     k.feature_ms + t.total_ms, k.feature_cpu_ms};
+    for (int i = 0; i < kStages; ++i) values[i].push_back(v[i]);
   }
   std::vector<std::pair<std::string, TimingStats>> out;
-  for (int i = 0; i < 8; ++i) out.emplace_back(names[i], computeTimingStats(values[i]));
+  for (int i = 0; i < kStages; ++i) out.emplace_back(names[i], computeTimingStats(values[i]));
   return out;
 }
 

@@ -1,10 +1,10 @@
 #include "bowg_evaluation/detector_run.h"
 
+#include <gtest/gtest.h>
+
 #include <memory>
 #include <random>
 #include <sstream>
-
-#include <gtest/gtest.h>
 
 #include "synthetic_sequence.h"
 #include "synthetic_vocabulary.h"
@@ -33,11 +33,11 @@ TEST(DetectorRunTest, OneRecordPerKeyframeAndConsistentOutputs) {
   options.geometric.direct_index_level = 2;
   const std::vector<FrameInput> frames = syntheticSequence();
   std::size_t progress_calls = 0;
-  const DetectorRun run = runDetector(vocabulary, options, frames, "test",
-                                      [&](std::size_t done, std::size_t total) {
-                                        EXPECT_EQ(done, ++progress_calls);
-                                        EXPECT_EQ(total, 60u);
-                                      });
+  const DetectorRun run =
+      runDetector(vocabulary, options, frames, "test", [&](std::size_t done, std::size_t total) {
+        EXPECT_EQ(done, ++progress_calls);
+        EXPECT_EQ(total, 60u);
+      });
   ASSERT_EQ(run.keyframes.size(), 60u);
   EXPECT_EQ(progress_calls, 60u);
   // Memory: before the first keyframe and after the last (60 < 1000).
@@ -88,13 +88,18 @@ TEST(DetectorRunTest, OneRecordPerKeyframeAndConsistentOutputs) {
   EXPECT_EQ(at.true_positives + at.false_positives, static_cast<int>(detections.size()));
 
   // Timing: feature_ms = 1..60 -> mean 30.5, max 60; keyframe total adds the
-  // detector's time.
+  // detector's time; the CPU time, 2..120 -> mean 61, median 61, max 120.
   const auto stats = stageTimingStats(run);
-  ASSERT_EQ(stats.size(), 8u);
+  ASSERT_EQ(stats.size(), 9u);
   EXPECT_EQ(stats[0].first, "features");
   EXPECT_DOUBLE_EQ(stats[0].second.mean, 30.5);
   EXPECT_DOUBLE_EQ(stats[0].second.max, 60);
+  EXPECT_EQ(stats[7].first, "keyframe_total");
   EXPECT_GE(stats[7].second.mean, stats[0].second.mean);
+  EXPECT_EQ(stats[8].first, "features_cpu");
+  EXPECT_DOUBLE_EQ(stats[8].second.mean, 61);
+  EXPECT_DOUBLE_EQ(stats[8].second.median, 61);
+  EXPECT_DOUBLE_EQ(stats[8].second.max, 120);
   const std::vector<TimeVsSize> bins = timeVersusDatabaseSize(run, 4);
   ASSERT_EQ(bins.size(), 4u);
   EXPECT_EQ(bins.front().first, 0u);

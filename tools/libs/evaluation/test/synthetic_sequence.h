@@ -23,6 +23,7 @@ inline std::vector<FrameInput> syntheticSequence() {
     FrameInput& f = frames[i];
     f.stamp = 0.1 * i;
     f.feature_ms = 1.0 + i;  // known values for the timing statistics
+    f.feature_cpu_ms = 2.0 * (1.0 + i);
     if (i >= 40 && i < 50) {
       f.features = frames[i - 30].features;
       continue;

@@ -29,7 +29,11 @@ struct FrameInput {
   double stamp = 0;  ///< seconds, strictly increasing
   ImageFeatures features;
   CameraIntrinsics intrinsics;
-  double feature_ms = 0;  ///< time the feature extraction took
+  double feature_ms = 0;  ///< time the feature extraction took (wall clock)
+  /// The process's CPU time during the extraction, every thread's: OpenCV
+  /// may spread a frame's work over its own worker threads, so this, not
+  /// the wall time, is what the frame costs the robot's CPU.
+  double feature_cpu_ms = 0;
   /// Metres driven (odometry_file.h); NaN = unknown.
   double odometer = std::numeric_limits<double>::quiet_NaN();
   /// Position in the odometry's frame (odometry_file.h); unknown = NaN.
@@ -59,7 +63,7 @@ struct KeyframeRecord {
   std::size_t features = 0;
   std::size_t database_size = 0;  ///< entries before this keyframe was added
   StageTimings timings;
-  double feature_ms = 0;
+  double feature_ms = 0, feature_cpu_ms = 0;
   /// The loop's relative pose, when it has one (match >= 0 and intrinsics).
   bool has_pose = false;
   LoopPose pose;
