@@ -1,6 +1,7 @@
 #include "features/gftt_corners.h"
 
 #include <algorithm>
+#include <memory>
 #include <opencv2/imgproc.hpp>
 
 namespace bowg {
@@ -48,21 +49,41 @@ cv::Point2f pixelOf(const cv::Mat& response, const float* p) {
   return cv::Point2f(static_cast<float>(x), static_cast<float>(y));
 }
 
-// Whether `p` is at least min_distance (squared: `min_d2`) from every kept
-// corner of the 3x3 grid cells around it (cells of min_distance px).
-bool farFromKept(const GfttBuffers& b, cv::Point2f p, int cell, int grid_w, int grid_h,
-                 double min_d2) {
-  const int cx = static_cast<int>(p.x) / cell, cy = static_cast<int>(p.y) / cell;
-  for (int yy = std::max(0, cy - 1); yy <= std::min(grid_h - 1, cy + 1); ++yy) {
-    for (int xx = std::max(0, cx - 1); xx <= std::min(grid_w - 1, cx + 1); ++xx) {
-      for (const cv::Point2f& k : b.grid[yy * grid_w + xx]) {
-        const float dx = p.x - k.x, dy = p.y - k.y;
-        if (dx * dx + dy * dy < min_d2) return false;
+// The kept corners by cell of min_distance px, as goodFeaturesToTrack
+// spaces them: a corner is kept when it is at least min_distance from every
+// kept corner of the 3x3 cells around its own.
+class SpacingGrid {
+ public:
+  SpacingGrid(std::vector<std::vector<cv::Point2f>>* cells, const cv::Size& image, double min_d)
+      : cells_(cells),
+        cell_(cvRound(min_d)),
+        w_((image.width + cell_ - 1) / cell_),
+        h_((image.height + cell_ - 1) / cell_),
+        min_d2_(min_d * min_d) {
+    cells_->resize(static_cast<std::size_t>(w_) * h_);
+    for (std::vector<cv::Point2f>& c : *cells_) c.clear();
+  }
+
+  // Keeps `p` (true) when no kept corner is nearer than min_distance.
+  bool admit(cv::Point2f p) {
+    const int cx = static_cast<int>(p.x) / cell_, cy = static_cast<int>(p.y) / cell_;
+    for (int yy = std::max(0, cy - 1); yy <= std::min(h_ - 1, cy + 1); ++yy) {
+      for (int xx = std::max(0, cx - 1); xx <= std::min(w_ - 1, cx + 1); ++xx) {
+        for (const cv::Point2f& k : (*cells_)[yy * w_ + xx]) {
+          const float dx = p.x - k.x, dy = p.y - k.y;
+          if (dx * dx + dy * dy < min_d2_) return false;
+        }
       }
     }
+    (*cells_)[cy * w_ + cx].push_back(p);
+    return true;
   }
-  return true;
-}
+
+ private:
+  std::vector<std::vector<cv::Point2f>>* cells_;
+  int cell_, w_, h_;
+  double min_d2_;
+};
 
 }  // namespace
 
@@ -83,20 +104,12 @@ void detectGfttCorners(const cv::Mat& image, const cv::Mat& mask, const GfttCorn
   cv::dilate(b.response, b.dilated, cv::Mat());
   collectCandidates(b, mask);
 
-  const bool spaced = o.min_distance >= 1;
-  const int cell = spaced ? cvRound(o.min_distance) : 1;
-  const int grid_w = (image.cols + cell - 1) / cell, grid_h = (image.rows + cell - 1) / cell;
-  if (spaced) {
-    b.grid.resize(static_cast<std::size_t>(grid_w) * grid_h);
-    for (std::vector<cv::Point2f>& g : b.grid) g.clear();
-  }
-  const double min_d2 = o.min_distance * o.min_distance;
+  // Below 1 px goodFeaturesToTrack keeps every candidate.
+  std::unique_ptr<SpacingGrid> grid;
+  if (o.min_distance >= 1) grid.reset(new SpacingGrid(&b.grid, image.size(), o.min_distance));
   for (const float* c : b.candidates) {
     const cv::Point2f p = pixelOf(b.response, c);
-    if (spaced) {
-      if (!farFromKept(b, p, cell, grid_w, grid_h, min_d2)) continue;
-      b.grid[(static_cast<int>(p.y) / cell) * grid_w + static_cast<int>(p.x) / cell].push_back(p);
-    }
+    if (grid && !grid->admit(p)) continue;
     corners.push_back(p);
     quality.push_back(*c);
     if (o.max_corners > 0 && static_cast<int>(corners.size()) == o.max_corners) break;
