@@ -7,9 +7,11 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <vector>
 
 #include "bowg/core/bounded_file.h"
 #include "bowg/core/checksum.h"
+#include "bowg/core/huge_page_allocator.h"
 #include "bowg/detection/detector_file.h"
 #include "bowg/vocabulary/vocabulary.h"
 #include "detection/detector_file_format.h"
@@ -56,35 +58,39 @@ std::uint32_t checkFrame(const std::string& path, const char* head, std::size_t 
   return version;
 }
 
+// A whole database file in memory. An archive's file is gigabytes: held in
+// huge pages where the system has them (huge_page_allocator.h), it is
+// faulted in 2 MB at a time instead of 4 kB, the largest single cost of a
+// large map's load on a VM.
+using FileBytes = std::vector<char, HugePageAllocator<char>>;
+
 // The file's bytes (bounded_file.h: a regular file within
 // BOWG_MAX_DATABASE_MB), its header checked against its length before the
-// body is read. The body is read into the same buffer, after the header: an
-// archive's gigabytes are held and touched once, not read into a second
-// string and appended (a copy that took a fifth of a large map's load).
-std::string readDatabaseFile(const std::string& path) {
+// body is read, into the same buffer: the bytes are held and touched once.
+FileBytes readDatabaseFile(const std::string& path) {
   BoundedFile file(path, FileKind::kDatabase, "database file");
-  const std::size_t head =
+  char head[kHeaderBytes];
+  const std::size_t head_size =
       static_cast<std::size_t>(std::min<std::uint64_t>(file.size(), kHeaderBytes));
-  std::string bytes(head, '\0');
-  file.readExactly(&bytes[0], head);
+  file.readExactly(head, head_size);
   std::uint64_t payload = 0;
-  checkFrame(path, bytes.data(), bytes.size(), file.size(), &payload);
-  bytes.resize(static_cast<std::size_t>(file.size()));
-  file.readExactly(&bytes[head], bytes.size() - head);  // shrunk meanwhile: a clear error
+  checkFrame(path, head, head_size, file.size(), &payload);
+  FileBytes bytes(static_cast<std::size_t>(file.size()));
+  std::memcpy(bytes.data(), head, head_size);
+  file.readExactly(bytes.data() + head_size, bytes.size() - head_size);  // shrunk: an error
   return bytes;
 }
 
 // Frame, checksum and vocabulary; returns the version.
-std::uint32_t checkHeader(const std::string& path, const std::string& bytes,
+std::uint32_t checkHeader(const std::string& path, const char* bytes, std::size_t size,
                           const Vocabulary& vocabulary, std::uint64_t* payload_size) {
-  const std::uint32_t version =
-      checkFrame(path, bytes.data(), bytes.size(), bytes.size(), payload_size);
-  Reader r(path, bytes.data() + 8, bytes.size() - 8);
+  const std::uint32_t version = checkFrame(path, bytes, size, size, payload_size);
+  Reader r(path, bytes + 8, size - 8);
   r.u32("version");
   const std::uint64_t fingerprint = r.u64("vocabulary fingerprint");
-  Reader trailer(path, bytes.data() + bytes.size() - kTrailerBytes, kTrailerBytes);
+  Reader trailer(path, bytes + size - kTrailerBytes, kTrailerBytes);
   const std::uint64_t stored_sum = trailer.u64("checksum");
-  if (checksum64(bytes.data(), bytes.size() - kTrailerBytes) != stored_sum) {
+  if (checksum64(bytes, size - kTrailerBytes) != stored_sum) {
     r.fail("checksum mismatch (the file is corrupt)");
   }
   if (fingerprint != vocabulary.fingerprint()) {
@@ -368,25 +374,14 @@ void restoreChain(Reader* p, const Database& db, StoredChain* chain, DetectorSta
                              std::move(chain->others));
 }
 
-}  // namespace
-
-std::unique_ptr<Database> loadDetectorFile(const std::string& path,
-                                           std::shared_ptr<const Vocabulary> vocabulary,
-                                           ScoringType scoring, int direct_index_level,
-                                           int fan_bins, DetectorState* state,
-                                           ScoringType* stored_scoring_out) {
-  return decodeDetectorFile(readDatabaseFile(path), path, std::move(vocabulary), scoring,
-                            direct_index_level, fan_bins, state, stored_scoring_out);
-}
-
-std::unique_ptr<Database> decodeDetectorFile(const std::string& bytes, const std::string& path,
-                                             std::shared_ptr<const Vocabulary> vocabulary,
-                                             ScoringType scoring, int direct_index_level,
-                                             int fan_bins, DetectorState* state,
-                                             ScoringType* stored_scoring_out) {
+// decodeDetectorFile() of `size` bytes at `bytes`.
+std::unique_ptr<Database> decodeBytes(const char* bytes, std::size_t size, const std::string& path,
+                                      std::shared_ptr<const Vocabulary> vocabulary,
+                                      ScoringType scoring, int direct_index_level, int fan_bins,
+                                      DetectorState* state, ScoringType* stored_scoring_out) {
   std::uint64_t payload = 0;
-  const std::uint32_t version = checkHeader(path, bytes, *vocabulary, &payload);
-  Reader p(path, bytes.data() + kHeaderBytes, static_cast<std::size_t>(payload));
+  const std::uint32_t version = checkHeader(path, bytes, size, *vocabulary, &payload);
+  Reader p(path, bytes + kHeaderBytes, static_cast<std::size_t>(payload));
   std::unique_ptr<Database> db(new Database(vocabulary, scoring, direct_index_level, fan_bins));
   const std::uint32_t stored_scoring = p.u32("scoring type");
   if (stored_scoring > static_cast<std::uint32_t>(ScoringType::kDotProduct)) {
@@ -433,6 +428,27 @@ std::unique_ptr<Database> decodeDetectorFile(const std::string& bytes, const std
   }
   if (p.left() != 0) p.fail("unexpected bytes after the detector state");
   return db;
+}
+
+}  // namespace
+
+std::unique_ptr<Database> loadDetectorFile(const std::string& path,
+                                           std::shared_ptr<const Vocabulary> vocabulary,
+                                           ScoringType scoring, int direct_index_level,
+                                           int fan_bins, DetectorState* state,
+                                           ScoringType* stored_scoring_out) {
+  const FileBytes bytes = readDatabaseFile(path);
+  return decodeBytes(bytes.data(), bytes.size(), path, std::move(vocabulary), scoring,
+                     direct_index_level, fan_bins, state, stored_scoring_out);
+}
+
+std::unique_ptr<Database> decodeDetectorFile(const std::string& bytes, const std::string& path,
+                                             std::shared_ptr<const Vocabulary> vocabulary,
+                                             ScoringType scoring, int direct_index_level,
+                                             int fan_bins, DetectorState* state,
+                                             ScoringType* stored_scoring_out) {
+  return decodeBytes(bytes.data(), bytes.size(), path, std::move(vocabulary), scoring,
+                     direct_index_level, fan_bins, state, stored_scoring_out);
 }
 
 }  // namespace bowg
