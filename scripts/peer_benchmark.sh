@@ -43,11 +43,10 @@ mkdir -p "$out"
 peer_vocabulary="$out/vocabulary_dbow2.yml.gz"
 "$tools/bowg_convert_vocabulary" "$vocabulary" "$peer_vocabulary" >"$out/convert.log"
 
-# The sequences, rendered (and cached) by the robustness suite; its one-row
-# evaluation at the preset's threshold is a by-product.
+# The sequences, rendered (and cached) by the robustness suite.
 only="^($(echo "$sequences" | tr ',' '|'))\$"
-BOWG_WS="$ws" BOWG_SKIP_DEPS=1 BOWG_SKIP_BUILD=1 BOWG_SUITE_ONLY="$only" BOWG_SUITE_ROWS=configured \
-  BOWG_SUITE_THRESHOLDS=1.2 BOWG_SUITE_DIR="$out/suite" "$repo/scripts/robustness_suite.sh" >"$out/suite.log"
+BOWG_WS="$ws" BOWG_SKIP_DEPS=1 BOWG_SKIP_BUILD=1 BOWG_SUITE_ONLY="$only" BOWG_SUITE_RENDER_ONLY=1 \
+  BOWG_SUITE_DIR="$out/suite" "$repo/scripts/robustness_suite.sh" >"$out/suite.log"
 
 pairs=()
 IFS=',' read -ra names <<<"$sequences"

@@ -22,6 +22,8 @@
 # (min_score values of the sweep), BOWG_SHARED_DATA
 # (default <repo>/../shared/data), BOWG_SUITE_LIST (another sequence list, same
 # format), BOWG_TOOLS_DIR (the built tools, default <workspace>/devel/lib/bowg_ros),
+# BOWG_SUITE_RENDER_ONLY=1 (render the selected sequences into
+# <BOWG_SUITE_DIR>/sequences, evaluate nothing: the benchmarks' inputs),
 # BOWG_SKIP_BUILD=1, BOWG_SKIP_DEPS=1.
 set -euo pipefail
 repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -43,6 +45,8 @@ suite_check_inputs BOWG_SUITE_HALF "$half" BOWG_SUITE_MODES "$modes"
 suite_prepare suite_build
 
 ran=()
+rendered=()
+render_only="${BOWG_SUITE_RENDER_ONLY:-0}"
 while IFS= read -r line; do
   case "$line" in ''|'#'*) continue ;; esac
   IFS='|' read -r name seq_half quick source args <<<"$line"
@@ -54,9 +58,11 @@ while IFS= read -r line; do
   seq_dir="$out/sequences/$name"
   if [ "$source" = render ]; then
     render "$seq_dir" "$args" 2 "render|ground truth" || { echo "-- $name: skipped, needs $shared (absent)"; continue; }
+    if [ "$render_only" = 1 ]; then rendered+=("$seq_dir"); continue; fi
     images="$seq_dir"
     seq_modes=("${mode_list[@]}")
   else
+    if [ "$render_only" = 1 ]; then continue; fi  # real frames: nothing to render
     read -r folder gt_spec <<<"$args"
     if [ ! -d "$shared/$folder" ]; then echo "-- $name: skipped, $shared/$folder is absent"; continue; fi
     images="$shared/$folder"; rate=1; gt=()
@@ -87,6 +93,11 @@ while IFS= read -r line; do
   done
 done <"$list"
 
+if [ "$render_only" = 1 ]; then
+  [ ${#rendered[@]} -gt 0 ] || { echo "suite: no rendered sequence selected" >&2; exit 1; }
+  printf 'rendered: %s\n' "${rendered[@]}"
+  exit 0
+fi
 [ ${#ran[@]} -gt 0 ] || { echo "suite: no sequence selected" >&2; exit 1; }
 /usr/bin/python3 "$repo/tools/suite/suite_report.py" --results "$out/results" --rows "$rows" \
   --csv "$out/suite.csv" --plot "$out/suite.png" "${ran[@]}"

@@ -23,11 +23,6 @@
 namespace bowg {
 namespace {
 
-// Derivative aperture of GFTT (Sobel 3x3, OpenCV's default) and the Harris
-// free parameter k (OpenCV's default).
-const int kGfttGradientSize = 3;
-const double kHarrisK = 0.04;
-
 // Usable pixels = non-zero in any channel, as 0/255 CV_8UC1. Read like any
 // input image: BoundedFile (no FIFO, device or huge file), then the header
 // check (format, truncation, max_image_pixels) before decoding.
@@ -98,9 +93,7 @@ std::vector<cv::KeyPoint> detectGftt(const cv::Mat& image, const cv::Mat& mask,
   g.quality_level = o.gftt_quality_level;
   g.min_distance = o.gftt_min_distance;
   g.block_size = o.gftt_block_size;
-  g.gradient_size = kGfttGradientSize;
   g.use_harris = o.gftt_use_harris;
-  g.harris_k = kHarrisK;
   std::vector<cv::Point2f> corners;
   std::vector<float> quality;
   detectGfttCorners(image, mask, g, corners, quality);

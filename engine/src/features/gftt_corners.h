@@ -17,13 +17,16 @@
 
 namespace bowg {
 
+// cv::goodFeaturesToTrack's arguments. The extractor sets the first five
+// from FeatureOptions (gftt_*); the derivative aperture (Sobel 3x3) and the
+// Harris free parameter stay at OpenCV's defaults, as here.
 struct GfttCornerOptions {
-  int max_corners = 500;        ///< 0 = no limit
+  int max_corners = 0;          ///< 0 = no limit
   double quality_level = 0.01;  ///< of the strongest response
-  double min_distance = 10.0;   ///< px between kept corners
+  double min_distance = 1.0;    ///< px between kept corners
   int block_size = 3;
-  int gradient_size = 3;
   bool use_harris = false;
+  int gradient_size = 3;
   double harris_k = 0.04;
 };
 

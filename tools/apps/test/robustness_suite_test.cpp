@@ -100,6 +100,26 @@ TEST(RobustnessSuite, RendersEvaluatesAndTabulatesAListOfSequences) {
   EXPECT_EQ(quick.find("circuit_twice"), std::string::npos) << quick;
   EXPECT_EQ(quick.find("   render "), std::string::npos) << "re-rendered a cached sequence:\n"
                                                          << quick;
+  // Render only (the benchmarks' inputs): the selected sequence rendered
+  // into a new folder and named, nothing evaluated.
+  const std::string render_env =
+      "BOWG_SKIP_DEPS=1 BOWG_SKIP_BUILD=1 BOWG_SUITE_LIST=" + list + " BOWG_SUITE_DIR=" + kDir +
+      "/rendered BOWG_TOOLS_DIR=" + BOWG_TOOLS_BIN_DIR + " BOWG_SUITE_RENDER_ONLY=1 ";
+  ASSERT_EQ(tool_test::run(render_env + "BOWG_SUITE_ONLY=^straight_once$ " + script, log), 0)
+      << tool_test::readAll(log);
+  const std::string rendered = tool_test::readAll(log);
+  EXPECT_NE(rendered.find("rendered: " + kDir + "/rendered/sequences/straight_once\n"),
+            std::string::npos)
+      << rendered;
+  EXPECT_EQ(rendered.find("circuit_twice"), std::string::npos) << rendered;
+  EXPECT_EQ(rendered.find("bowg_evaluate"), std::string::npos) << rendered;
+  EXPECT_FALSE(
+      tool_test::readAll(kDir + "/rendered/sequences/straight_once/ground_truth.txt").empty());
+  EXPECT_EQ(tool_test::run("test -z \"$(ls -A " + kDir + "/rendered/results)\""), 0) << "evaluated";
+  // Nothing rendered (no sequence selected) is an error.
+  EXPECT_EQ(tool_test::run(render_env + "BOWG_SUITE_ONLY=^none$ " + script, log), 1);
+  EXPECT_NE(tool_test::readAll(log).find("no rendered sequence selected"), std::string::npos)
+      << tool_test::readAll(log);
   // An unknown input mode is an error that names it.
   EXPECT_EQ(tool_test::run(env + "BOWG_SUITE_MODES=positions,wheels " + script, log), 2);
   EXPECT_NE(tool_test::readAll(log).find("'wheels'"), std::string::npos) << tool_test::readAll(log);
