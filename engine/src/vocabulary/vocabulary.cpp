@@ -227,12 +227,21 @@ Vocabulary::Vocabulary(int branching, int depth, WeightingType weighting, Scorin
       word_to_node_(std::move(word_to_node)),
       fingerprint_(fingerprint) {
   checkHeader(k_, L_, weighting_, scoring_, nodes_);
+  indexWeights();
 }
 
 void Vocabulary::index() {
   checkHeader(k_, L_, weighting_, scoring_, nodes_);
   const std::size_t leaves = checkTree(k_, L_, nodes_);
   word_to_node_ = wordsToNodes(nodes_, leaves);
+  indexWeights();
+}
+
+void Vocabulary::indexWeights() {
+  word_weights_.resize(word_to_node_.size());
+  for (std::size_t w = 0; w < word_to_node_.size(); ++w) {
+    word_weights_[w] = nodes_[word_to_node_[w]].weight;
+  }
 }
 
 // 40 header bytes (a multiple of 8, so the records stay word-aligned).
@@ -353,8 +362,7 @@ void Vocabulary::weighSortedWords(const std::vector<std::pair<WordId, std::uint3
     const WordId w = word_of[i].first;
     std::size_t j = i;
     while (j < n && word_of[j].first == w) ++j;
-    const double value =
-        wordValue(weighting_, static_cast<double>(j - i), inv_n, nodes_[word_to_node_[w]].weight);
+    const double value = wordValue(weighting_, static_cast<double>(j - i), inv_n, word_weights_[w]);
     if (value > 0.0) bow->emplace_back(w, value);
     i = j;
   }

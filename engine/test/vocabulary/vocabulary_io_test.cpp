@@ -43,6 +43,12 @@ TEST(VocabularyIo, EveryFormatRoundTripsWithTheSameFingerprint) {
       EXPECT_EQ(back.weighting(), v.weighting());
       EXPECT_EQ(back.wordCount(), v.wordCount());
       EXPECT_EQ(back.nodeCount(), v.nodeCount());
+      // Every loader's word weights are the leaves' (the .bowgvoc loader
+      // builds its word table while it streams the tree).
+      for (WordId w = 0; w < back.wordCount(); ++w) {
+        ASSERT_EQ(back.wordWeight(w), back.nodes()[back.nodeOfWord(w)].weight) << "word " << w;
+        ASSERT_EQ(back.wordWeight(w), v.wordWeight(w)) << "word " << w;
+      }
     }
   }
 }
