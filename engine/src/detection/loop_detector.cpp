@@ -159,6 +159,18 @@ SavedDetector LoopDetector::read(const std::string& path,
   return saved;
 }
 
+SavedDetector LoopDetector::decode(const std::string& bytes, const std::string& source,
+                                   std::shared_ptr<const Vocabulary> vocabulary,
+                                   const LoopDetectorOptions& options) {
+  SavedDetector saved;
+  saved.state_.reset(new DetectorState);
+  saved.database_ = decodeDetectorFile(bytes, source, vocabulary, options.scoring,
+                                       options.geometric.direct_index_level,
+                                       options.distribution.fan_bins, saved.state_.get());
+  saved.vocabulary_ = std::move(vocabulary);
+  return saved;
+}
+
 SavedDetector LoopDetector::readMerged(const std::vector<std::string>& paths,
                                        std::shared_ptr<const Vocabulary> vocabulary,
                                        const LoopDetectorOptions& options) {

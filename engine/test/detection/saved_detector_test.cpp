@@ -48,6 +48,36 @@ TEST(SavedDetector, ReadTouchesNoDetectorAndAdoptSwapsItIn) {
   std::remove(path.c_str());
 }
 
+// decode: the file's bytes read once serve detectors that each start on
+// them, as read() of the file would; bad bytes are a FormatError naming
+// their source.
+TEST(SavedDetector, DecodedBytesRunAsTheReadFile) {
+  const auto voc = vocabulary();
+  const auto kfs = keyframes();
+  const std::string path = savedForwardPass(voc, kfs, "split_decode.bowgdb");
+  const std::string bytes = testing::readBytes(path);
+  std::remove(path.c_str());  // the bytes are all it takes
+  LoopDetector first(voc, options()), second(voc, options());
+  first.adopt(LoopDetector::decode(bytes, "the map", voc, options()));
+  second.adopt(LoopDetector::decode(bytes, "the map", voc, options()));
+  EXPECT_EQ(first.database().size(), 40u);
+  LoopDetector loaded(voc, options());
+  testing::writeBytes(path, bytes);
+  loaded.load(path);
+  std::remove(path.c_str());
+  for (std::size_t i = 40; i < kfs.size(); ++i) {
+    const LoopResult want = loaded.process(kfs[i]);
+    testing::expectSameResult(first.process(kfs[i]), want);
+    testing::expectSameResult(second.process(kfs[i]), want);
+  }
+  try {
+    LoopDetector::decode(bytes.substr(0, bytes.size() - 9), "the map", voc, options());
+    FAIL() << "truncated bytes decoded";
+  } catch (const FormatError& e) {
+    EXPECT_NE(std::string(e.what()).find("the map"), std::string::npos) << e.what();
+  }
+}
+
 TEST(SavedDetector, AFailedReadChangesNothing) {
   const auto voc = vocabulary();
   const auto kfs = keyframes();

@@ -151,7 +151,7 @@ int run(int argc, char** argv) {
   }
   const double threshold = pipeline.detector.islands.min_score;
   const std::vector<double> thresholds = thresholdGrid(a.thresholds, threshold);
-  const RunMaps run_maps{a.maps, maps.entries, a.save_map};
+  const RunMaps run_maps{a.maps, maps.entries, a.save_map, maps.bytes};
   const std::vector<RowResult> results = runRows(a, vocabulary, pipeline.detector, frames,
                                                  has_gt ? &gt : nullptr, thresholds, run_maps);
   writeReport(a, results, inputs, has_gt ? &gt : nullptr, thresholds, threshold);

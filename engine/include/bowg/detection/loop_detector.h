@@ -187,6 +187,12 @@ class LoopDetector {
   /// file takes seconds) and holds it for adopt() only. Throws as load().
   static SavedDetector read(const std::string& path, std::shared_ptr<const Vocabulary> vocabulary,
                             const LoopDetectorOptions& options);
+  /// read() of bytes already in memory: a file's content or
+  /// mergeDetectorFiles()' bytes, read once for detectors that each start on
+  /// them; `source` names them in errors. Throws as load().
+  static SavedDetector decode(const std::string& bytes, const std::string& source,
+                              std::shared_ptr<const Vocabulary> vocabulary,
+                              const LoopDetectorOptions& options);
   /// read() of several files at once: their merge (mergeDetectorFiles,
   /// detector_merge.h), every mission of each, for a detector that starts
   /// on the reference maps of earlier missions. One path: read(). Throws as

@@ -23,6 +23,33 @@ KeyframeInput toKeyframeInput(const FrameInput& frame) {
   return input;
 }
 
+namespace {
+
+// Puts the reference maps in `detector` (RunMaps: their bytes read once, or
+// their files), checking they hold the keyframes counted before the run.
+void startOnMaps(const RunMaps& maps, std::shared_ptr<const Vocabulary> vocabulary,
+                 const LoopDetectorOptions& options, LoopDetector* detector) {
+  if (maps.bytes) {
+    detector->adopt(LoopDetector::decode(*maps.bytes, mapsSource(maps.load), vocabulary, options));
+  } else if (!maps.load.empty()) {
+    detector->adopt(LoopDetector::readMerged(maps.load, vocabulary, options));
+  } else {
+    return;
+  }
+  if (detector->database().size() != maps.load_entries) {
+    throw std::logic_error("runDetector: the reference maps changed since they were counted");
+  }
+}
+
+}  // namespace
+
+std::string mapsSource(const std::vector<std::string>& paths) {
+  if (paths.size() == 1) return paths.front();
+  std::string source = "the merge of";
+  for (std::size_t i = 0; i < paths.size(); ++i) source += (i ? ", " : " ") + paths[i];
+  return source;
+}
+
 DetectorRun runDetector(std::shared_ptr<const Vocabulary> vocabulary,
                         const LoopDetectorOptions& options, const std::vector<FrameInput>& frames,
                         const std::string& name, const ProgressCallback& progress,
@@ -31,12 +58,7 @@ DetectorRun runDetector(std::shared_ptr<const Vocabulary> vocabulary,
   run.name = name;
   run.options = options;
   LoopDetector detector(vocabulary, options);
-  if (!maps.load.empty()) {
-    detector.adopt(LoopDetector::readMerged(maps.load, vocabulary, options));
-    if (detector.database().size() != maps.load_entries) {
-      throw std::logic_error("runDetector: the reference maps changed since they were counted");
-    }
-  }
+  startOnMaps(maps, vocabulary, options, &detector);
   const std::size_t first_entry = detector.database().size();
   for (const DatabaseEntry& e : detector.database().entries())
     run.map_missions.push_back(e.mission);

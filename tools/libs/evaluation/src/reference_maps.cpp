@@ -5,7 +5,9 @@
 #include <stdexcept>
 #include <utility>
 
+#include "bowg/core/bounded_file.h"
 #include "bowg/database/database.h"
+#include "bowg/detection/detector_merge.h"
 
 namespace bowg {
 namespace eval {
@@ -13,9 +15,12 @@ namespace eval {
 ReferenceMapSummary readReferenceMaps(const std::vector<std::string>& paths,
                                       std::shared_ptr<const Vocabulary> vocabulary,
                                       const LoopDetectorOptions& options) {
-  LoopDetector detector(vocabulary, options);
-  detector.adopt(LoopDetector::readMerged(paths, vocabulary, options));
   ReferenceMapSummary summary;
+  summary.bytes = std::make_shared<const std::string>(
+      paths.size() == 1 ? readBoundedFile(paths.front(), FileKind::kDatabase, "database file")
+                        : mergeDetectorFiles(paths, vocabulary));
+  LoopDetector detector(vocabulary, options);
+  detector.adopt(LoopDetector::decode(*summary.bytes, mapsSource(paths), vocabulary, options));
   const Database& db = detector.database();
   summary.entries = db.size();
   if (!db.entries().empty()) summary.last_stamp = db.entries().back().stamp;

@@ -1,13 +1,15 @@
 // Reference maps in the offline run (reference_maps.h): the ground truth
 // moved onto the run's numbering and the frames left out, by hand; a
 // sequence run in one go equals its first mission saved as a map and the
-// second run on it.
+// second run on it; the maps' bytes read once run as the files read per run.
 #include "bowg_evaluation/reference_maps.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
+#include <fstream>
+#include <iterator>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -19,6 +21,11 @@
 namespace bowg {
 namespace eval {
 namespace {
+
+std::string fileBytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
 
 // The maps are the skipped frames (a re-inspection folder's first mission):
 // the numbering stays the input's; skipped queries are left out.
@@ -162,7 +169,50 @@ TEST(ReferenceMaps, FirstMissionAsAMapGivesTheSameSecondMission) {
   // A map that no longer holds what was counted is refused.
   EXPECT_THROW(runDetector(vocabulary, options, second, "x", nullptr, RunMaps{{path}, 29, ""}),
                std::logic_error);
+  // The map's bytes, read once, serve every run: the file is not read again.
+  ASSERT_TRUE(summary.bytes);
+  EXPECT_EQ(*summary.bytes, fileBytes(path));
   std::remove(path.c_str());
+  const DetectorRun on_bytes = runDetector(vocabulary, options, second, "second", nullptr,
+                                           RunMaps{{path}, 30, "", summary.bytes});
+  ASSERT_EQ(on_bytes.keyframes.size(), 30u);
+  for (int i = 0; i < 30; ++i) expectSameRecord(on_bytes.keyframes[i], on_map.keyframes[i]);
+}
+
+// Two maps: their merge, read once, runs as the files merged per run do.
+TEST(ReferenceMaps, TwoMapsMergedOnceRunAsTheFilesMergedPerRun) {
+  std::vector<FrameInput> frames = testing_data::syntheticSequence();  // 60 frames
+  attachMissions(parseMissionStarts("0,3,first\n15,4,middle\n30,9,second\n", "m"), &frames);
+  auto vocabulary = std::make_shared<const Vocabulary>(testing::makeSyntheticVocabulary(6, 3));
+  LoopDetectorOptions options;
+  options.islands.recent_exclusion = 5;
+  options.temporal_verification.k = 1;
+  options.geometric.direct_index_level = 2;
+  const std::vector<std::string> paths = {::testing::TempDir() + "/reference_maps_test_a.map",
+                                          ::testing::TempDir() + "/reference_maps_test_b.map"};
+  for (int part = 0; part < 2; ++part) {
+    RunMaps save;
+    save.save = paths[part];
+    runDetector(
+        vocabulary, options,
+        std::vector<FrameInput>(frames.begin() + 15 * part, frames.begin() + 15 * part + 15),
+        "part", nullptr, save);
+  }
+  EXPECT_EQ(mapsSource(paths), "the merge of " + paths[0] + ", " + paths[1]);
+  EXPECT_EQ(mapsSource({paths[0]}), paths[0]);
+  const ReferenceMapSummary summary = readReferenceMaps(paths, vocabulary, options);
+  EXPECT_EQ(summary.entries, 30u);
+  ASSERT_EQ(summary.missions.size(), 2u);
+  ASSERT_TRUE(summary.bytes);
+  const std::vector<FrameInput> second(frames.begin() + 30, frames.end());
+  const DetectorRun per_run =
+      runDetector(vocabulary, options, second, "files", nullptr, RunMaps{paths, 30, ""});
+  for (const std::string& path : paths) std::remove(path.c_str());
+  const DetectorRun once = runDetector(vocabulary, options, second, "bytes", nullptr,
+                                       RunMaps{paths, 30, "", summary.bytes});
+  ASSERT_EQ(once.keyframes.size(), 30u);
+  EXPECT_EQ(once.map_missions, per_run.map_missions);
+  for (int i = 0; i < 30; ++i) expectSameRecord(once.keyframes[i], per_run.keyframes[i]);
 }
 
 }  // namespace

@@ -105,7 +105,14 @@ struct RunMaps {
   std::size_t load_entries = 0;
   /// Where the detector is saved after the last frame ("": nowhere).
   std::string save;
+  /// The maps' bytes, read once (ReferenceMapSummary::bytes): each run
+  /// decodes them (LoopDetector::decode) instead of reading and merging
+  /// `load` again; `load` then only names them.
+  std::shared_ptr<const std::string> bytes;
 };
+
+/// What errors call the maps at `paths`: the file, or "the merge of" them.
+std::string mapsSource(const std::vector<std::string>& paths);
 
 /// Throws what LoopDetector throws (InvalidParameter for bad options,
 /// std::invalid_argument for non-increasing stamps), and std::logic_error

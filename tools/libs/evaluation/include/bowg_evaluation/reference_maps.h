@@ -35,10 +35,16 @@ struct ReferenceMapSummary {
   /// The metres driven of the latest keyframe with an odometer; NaN: none.
   double last_odometer = std::numeric_limits<double>::quiet_NaN();
   std::vector<Mission> missions;
+  /// The maps' bytes, for the runs (RunMaps::bytes): one file's content, or
+  /// the merge of several (mergeDetectorFiles). Held for the whole
+  /// evaluation (the files' size in memory) so that a sweep of thresholds
+  /// and rows reads and merges them once.
+  std::shared_ptr<const std::string> bytes;
 };
 
-/// Reads and checks the maps as a run will (LoopDetector::readMerged);
-/// throws what it throws, naming the file.
+/// Reads and checks the maps as a run will (LoopDetector::decode of their
+/// bytes, the same as LoopDetector::readMerged); throws what it throws,
+/// naming the file.
 ReferenceMapSummary readReferenceMaps(const std::vector<std::string>& paths,
                                       std::shared_ptr<const Vocabulary> vocabulary,
                                       const LoopDetectorOptions& options);
