@@ -26,11 +26,8 @@ TEST(DetectorRunTest, MemoryGrowthIsPerKeyframeBetweenTheFirstAndLastSample) {
 }
 
 TEST(DetectorRunTest, OneRecordPerKeyframeAndConsistentOutputs) {
-  auto vocabulary = std::make_shared<const Vocabulary>(testing::makeSyntheticVocabulary(6, 3));
-  LoopDetectorOptions options;
-  options.islands.recent_exclusion = 5;
-  options.temporal_verification.k = 1;
-  options.geometric.direct_index_level = 2;
+  const auto vocabulary = testing_data::syntheticSequenceVocabulary();
+  const LoopDetectorOptions options = testing_data::syntheticSequenceOptions();
   const std::vector<FrameInput> frames = syntheticSequence();
   std::size_t progress_calls = 0;
   const DetectorRun run =

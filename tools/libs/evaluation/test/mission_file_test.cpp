@@ -62,11 +62,8 @@ TEST(MissionFile, MissionsStartAtTheirFramesInTheDetectorRun) {
   EXPECT_THROW(attachMissions(parseMissionStarts("0,3,a\n30,9,b\n", "m"), &short_run),
                std::invalid_argument);
 
-  auto vocabulary = std::make_shared<const Vocabulary>(testing::makeSyntheticVocabulary(6, 3));
-  LoopDetectorOptions options;
-  options.islands.recent_exclusion = 5;
-  options.temporal_verification.k = 1;
-  options.geometric.direct_index_level = 2;
+  const auto vocabulary = testing_data::syntheticSequenceVocabulary();
+  const LoopDetectorOptions options = testing_data::syntheticSequenceOptions();
   const DetectorRun run = runDetector(vocabulary, options, frames, "missions");
   EXPECT_EQ(run.keyframes[0].mission, 3u);
   EXPECT_EQ(run.keyframes[29].mission, 3u);

@@ -16,18 +16,8 @@ namespace eval {
 namespace {
 
 using testing_data::syntheticSequence;
-
-std::shared_ptr<const Vocabulary> vocabulary() {
-  return std::make_shared<const Vocabulary>(testing::makeSyntheticVocabulary(6, 3));
-}
-
-LoopDetectorOptions baseOptions() {
-  LoopDetectorOptions o;
-  o.islands.recent_exclusion = 5;
-  o.temporal_verification.k = 1;
-  o.geometric.direct_index_level = 2;
-  return o;
-}
+using testing_data::syntheticSequenceOptions;
+using testing_data::syntheticSequenceVocabulary;
 
 void expectSameRecords(const DetectorRun& a, const DetectorRun& b) {
   EXPECT_EQ(a.name, b.name);
@@ -43,13 +33,13 @@ void expectSameRecords(const DetectorRun& a, const DetectorRun& b) {
 }
 
 TEST(ParallelRuns, SideBySideEqualsOneAfterTheOther) {
-  const auto voc = vocabulary();
+  const auto voc = syntheticSequenceVocabulary();
   const std::vector<FrameInput> frames = syntheticSequence();
   std::vector<RunRequest> requests;
   for (const char* row : {"bow", "word_groups", "temporal", "distribution"}) {
-    requests.push_back({row, LoopDetectorOptions::ablation(row, baseOptions())});
+    requests.push_back({row, LoopDetectorOptions::ablation(row, syntheticSequenceOptions())});
   }
-  requests.push_back({"strict", baseOptions()});
+  requests.push_back({"strict", syntheticSequenceOptions()});
   requests.back().options.islands.min_score = 5.0;
   std::size_t calls = 0;
   const std::vector<DetectorRun> parallel =
@@ -73,23 +63,25 @@ TEST(ParallelRuns, SideBySideEqualsOneAfterTheOther) {
 }
 
 TEST(ParallelRuns, TheFirstErrorReachesTheCaller) {
-  std::vector<RunRequest> requests(3, RunRequest{"ok", baseOptions()});
+  std::vector<RunRequest> requests(3, RunRequest{"ok", syntheticSequenceOptions()});
   requests[1].name = "bad";
   requests[1].options.similarity.lambda_1 = 2.0;  // LoopDetector refuses it
-  EXPECT_THROW(runDetectorsInParallel(vocabulary(), requests, syntheticSequence(), 2),
-               InvalidParameter);
+  EXPECT_THROW(
+      runDetectorsInParallel(syntheticSequenceVocabulary(), requests, syntheticSequence(), 2),
+      InvalidParameter);
 }
 
 TEST(ParallelRuns, RerunCurveHasOnePointPerThreshold) {
-  const auto voc = vocabulary();
+  const auto voc = syntheticSequenceVocabulary();
   const std::vector<FrameInput> frames = syntheticSequence();
   GroundTruth gt;
   for (int i = 0; i < 10; ++i) gt.loops[40 + i] = {10 + i};
   const std::vector<double> thresholds = {50.0, 0.3, 0.05};
-  const std::vector<PrPoint> curve = rerunPrCurve(voc, baseOptions(), frames, gt, thresholds, 2);
+  const std::vector<PrPoint> curve =
+      rerunPrCurve(voc, syntheticSequenceOptions(), frames, gt, thresholds, 2);
   ASSERT_EQ(curve.size(), 3u);
   for (std::size_t i = 0; i < curve.size(); ++i) {
-    LoopDetectorOptions o = baseOptions();
+    LoopDetectorOptions o = syntheticSequenceOptions();
     o.islands.min_score = thresholds[i];
     const PrPoint expected = evaluateAt(detectionsOf(runDetector(voc, o, frames, "x")), gt,
                                         -std::numeric_limits<double>::infinity());

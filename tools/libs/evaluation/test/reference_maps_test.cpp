@@ -132,11 +132,8 @@ void expectSameRecord(const KeyframeRecord& a, const KeyframeRecord& b) {
 TEST(ReferenceMaps, FirstMissionAsAMapGivesTheSameSecondMission) {
   std::vector<FrameInput> frames = testing_data::syntheticSequence();  // 60 frames
   attachMissions(parseMissionStarts("0,3,first\n30,9,second\n", "m"), &frames);
-  auto vocabulary = std::make_shared<const Vocabulary>(testing::makeSyntheticVocabulary(6, 3));
-  LoopDetectorOptions options;
-  options.islands.recent_exclusion = 5;
-  options.temporal_verification.k = 1;
-  options.geometric.direct_index_level = 2;
+  const auto vocabulary = testing_data::syntheticSequenceVocabulary();
+  const LoopDetectorOptions options = testing_data::syntheticSequenceOptions();
   const DetectorRun whole = runDetector(vocabulary, options, frames, "whole");
 
   const std::string path = ::testing::TempDir() + "/reference_maps_test_first.map";
@@ -183,11 +180,8 @@ TEST(ReferenceMaps, FirstMissionAsAMapGivesTheSameSecondMission) {
 TEST(ReferenceMaps, TwoMapsMergedOnceRunAsTheFilesMergedPerRun) {
   std::vector<FrameInput> frames = testing_data::syntheticSequence();  // 60 frames
   attachMissions(parseMissionStarts("0,3,first\n15,4,middle\n30,9,second\n", "m"), &frames);
-  auto vocabulary = std::make_shared<const Vocabulary>(testing::makeSyntheticVocabulary(6, 3));
-  LoopDetectorOptions options;
-  options.islands.recent_exclusion = 5;
-  options.temporal_verification.k = 1;
-  options.geometric.direct_index_level = 2;
+  const auto vocabulary = testing_data::syntheticSequenceVocabulary();
+  const LoopDetectorOptions options = testing_data::syntheticSequenceOptions();
   const std::vector<std::string> paths = {::testing::TempDir() + "/reference_maps_test_a.map",
                                           ::testing::TempDir() + "/reference_maps_test_b.map"};
   for (int part = 0; part < 2; ++part) {

@@ -2,6 +2,7 @@
 // evaluation library's tests.
 #pragma once
 
+#include <memory>
 #include <random>
 #include <vector>
 
@@ -41,6 +42,21 @@ inline std::vector<FrameInput> syntheticSequence() {
     }
   }
   return frames;
+}
+
+/// The vocabulary the synthetic sequence's descriptors are drawn for.
+inline std::shared_ptr<const Vocabulary> syntheticSequenceVocabulary() {
+  return std::make_shared<const Vocabulary>(testing::makeSyntheticVocabulary(6, 3));
+}
+
+/// Options under which the sequence's revisit closes: 5 recent keyframes
+/// excluded, temporal verification of 1, the direct index at level 2.
+inline LoopDetectorOptions syntheticSequenceOptions() {
+  LoopDetectorOptions o;
+  o.islands.recent_exclusion = 5;
+  o.temporal_verification.k = 1;
+  o.geometric.direct_index_level = 2;
+  return o;
 }
 
 }  // namespace testing_data
