@@ -181,6 +181,23 @@ std::string BoundedFile::readRest() {
   return data;
 }
 
+void BoundedFile::readAt(void* dst, std::size_t n, std::uint64_t offset) const {
+  char* out = static_cast<char*>(dst);
+  std::size_t done = 0;
+  while (done < n) {
+    const ssize_t got = ::pread(fd_, out + done, n - done, static_cast<off_t>(offset + done));
+    if (got < 0 && errno == EINTR) continue;
+    if (got < 0) {
+      throw IoError("cannot read " + label_ + " '" + path_ + "': " + std::strerror(errno));
+    }
+    if (got == 0) {
+      throw IoError("cannot read " + label_ + " '" + path_ + "': it ends before byte " +
+                    std::to_string(offset + n) + " (shrunk since it was opened)");
+    }
+    done += static_cast<std::size_t>(got);
+  }
+}
+
 std::string readBoundedFile(const std::string& path, FileKind kind, const std::string& label) {
   BoundedFile file(path, kind, label);
   return file.readRest();

@@ -7,8 +7,8 @@
 #include <string>
 
 #include "bowg/core/heap_bytes.h"
-#include "bowg/scoring/distribution.h"
 #include "bowg/core/id_index_sort.h"
+#include "bowg/scoring/distribution.h"
 #include "bowg/vocabulary/vocabulary.h"
 
 namespace bowg {
@@ -53,6 +53,13 @@ void checkGroupsAndBow(const std::vector<IdIndexPair>& sorted, const GroupVector
 }
 
 }  // namespace
+
+const std::vector<Descriptor>& DatabaseEntry::descriptorsRead(
+    std::vector<Descriptor>* scratch) const {
+  if (!on_disk.file) return descriptors;
+  on_disk.file->read(on_disk.offset, on_disk.count, on_disk.checksum, scratch);
+  return *scratch;
+}
 
 DirectIndex directIndexFromWords(const Vocabulary& vocabulary, const std::vector<WordId>& words,
                                  int level) {
@@ -180,9 +187,12 @@ void Database::checkEntry(const DatabaseEntry& e, const std::vector<WordId>& wor
                                 std::to_string(distribution.size()) + " bins, the database has " +
                                 std::to_string(fanBins()));
   }
-  if (e.descriptors.size() != n || e.words.size() != n) {
+  if (e.on_disk.file && !e.descriptors.empty()) {
+    throw std::invalid_argument("Database::add: descriptors both in memory and on disk");
+  }
+  if (e.descriptorCount() != n || e.words.size() != n) {
     throw std::invalid_argument("Database::add: keypoints (" + std::to_string(n) +
-                                "), descriptors (" + std::to_string(e.descriptors.size()) +
+                                "), descriptors (" + std::to_string(e.descriptorCount()) +
                                 ") and words (" + std::to_string(e.words.size()) +
                                 ") differ in number");
   }

@@ -27,7 +27,7 @@ ChainQuery chainQuery(const QueryContext& ctx, EntryId query_id, const DatabaseE
   const VerifiedChainOptions& co = ctx.options.chain;
   std::vector<char> repeated;
   if (co.min_unique_inliers > 0) {
-    repeated.assign(query_entry.descriptors.size(), 0);
+    repeated.assign(query_entry.descriptorCount(), 0);
     const VerificationView qv = verifier->query();
     for (const EntryId id :
          repeatedTextureEntries(ctx.database, query_entry.odometer, co, ctx.options.islands)) {

@@ -39,7 +39,9 @@ std::string encodeDetectorFile(const Database& database, const DetectorState& st
   w.u32(static_cast<std::uint32_t>(database.scoring()));
 
   w.u32(static_cast<std::uint32_t>(database.size()));
+  std::vector<Descriptor> read;  // an entry's descriptors left on disk
   for (const DatabaseEntry& e : database.entries()) {
+    const std::vector<Descriptor>& descriptors = e.descriptorsRead(&read);
     w.f64(e.stamp);
     w.f64(e.centre_x);
     w.f64(e.centre_y);
@@ -60,7 +62,7 @@ std::string encodeDetectorFile(const Database& database, const DetectorState& st
       w.f32(k.angle);
       w.f32(k.response);
       w.i32(k.octave);
-      for (std::uint64_t b : e.descriptors[i].bits) w.u64(b);
+      for (std::uint64_t b : descriptors[i].bits) w.u64(b);
       w.u32(e.words[i]);
     }
     w.pairs(database.bow(e.id));  // kept in the format; rebuilt from the words

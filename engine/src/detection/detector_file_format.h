@@ -53,6 +53,8 @@ constexpr std::size_t kTrailerBytes = 8;
 // Fixed bytes of one entry / one feature in the payload.
 constexpr std::size_t kEntryFixedBytes = 8 * 3 + 1 + 8 * 4 + 4 + 4 + 4;
 constexpr std::size_t kFeatureBytes = 6 * 4 + 32 + 4;
+// Where a feature record's descriptor starts: after its keypoint.
+constexpr std::size_t kFeatureDescriptorOffset = 6 * 4;
 constexpr std::size_t kPairBytes = 4 + 8;
 constexpr std::size_t kNormaliserBytes = 3 * 8;
 constexpr std::size_t kIslandBytes = 4 + 4 + 8 + 4 + 8 + 4;
@@ -100,6 +102,11 @@ class Reader {
   Reader(const std::string& path, const char* data, std::size_t size)
       : path_(path), p_(data), end_(data + size) {}
   std::size_t left() const { return static_cast<std::size_t>(end_ - p_); }
+  const char* position() const { return p_; }
+  void skip(std::size_t n, const char* what) {
+    need(n, what);
+    p_ += n;
+  }
   void need(std::size_t n, const char* what) const {
     if (n > left()) fail(std::string("truncated while reading ") + what);
   }

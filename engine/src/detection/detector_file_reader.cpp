@@ -7,11 +7,13 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <memory>
 #include <vector>
 
 #include "bowg/core/bounded_file.h"
 #include "bowg/core/checksum.h"
 #include "bowg/core/huge_page_allocator.h"
+#include "bowg/database/descriptor_file.h"
 #include "bowg/detection/detector_file.h"
 #include "bowg/vocabulary/vocabulary.h"
 #include "detection/detector_file_format.h"
@@ -67,8 +69,8 @@ using FileBytes = std::vector<char, HugePageAllocator<char>>;
 // The file's bytes (bounded_file.h: a regular file within
 // BOWG_MAX_DATABASE_MB), its header checked against its length before the
 // body is read, into the same buffer: the bytes are held and touched once.
-FileBytes readDatabaseFile(const std::string& path) {
-  BoundedFile file(path, FileKind::kDatabase, "database file");
+FileBytes readDatabaseFile(BoundedFile& file) {
+  const std::string& path = file.path();
   char head[kHeaderBytes];
   const std::size_t head_size =
       static_cast<std::size_t>(std::min<std::uint64_t>(file.size(), kHeaderBytes));
@@ -127,13 +129,22 @@ void readEntryHeader(Reader* p, const std::string& entry, DatabaseEntry* e) {
   }
 }
 
+// Where a file's descriptors are left (descriptor_file.h): the open file,
+// and the first byte of the bytes read from it (offsets are from there).
+struct DiskDescriptors {
+  std::shared_ptr<const DescriptorFile> file;
+  const char* file_start = nullptr;
+};
+
 // Keypoints, descriptors and words of one entry (the words also unpacked in
-// `words`, for the checks).
-void readFeatures(Reader* p, const std::string& entry, DatabaseEntry* e,
-                  std::vector<WordId>* words) {
+// `words`, for the checks). With `disk`, the descriptors stay in the file:
+// the entry keeps where its records are and their checksum.
+void readFeatures(Reader* p, const std::string& entry, const DiskDescriptors* disk,
+                  DatabaseEntry* e, std::vector<WordId>* words) {
   const std::size_t nf = p->count(kFeatureBytes, "features");
+  const char* records = p->position();
   std::vector<ImagePoint> points(nf);
-  e->descriptors.resize(nf);
+  if (disk == nullptr) e->descriptors.resize(nf);
   words->resize(nf);
   for (std::size_t f = 0; f < nf; ++f) {
     // Every field is checked; the database keeps the position only.
@@ -150,8 +161,19 @@ void readFeatures(Reader* p, const std::string& entry, DatabaseEntry* e,
               " has a non-finite coordinate, angle or response, or an invalid size");
     }
     points[f] = ImagePoint{k.x, k.y};
-    for (auto& b : e->descriptors[f].bits) b = p->u64("descriptor");
+    if (disk == nullptr) {
+      for (auto& b : e->descriptors[f].bits) b = p->u64("descriptor");
+    } else {
+      p->skip(sizeof(Descriptor), "descriptor");
+    }
     (*words)[f] = p->u32("word");
+  }
+  if (disk != nullptr) {
+    e->on_disk.file = disk->file;
+    e->on_disk.offset = static_cast<std::uint64_t>(records - disk->file_start);
+    e->on_disk.count = static_cast<std::uint32_t>(nf);
+    e->on_disk.checksum =
+        DescriptorFile::blockChecksum(records, static_cast<std::size_t>(p->position() - records));
   }
   // Packed again with the entry's scale factor once it is read (version 5).
   e->points = PackedPoints(points, 0.f);
@@ -159,12 +181,13 @@ void readFeatures(Reader* p, const std::string& entry, DatabaseEntry* e,
 }
 
 DatabaseEntry readEntry(Reader* p, std::size_t i, ScoringType stored_scoring,
-                        const Vocabulary& vocabulary, GroupVector* raw_groups) {
+                        const Vocabulary& vocabulary, const DiskDescriptors* disk,
+                        GroupVector* raw_groups) {
   DatabaseEntry e;
   const std::string entry = "entry " + std::to_string(i);
   readEntryHeader(p, entry, &e);
   std::vector<WordId> words;
-  readFeatures(p, entry, &e, &words);
+  readFeatures(p, entry, disk, &e, &words);
   const BowVector bow = p->pairs("BoW vector");
   *raw_groups = p->pairs("word groups");
   // Stored weights are > 0 (words of weight 0 are never stored) and, for
@@ -374,11 +397,13 @@ void restoreChain(Reader* p, const Database& db, StoredChain* chain, DetectorSta
                              std::move(chain->others));
 }
 
-// decodeDetectorFile() of `size` bytes at `bytes`.
+// decodeDetectorFile() of `size` bytes at `bytes`; with `disk`, the bytes
+// are its file's, whose descriptors stay there.
 std::unique_ptr<Database> decodeBytes(const char* bytes, std::size_t size, const std::string& path,
                                       std::shared_ptr<const Vocabulary> vocabulary,
                                       ScoringType scoring, int direct_index_level, int fan_bins,
-                                      DetectorState* state, ScoringType* stored_scoring_out) {
+                                      DetectorState* state, ScoringType* stored_scoring_out,
+                                      const DiskDescriptors* disk) {
   std::uint64_t payload = 0;
   const std::uint32_t version = checkHeader(path, bytes, size, *vocabulary, &payload);
   Reader p(path, bytes + kHeaderBytes, static_cast<std::size_t>(payload));
@@ -400,8 +425,8 @@ std::unique_ptr<Database> decodeBytes(const char* bytes, std::size_t size, const
   entries.reserve(n);
   try {
     for (std::size_t i = 0; i < n; ++i) {
-      entries.push_back(
-          readEntry(&p, i, static_cast<ScoringType>(stored_scoring), *vocabulary, &raw_groups[i]));
+      entries.push_back(readEntry(&p, i, static_cast<ScoringType>(stored_scoring), *vocabulary,
+                                  disk, &raw_groups[i]));
     }
     StoredChain chain;
     readPreviousScoresAndChain(&p, n, state, &chain);
@@ -437,9 +462,14 @@ std::unique_ptr<Database> loadDetectorFile(const std::string& path,
                                            ScoringType scoring, int direct_index_level,
                                            int fan_bins, DetectorState* state,
                                            ScoringType* stored_scoring_out) {
-  const FileBytes bytes = readDatabaseFile(path);
+  BoundedFile file(path, FileKind::kDatabase, "database file");
+  const FileBytes bytes = readDatabaseFile(file);
+  DiskDescriptors disk;
+  disk.file =
+      std::make_shared<DescriptorFile>(std::move(file), kFeatureBytes, kFeatureDescriptorOffset);
+  disk.file_start = bytes.data();
   return decodeBytes(bytes.data(), bytes.size(), path, std::move(vocabulary), scoring,
-                     direct_index_level, fan_bins, state, stored_scoring_out);
+                     direct_index_level, fan_bins, state, stored_scoring_out, &disk);
 }
 
 std::unique_ptr<Database> decodeDetectorFile(const std::string& bytes, const std::string& path,
@@ -448,7 +478,7 @@ std::unique_ptr<Database> decodeDetectorFile(const std::string& bytes, const std
                                              int fan_bins, DetectorState* state,
                                              ScoringType* stored_scoring_out) {
   return decodeBytes(bytes.data(), bytes.size(), path, std::move(vocabulary), scoring,
-                     direct_index_level, fan_bins, state, stored_scoring_out);
+                     direct_index_level, fan_bins, state, stored_scoring_out, nullptr);
 }
 
 }  // namespace bowg

@@ -17,13 +17,21 @@ namespace bowg {
 namespace query_steps {
 
 // What a verification view of a database entry points into: its positions
-// unpacked (the database packs them, PackedPoints) and its direct index,
-// made from its words.
+// unpacked (the database packs them, PackedPoints), its direct index, made
+// from its words, and its descriptors when they were left on disk
+// (descriptor_file.h).
 struct EntryViewStorage {
   std::vector<ImagePoint> points;
   std::vector<WordId> words;
   DirectIndex direct;
+  std::vector<Descriptor> read;
 };
+
+// Entry `e`'s descriptors: its own, or those read into `storage`.
+inline const std::vector<Descriptor>* viewDescriptors(const DatabaseEntry& e,
+                                                      const EntryViewStorage& storage) {
+  return e.on_disk.file ? &storage.read : &e.descriptors;
+}
 
 // The views of recent database entries, kept across queries: the verified
 // chain's recent past (repeated_texture.h) is a dozen keyframes a query, most
@@ -81,7 +89,8 @@ class Verifier {
       unpack(query_, &query_storage_);
       built_ = true;
     }
-    return VerificationView{&query_storage_.points, &query_.descriptors, &query_storage_.direct};
+    return VerificationView{&query_storage_.points, viewDescriptors(query_, query_storage_),
+                            &query_storage_.direct};
   }
 
   /// Valid until the next call.
@@ -93,7 +102,7 @@ class Verifier {
   VerificationView features(EntryId id) {
     const DatabaseEntry& m = database_.entry(id);
     m.points.unpack(&features_points_);
-    return VerificationView{&features_points_, &m.descriptors, nullptr};
+    return VerificationView{&features_points_, &m.descriptorsRead(&features_read_), nullptr};
   }
 
   /// Entry `id`'s view from `cache` (made and stored there when absent).
@@ -105,14 +114,14 @@ class Verifier {
       unpack(m, &made);
       storage = &cache->insert(id, std::move(made));
     }
-    return VerificationView{&storage->points, &m.descriptors, &storage->direct};
+    return VerificationView{&storage->points, viewDescriptors(m, *storage), &storage->direct};
   }
 
   /// Entry `id`'s view, its positions and direct index in `storage`.
   VerificationView entry(EntryId id, EntryViewStorage* storage) const {
     const DatabaseEntry& m = database_.entry(id);
     unpack(m, storage);
-    return VerificationView{&storage->points, &m.descriptors, &storage->direct};
+    return VerificationView{&storage->points, viewDescriptors(m, *storage), &storage->direct};
   }
 
   const CameraIntrinsics& intrinsics() const { return intrinsics_; }
@@ -121,6 +130,7 @@ class Verifier {
  private:
   void unpack(const DatabaseEntry& e, EntryViewStorage* storage) const {
     e.points.unpack(&storage->points);
+    if (e.on_disk.file) e.descriptorsRead(&storage->read);
     if (!exhaustive_) {
       e.words.unpack(&storage->words);
       storage->direct = directIndexFromWords(vocabulary_, storage->words, database_.directLevel());
@@ -133,6 +143,7 @@ class Verifier {
   const CameraIntrinsics& intrinsics_;
   EntryViewStorage query_storage_, match_storage_;
   std::vector<ImagePoint> features_points_;
+  std::vector<Descriptor> features_read_;
   bool exhaustive_;
   bool built_;
 };

@@ -58,6 +58,29 @@ TEST(BoundedFile, ReadsARegularFileWhole) {
   EXPECT_THROW(f.readExactly(more, 4), IoError);
 }
 
+// readAt: bytes at an offset, the current position left where it was, and
+// a file shrunk since it was opened an error naming it.
+TEST(BoundedFile, ReadsAtAnOffsetWithoutMovingAndRefusesBytesPastTheEnd) {
+  const std::string path = dir() + "/read_at.bin";
+  std::ofstream(path, std::ios::binary) << "0123456789";
+  BoundedFile file(path, FileKind::kText);
+  char two[2];
+  file.readExactly(two, 2);
+  char four[4];
+  file.readAt(four, 4, 5);
+  EXPECT_EQ(std::string(four, 4), "5678");
+  file.readExactly(two, 2);  // the position is still 2
+  EXPECT_EQ(std::string(two, 2), "23");
+  ASSERT_EQ(::truncate(path.c_str(), 6), 0);
+  try {
+    file.readAt(four, 4, 5);
+    FAIL() << "read past the end of a shrunk file";
+  } catch (const IoError& e) {
+    EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("ends before byte 9"), std::string::npos) << e.what();
+  }
+}
+
 TEST(BoundedFile, RefusesAFifoWithoutBlocking) {
   const std::string path = dir() + "/pipe.bin";
   ::unlink(path.c_str());
@@ -76,8 +99,7 @@ TEST(BoundedFile, RefusesADirectoryAndADevice) {
   ASSERT_EQ(std::system(("mkdir -p '" + d + "'").c_str()), 0);
   EXPECT_NE(refusal(d, FileKind::kImage).find("is a directory"), std::string::npos);
   EXPECT_NE(refusal("/dev/zero", FileKind::kDatabase).find("device"), std::string::npos);
-  EXPECT_NE(refusal(dir() + "/missing", FileKind::kText).find("No such file"),
-            std::string::npos);
+  EXPECT_NE(refusal(dir() + "/missing", FileKind::kText).find("No such file"), std::string::npos);
 }
 
 TEST(BoundedFile, RefusesAHugeSparseFileBeforeReadingIt) {

@@ -75,6 +75,10 @@ class BoundedFile {
   void readExactly(void* dst, std::size_t n);
   /// The rest of the file from the current position.
   std::string readRest();
+  /// Reads exactly `n` bytes at byte `offset` without moving the current
+  /// position (pread: safe from several threads at once); IoError naming
+  /// the path when the file ends before them (shrunk since it was opened).
+  void readAt(void* dst, std::size_t n, std::uint64_t offset) const;
 
  private:
   std::string path_;

@@ -36,6 +36,7 @@
 
 #include "bowg/core/types.h"
 #include "bowg/database/counted_groups.h"
+#include "bowg/database/descriptor_file.h"
 #include "bowg/database/distribution_table.h"
 #include "bowg/database/inverse_index.h"
 #include "bowg/database/missions.h"
@@ -67,7 +68,11 @@ struct DatabaseEntry {
   /// Keypoint positions: the only part of a keypoint read after insertion,
   /// packed in 4 bytes each where that is lossless.
   PackedPoints points;
+  /// The descriptors, index-aligned with the points; empty when they were
+  /// left in the file the entry was loaded from (`on_disk`,
+  /// descriptor_file.h). Read them through descriptorsRead().
   std::vector<Descriptor> descriptors;
+  DescriptorsOnDisk on_disk;
   PackedWords words;                  ///< word of each feature (index-aligned)
   double centre_x = 0, centre_y = 0;  ///< centre of the distribution fan
   CameraIntrinsics intrinsics;
@@ -89,6 +94,12 @@ struct DatabaseEntry {
   /// larger than IslandOptions::indexed_per_place is one: the index then
   /// grows with the places driven, not with the laps.
   bool searchable = true;
+
+  /// The number of descriptors, in memory or on disk.
+  std::size_t descriptorCount() const { return on_disk.file ? on_disk.count : descriptors.size(); }
+  /// The descriptors: `descriptors`, or the block on disk read into
+  /// `scratch` (DescriptorFile::read's errors).
+  const std::vector<Descriptor>& descriptorsRead(std::vector<Descriptor>* scratch) const;
   // Derived from `words` when needed, not kept: the BoW vector
   // (Database::bow()), the raw groups (Database::rawGroups()) and the direct
   // index at Database::directLevel() (directIndexFromWords). The distribution vector for the
