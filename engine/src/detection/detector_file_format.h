@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "bowg/core/bounded_file.h"
 #include "bowg/core/errors.h"
 #include "bowg/core/types.h"
 #include "bowg/database/database.h"
@@ -97,18 +98,30 @@ class Writer {
   std::string out_;
 };
 
+// Reads the payload either from bytes in memory or streamed from an open
+// file through a window of a few MB: a network's archive is tens of GB and
+// is decoded without ever being held whole. need(n) makes the next n bytes
+// contiguous at position(); offset() is the file offset of the next byte
+// (streamed), or its index from `data` (in memory).
 class Reader {
  public:
   Reader(const std::string& path, const char* data, std::size_t size)
-      : path_(path), p_(data), end_(data + size) {}
-  std::size_t left() const { return static_cast<std::size_t>(end_ - p_); }
+      : path_(path), p_(data), end_(data + size), next_(size) {}
+  /// The `size` bytes of `file` from `offset` (left open by the caller),
+  /// read `window` bytes at a time (more when one need() asks for more).
+  Reader(const BoundedFile& file, std::uint64_t offset, std::uint64_t size,
+         std::size_t window = std::size_t{4} << 20)
+      : path_(file.path()), file_(&file), next_(offset), unread_(size), window_bytes_(window) {}
+  std::uint64_t left() const { return static_cast<std::uint64_t>(end_ - p_) + unread_; }
   const char* position() const { return p_; }
+  std::uint64_t offset() const { return next_ - static_cast<std::uint64_t>(end_ - p_); }
   void skip(std::size_t n, const char* what) {
     need(n, what);
     p_ += n;
   }
-  void need(std::size_t n, const char* what) const {
+  void need(std::size_t n, const char* what) {
     if (n > left()) fail(std::string("truncated while reading ") + what);
+    if (n > static_cast<std::size_t>(end_ - p_)) refill(n);
   }
   [[noreturn]] void fail(const std::string& why) const {
     throw FormatError("database file '" + path_ + "': " + why);
@@ -145,6 +158,7 @@ class Reader {
   /// A count of items of `item_bytes` each that must fit in the bytes left.
   std::string text(const char* what) {
     const std::size_t n = count(1, what);
+    need(n, what);
     std::string s(p_, n);
     p_ += n;
     return s;
@@ -172,9 +186,18 @@ class Reader {
   }
 
  private:
+  // Streamed: keeps the bytes not yet read, then reads at least `n` - those
+  // (n <= left()) and up to the window's size after them.
+  void refill(std::size_t n);
+
   std::string path_;
-  const char* p_;
-  const char* end_;
+  const char* p_ = nullptr;
+  const char* end_ = nullptr;
+  const BoundedFile* file_ = nullptr;  ///< null: the bytes are all in memory
+  std::uint64_t next_ = 0;             ///< file offset of the byte after the window
+  std::uint64_t unread_ = 0;           ///< bytes of the range after the window
+  std::size_t window_bytes_ = 0;
+  std::vector<char> window_;
 };
 
 // Version 9's section (detector_file_missions.cpp).

@@ -12,7 +12,6 @@
 
 #include "bowg/core/bounded_file.h"
 #include "bowg/core/checksum.h"
-#include "bowg/core/huge_page_allocator.h"
 #include "bowg/database/descriptor_file.h"
 #include "bowg/detection/detector_file.h"
 #include "bowg/vocabulary/vocabulary.h"
@@ -60,30 +59,19 @@ std::uint32_t checkFrame(const std::string& path, const char* head, std::size_t 
   return version;
 }
 
-// A whole database file in memory. An archive's file is gigabytes: held in
-// huge pages where the system has them (huge_page_allocator.h), it is
-// faulted in 2 MB at a time instead of 4 kB, the largest single cost of a
-// large map's load on a VM.
-using FileBytes = std::vector<char, HugePageAllocator<char>>;
-
-// The file's bytes (bounded_file.h: a regular file within
-// BOWG_MAX_DATABASE_MB), its header checked against its length before the
-// body is read, into the same buffer: the bytes are held and touched once.
-FileBytes readDatabaseFile(BoundedFile& file) {
-  const std::string& path = file.path();
-  char head[kHeaderBytes];
-  const std::size_t head_size =
-      static_cast<std::size_t>(std::min<std::uint64_t>(file.size(), kHeaderBytes));
-  file.readExactly(head, head_size);
-  std::uint64_t payload = 0;
-  checkFrame(path, head, head_size, file.size(), &payload);
-  FileBytes bytes(static_cast<std::size_t>(file.size()));
-  std::memcpy(bytes.data(), head, head_size);
-  file.readExactly(bytes.data() + head_size, bytes.size() - head_size);  // shrunk: an error
-  return bytes;
+// The stored checksum against the one computed, then the vocabulary's
+// fingerprint; `r` names the file.
+void checkSumAndVocabulary(const Reader& r, std::uint64_t computed, std::uint64_t stored,
+                           std::uint64_t fingerprint, const Vocabulary& vocabulary) {
+  if (computed != stored) r.fail("checksum mismatch (the file is corrupt)");
+  if (fingerprint != vocabulary.fingerprint()) {
+    r.fail(
+        "it was built with another vocabulary (fingerprint mismatch): load the vocabulary "
+        "the database was created with");
+  }
 }
 
-// Frame, checksum and vocabulary; returns the version.
+// Frame, checksum and vocabulary of bytes in memory; returns the version.
 std::uint32_t checkHeader(const std::string& path, const char* bytes, std::size_t size,
                           const Vocabulary& vocabulary, std::uint64_t* payload_size) {
   const std::uint32_t version = checkFrame(path, bytes, size, size, payload_size);
@@ -91,15 +79,39 @@ std::uint32_t checkHeader(const std::string& path, const char* bytes, std::size_
   r.u32("version");
   const std::uint64_t fingerprint = r.u64("vocabulary fingerprint");
   Reader trailer(path, bytes + size - kTrailerBytes, kTrailerBytes);
-  const std::uint64_t stored_sum = trailer.u64("checksum");
-  if (checksum64(bytes, size - kTrailerBytes) != stored_sum) {
-    r.fail("checksum mismatch (the file is corrupt)");
+  checkSumAndVocabulary(r, checksum64(bytes, size - kTrailerBytes), trailer.u64("checksum"),
+                        fingerprint, vocabulary);
+  return version;
+}
+
+// The same of an open file (bounded_file.h: a regular file within
+// BOWG_MAX_DATABASE_MB): its header checked against its length first, then
+// the checksum over the file read in chunks, before any content is
+// interpreted. Nothing is held but one chunk.
+std::uint32_t checkFileHeader(const BoundedFile& file, const Vocabulary& vocabulary,
+                              std::uint64_t* payload_size) {
+  char head[kHeaderBytes];
+  const std::size_t head_size =
+      static_cast<std::size_t>(std::min<std::uint64_t>(file.size(), kHeaderBytes));
+  file.readAt(head, head_size, 0);
+  const std::uint32_t version = checkFrame(file.path(), head, head_size, file.size(), payload_size);
+  Reader r(file.path(), head + 8, head_size - 8);
+  r.u32("version");
+  const std::uint64_t fingerprint = r.u64("vocabulary fingerprint");
+  const std::uint64_t summed = file.size() - kTrailerBytes;
+  Checksum64 sum;
+  std::vector<char> chunk(std::size_t{4} << 20);
+  for (std::uint64_t at = 0; at < summed;) {
+    const std::size_t n =
+        static_cast<std::size_t>(std::min<std::uint64_t>(chunk.size(), summed - at));
+    file.readAt(chunk.data(), n, at);
+    sum.update(chunk.data(), n);
+    at += n;
   }
-  if (fingerprint != vocabulary.fingerprint()) {
-    r.fail(
-        "it was built with another vocabulary (fingerprint mismatch): load the vocabulary "
-        "the database was created with");
-  }
+  char stored[kTrailerBytes];
+  file.readAt(stored, kTrailerBytes, summed);
+  Reader trailer(file.path(), stored, kTrailerBytes);
+  checkSumAndVocabulary(r, sum.value(), trailer.u64("checksum"), fingerprint, vocabulary);
   return version;
 }
 
@@ -129,11 +141,10 @@ void readEntryHeader(Reader* p, const std::string& entry, DatabaseEntry* e) {
   }
 }
 
-// Where a file's descriptors are left (descriptor_file.h): the open file,
-// and the first byte of the bytes read from it (offsets are from there).
+// Where a file's descriptors are left (descriptor_file.h): the open file the
+// payload is streamed from.
 struct DiskDescriptors {
   std::shared_ptr<const DescriptorFile> file;
-  const char* file_start = nullptr;
 };
 
 // Keypoints, descriptors and words of one entry (the words also unpacked in
@@ -142,7 +153,9 @@ struct DiskDescriptors {
 void readFeatures(Reader* p, const std::string& entry, const DiskDescriptors* disk,
                   DatabaseEntry* e, std::vector<WordId>* words) {
   const std::size_t nf = p->count(kFeatureBytes, "features");
+  p->need(nf * kFeatureBytes, "features");  // the block at once, contiguous
   const char* records = p->position();
+  const std::uint64_t records_offset = p->offset();
   std::vector<ImagePoint> points(nf);
   if (disk == nullptr) e->descriptors.resize(nf);
   words->resize(nf);
@@ -170,7 +183,7 @@ void readFeatures(Reader* p, const std::string& entry, const DiskDescriptors* di
   }
   if (disk != nullptr) {
     e->on_disk.file = disk->file;
-    e->on_disk.offset = static_cast<std::uint64_t>(records - disk->file_start);
+    e->on_disk.offset = records_offset;
     e->on_disk.count = static_cast<std::uint32_t>(nf);
     e->on_disk.checksum =
         DescriptorFile::blockChecksum(records, static_cast<std::size_t>(p->position() - records));
@@ -397,16 +410,13 @@ void restoreChain(Reader* p, const Database& db, StoredChain* chain, DetectorSta
                              std::move(chain->others));
 }
 
-// decodeDetectorFile() of `size` bytes at `bytes`; with `disk`, the bytes
-// are its file's, whose descriptors stay there.
-std::unique_ptr<Database> decodeBytes(const char* bytes, std::size_t size, const std::string& path,
-                                      std::shared_ptr<const Vocabulary> vocabulary,
-                                      ScoringType scoring, int direct_index_level, int fan_bins,
-                                      DetectorState* state, ScoringType* stored_scoring_out,
-                                      const DiskDescriptors* disk) {
-  std::uint64_t payload = 0;
-  const std::uint32_t version = checkHeader(path, bytes, size, *vocabulary, &payload);
-  Reader p(path, bytes + kHeaderBytes, static_cast<std::size_t>(payload));
+// The payload of a file of `version` whose header was checked, from `p`;
+// with `disk`, `p` streams its file, whose descriptors stay there.
+std::unique_ptr<Database> decodePayload(Reader& p, std::uint32_t version,
+                                        std::shared_ptr<const Vocabulary> vocabulary,
+                                        ScoringType scoring, int direct_index_level, int fan_bins,
+                                        DetectorState* state, ScoringType* stored_scoring_out,
+                                        const DiskDescriptors* disk) {
   std::unique_ptr<Database> db(new Database(vocabulary, scoring, direct_index_level, fan_bins));
   const std::uint32_t stored_scoring = p.u32("scoring type");
   if (stored_scoring > static_cast<std::uint32_t>(ScoringType::kDotProduct)) {
@@ -462,14 +472,16 @@ std::unique_ptr<Database> loadDetectorFile(const std::string& path,
                                            ScoringType scoring, int direct_index_level,
                                            int fan_bins, DetectorState* state,
                                            ScoringType* stored_scoring_out) {
-  BoundedFile file(path, FileKind::kDatabase, "database file");
-  const FileBytes bytes = readDatabaseFile(file);
   DiskDescriptors disk;
   disk.file =
-      std::make_shared<DescriptorFile>(std::move(file), kFeatureBytes, kFeatureDescriptorOffset);
-  disk.file_start = bytes.data();
-  return decodeBytes(bytes.data(), bytes.size(), path, std::move(vocabulary), scoring,
-                     direct_index_level, fan_bins, state, stored_scoring_out, &disk);
+      std::make_shared<DescriptorFile>(BoundedFile(path, FileKind::kDatabase, "database file"),
+                                       kFeatureBytes, kFeatureDescriptorOffset);
+  const BoundedFile& file = disk.file->file();
+  std::uint64_t payload = 0;
+  const std::uint32_t version = checkFileHeader(file, *vocabulary, &payload);
+  Reader p(file, kHeaderBytes, payload);
+  return decodePayload(p, version, std::move(vocabulary), scoring, direct_index_level, fan_bins,
+                       state, stored_scoring_out, &disk);
 }
 
 std::unique_ptr<Database> decodeDetectorFile(const std::string& bytes, const std::string& path,
@@ -477,8 +489,34 @@ std::unique_ptr<Database> decodeDetectorFile(const std::string& bytes, const std
                                              ScoringType scoring, int direct_index_level,
                                              int fan_bins, DetectorState* state,
                                              ScoringType* stored_scoring_out) {
-  return decodeBytes(bytes.data(), bytes.size(), path, std::move(vocabulary), scoring,
-                     direct_index_level, fan_bins, state, stored_scoring_out, nullptr);
+  std::uint64_t payload = 0;
+  const std::uint32_t version =
+      checkHeader(path, bytes.data(), bytes.size(), *vocabulary, &payload);
+  Reader p(path, bytes.data() + kHeaderBytes, static_cast<std::size_t>(payload));
+  return decodePayload(p, version, std::move(vocabulary), scoring, direct_index_level, fan_bins,
+                       state, stored_scoring_out, nullptr);
 }
+
+namespace detector_file {
+
+void Reader::refill(std::size_t n) {
+  const std::size_t kept = static_cast<std::size_t>(end_ - p_);
+  const std::size_t fill =
+      static_cast<std::size_t>(std::min<std::uint64_t>(std::max(n, window_bytes_) - kept, unread_));
+  if (window_.size() < kept + fill) {
+    std::vector<char> larger(kept + fill);
+    if (kept > 0) std::memcpy(larger.data(), p_, kept);
+    window_.swap(larger);
+  } else if (kept > 0) {
+    std::memmove(window_.data(), p_, kept);
+  }
+  file_->readAt(window_.data() + kept, fill, next_);
+  next_ += fill;
+  unread_ -= fill;
+  p_ = window_.data();
+  end_ = p_ + kept + fill;
+}
+
+}  // namespace detector_file
 
 }  // namespace bowg

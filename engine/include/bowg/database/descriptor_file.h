@@ -30,6 +30,8 @@ class DescriptorFile {
   DescriptorFile(BoundedFile file, std::size_t record_bytes, std::size_t descriptor_offset);
 
   const std::string& path() const { return file_.path(); }
+  /// The open file (its loader streams it from here).
+  const BoundedFile& file() const { return file_; }
   std::size_t recordBytes() const { return record_bytes_; }
 
   /// The checksum an entry's block of `count` records is checked against
