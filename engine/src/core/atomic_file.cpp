@@ -6,6 +6,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cerrno>
 #include <cstdio>
@@ -129,33 +130,58 @@ void AtomicFileWriter::commit() {
   }
 }
 
-void writeFileAtomically(const std::string& path, const void* data, std::size_t size) {
-  AtomicFileWriter writer(path);
-  const int fd = ::open(writer.tempPath().c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-  if (fd < 0) {
-    throw IoError("cannot create '" + writer.tempPath() + "' (to write '" + path +
+AtomicFileStream::AtomicFileStream(const std::string& path) : writer_(path) {
+  fd_ = ::open(writer_.tempPath().c_str(), O_RDWR | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd_ < 0) {
+    throw IoError("cannot create '" + writer_.tempPath() + "' (to write '" + path +
                   "'): " + systemError());
   }
+}
+
+AtomicFileStream::~AtomicFileStream() {
+  if (fd_ >= 0) ::close(fd_);
+}
+
+void AtomicFileStream::write(const void* data, std::size_t n) {
+  writeAt(data, n, size_);
+}
+
+void AtomicFileStream::writeAt(const void* data, std::size_t n, std::uint64_t offset) {
   const char* p = static_cast<const char*>(data);
-  std::size_t left = size;
-  while (left > 0) {
-    const ssize_t n = ::write(fd, p, left);
-    if (n < 0) {
-      if (errno == EINTR) continue;
-      const std::string err = systemError();
-      ::close(fd);
-      throw IoError("cannot write '" + path + "': " + err);
+  for (std::size_t done = 0; done < n;) {
+    const ssize_t got = ::pwrite(fd_, p + done, n - done, static_cast<off_t>(offset + done));
+    if (got < 0 && errno == EINTR) continue;
+    if (got < 0) throw IoError("cannot write '" + path() + "': " + systemError());
+    done += static_cast<std::size_t>(got);
+  }
+  size_ = std::max<std::uint64_t>(size_, offset + n);
+}
+
+void AtomicFileStream::readAt(void* data, std::size_t n, std::uint64_t offset) const {
+  char* p = static_cast<char*>(data);
+  for (std::size_t done = 0; done < n;) {
+    const ssize_t got = ::pread(fd_, p + done, n - done, static_cast<off_t>(offset + done));
+    if (got < 0 && errno == EINTR) continue;
+    if (got <= 0) {
+      throw IoError("cannot read back '" + path() + "' while writing it: " +
+                    (got < 0 ? systemError() : std::string("it ends early")));
     }
-    p += n;
-    left -= static_cast<std::size_t>(n);
+    done += static_cast<std::size_t>(got);
   }
-  if (::fsync(fd) != 0) {
-    const std::string err = systemError();
-    ::close(fd);
-    throw IoError("cannot sync '" + path + "': " + err);
-  }
-  if (::close(fd) != 0) throw IoError("cannot close '" + path + "': " + systemError());
-  writer.commit();
+}
+
+void AtomicFileStream::commit() {
+  if (::fsync(fd_) != 0) throw IoError("cannot sync '" + path() + "': " + systemError());
+  const int rc = ::close(fd_);
+  fd_ = -1;
+  if (rc != 0) throw IoError("cannot close '" + path() + "': " + systemError());
+  writer_.commit();
+}
+
+void writeFileAtomically(const std::string& path, const void* data, std::size_t size) {
+  AtomicFileStream out(path);
+  out.write(data, size);
+  out.commit();
 }
 
 std::size_t removeStaleTemporariesOf(const std::string& path) {

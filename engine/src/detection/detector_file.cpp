@@ -13,6 +13,14 @@ using namespace detector_file;
 
 namespace {
 
+std::string littleEndian64(std::uint64_t v) {
+  Writer w;
+  w.u64(v);
+  return w.str();
+}
+
+void writeBody(Writer* w, const Database& database, const DetectorState& state);
+
 void writeIsland(Writer* w, const Island& i) {
   w->u32(i.first);
   w->u32(i.last);
@@ -26,16 +34,40 @@ void writeIsland(Writer* w, const Island& i) {
 
 void saveDetectorFile(const std::string& path, const Database& database,
                       const DetectorState& state) {
-  writeFileAtomically(path, encodeDetectorFile(database, state));
+  // Streamed: an archive's file is tens of GB, far more than its database
+  // holds in memory. The payload size and the checksum over it are written
+  // once the rest is on disk.
+  AtomicFileStream out(path);
+  Writer w(&out);
+  writeBody(&w, database, state);
+  w.flush();
+  const std::string size = littleEndian64(out.size() - kHeaderBytes);
+  out.writeAt(size.data(), size.size(), kHeaderBytes - 8);
+  const std::string stored = littleEndian64(checksumOfFile(out, out.size()));
+  out.write(stored.data(), stored.size());
+  out.commit();
 }
 
 std::string encodeDetectorFile(const Database& database, const DetectorState& state) {
   Writer w;
+  writeBody(&w, database, state);
+  std::string& bytes = w.str();
+  const std::string size = littleEndian64(bytes.size() - kHeaderBytes);
+  bytes.replace(kHeaderBytes - 8, 8, size);
+  w.u64(checksum64(bytes.data(), bytes.size()));
+  return std::move(bytes);
+}
+
+namespace {
+
+// Everything but the checksum, the payload size left 0; a streaming writer
+// is flushed after each entry.
+void writeBody(Writer* wp, const Database& database, const DetectorState& state) {
+  Writer& w = *wp;
   w.bytes(kMagic, 8);
   w.u32(kVersion);
   w.u64(database.vocabulary().fingerprint());
-  w.u64(0);  // payload size, patched below
-  const std::size_t payload_start = w.str().size();
+  w.u64(0);  // payload size, written by the caller
   w.u32(static_cast<std::uint32_t>(database.scoring()));
 
   w.u32(static_cast<std::uint32_t>(database.size()));
@@ -67,6 +99,7 @@ std::string encodeDetectorFile(const Database& database, const DetectorState& st
     }
     w.pairs(database.bow(e.id));  // kept in the format; rebuilt from the words
     w.pairs(database.rawGroups(e.id));
+    w.flush();
   }
   w.pairs(state.previous_etas);
   writeIsland(&w, state.consistency.lastIsland());
@@ -106,14 +139,8 @@ std::string encodeDetectorFile(const Database& database, const DetectorState& st
   w.u32(static_cast<std::uint32_t>(database.size()));
   for (const DatabaseEntry& e : database.entries()) w.u8(e.searchable ? 1 : 0);
   writeMissions(&w, database, state);
-
-  std::string& bytes = w.str();
-  const std::uint64_t payload = bytes.size() - payload_start;
-  for (int i = 0; i < 8; ++i) {
-    bytes[payload_start - 8 + i] = static_cast<char>((payload >> (8 * i)) & 0xff);
-  }
-  w.u64(checksum64(bytes.data(), bytes.size()));
-  return std::move(bytes);
 }
+
+}  // namespace
 
 }  // namespace bowg

@@ -3,6 +3,7 @@
 // the detection stage.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -10,7 +11,9 @@
 #include <utility>
 #include <vector>
 
+#include "bowg/core/atomic_file.h"
 #include "bowg/core/bounded_file.h"
+#include "bowg/core/checksum.h"
 #include "bowg/core/errors.h"
 #include "bowg/core/types.h"
 #include "bowg/database/database.h"
@@ -60,8 +63,27 @@ constexpr std::size_t kPairBytes = 4 + 8;
 constexpr std::size_t kNormaliserBytes = 3 * 8;
 constexpr std::size_t kIslandBytes = 4 + 4 + 8 + 4 + 8 + 4;
 
+// Checksum64 of the first `end` bytes of `file` (BoundedFile or
+// AtomicFileStream: anything with readAt), read 4 MB at a time.
+template <typename File>
+std::uint64_t checksumOfFile(const File& file, std::uint64_t end) {
+  Checksum64 sum;
+  std::vector<char> chunk(std::size_t{4} << 20);
+  for (std::uint64_t at = 0; at < end;) {
+    const std::size_t n = static_cast<std::size_t>(std::min<std::uint64_t>(chunk.size(), end - at));
+    file.readAt(chunk.data(), n, at);
+    sum.update(chunk.data(), n);
+    at += n;
+  }
+  return sum.value();
+}
+
+// Writes the file's little-endian fields into memory, or streams them: with
+// a sink, flush() appends what was written since the last flush to it.
 class Writer {
  public:
+  Writer() = default;
+  explicit Writer(AtomicFileStream* sink) : sink_(sink) {}
   void u8(std::uint8_t v) { out_.push_back(static_cast<char>(v)); }
   void u32(std::uint32_t v) {
     for (int i = 0; i < 4; ++i) out_.push_back(static_cast<char>((v >> (8 * i)) & 0xff));
@@ -93,9 +115,19 @@ class Writer {
     }
   }
   std::string& str() { return out_; }
+  /// Bytes written, flushed or not.
+  std::uint64_t size() const { return flushed_ + out_.size(); }
+  void flush() {
+    if (sink_ == nullptr) return;
+    sink_->write(out_.data(), out_.size());
+    flushed_ += out_.size();
+    out_.clear();
+  }
 
  private:
   std::string out_;
+  AtomicFileStream* sink_ = nullptr;
+  std::uint64_t flushed_ = 0;
 };
 
 // Reads the payload either from bytes in memory or streamed from an open

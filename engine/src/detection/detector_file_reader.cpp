@@ -99,19 +99,11 @@ std::uint32_t checkFileHeader(const BoundedFile& file, const Vocabulary& vocabul
   r.u32("version");
   const std::uint64_t fingerprint = r.u64("vocabulary fingerprint");
   const std::uint64_t summed = file.size() - kTrailerBytes;
-  Checksum64 sum;
-  std::vector<char> chunk(std::size_t{4} << 20);
-  for (std::uint64_t at = 0; at < summed;) {
-    const std::size_t n =
-        static_cast<std::size_t>(std::min<std::uint64_t>(chunk.size(), summed - at));
-    file.readAt(chunk.data(), n, at);
-    sum.update(chunk.data(), n);
-    at += n;
-  }
   char stored[kTrailerBytes];
   file.readAt(stored, kTrailerBytes, summed);
   Reader trailer(file.path(), stored, kTrailerBytes);
-  checkSumAndVocabulary(r, sum.value(), trailer.u64("checksum"), fingerprint, vocabulary);
+  checkSumAndVocabulary(r, checksumOfFile(file, summed), trailer.u64("checksum"), fingerprint,
+                        vocabulary);
   return version;
 }
 

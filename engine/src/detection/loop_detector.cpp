@@ -150,32 +150,32 @@ void LoopDetector::load(const std::string& path) { adopt(read(path, vocabulary_,
 SavedDetector LoopDetector::read(const std::string& path,
                                  std::shared_ptr<const Vocabulary> vocabulary,
                                  const LoopDetectorOptions& options) {
-  SavedDetector saved;
-  saved.state_.reset(new DetectorState);
-  saved.database_ =
-      loadDetectorFile(path, vocabulary, options.scoring, options.geometric.direct_index_level,
-                       options.distribution.fan_bins, saved.state_.get());
-  saved.vocabulary_ = std::move(vocabulary);
-  return saved;
+  return fromDatabase(
+      [&](DetectorState* state) {
+        return loadDetectorFile(path, vocabulary, options.scoring,
+                                options.geometric.direct_index_level,
+                                options.distribution.fan_bins, state);
+      },
+      vocabulary);
 }
 
 SavedDetector LoopDetector::decode(const std::string& bytes, const std::string& source,
                                    std::shared_ptr<const Vocabulary> vocabulary,
                                    const LoopDetectorOptions& options) {
-  SavedDetector saved;
-  saved.state_.reset(new DetectorState);
-  saved.database_ = decodeDetectorFile(bytes, source, vocabulary, options.scoring,
-                                       options.geometric.direct_index_level,
-                                       options.distribution.fan_bins, saved.state_.get());
-  saved.vocabulary_ = std::move(vocabulary);
-  return saved;
+  return fromDatabase(
+      [&](DetectorState* state) {
+        return decodeDetectorFile(bytes, source, vocabulary, options.scoring,
+                                  options.geometric.direct_index_level,
+                                  options.distribution.fan_bins, state);
+      },
+      vocabulary);
 }
 
 SavedDetector LoopDetector::readMerged(const std::vector<std::string>& paths,
                                        std::shared_ptr<const Vocabulary> vocabulary,
                                        const LoopDetectorOptions& options) {
   if (paths.size() == 1) return read(paths.front(), std::move(vocabulary), options);
-  return fromMerge(
+  return fromDatabase(
       [&](DetectorState* state) { return mergeDetectorFiles(paths, vocabulary, state); },
       vocabulary);
 }
@@ -183,19 +183,19 @@ SavedDetector LoopDetector::readMerged(const std::vector<std::string>& paths,
 SavedDetector LoopDetector::readMergedWithRunning(const std::vector<std::string>& paths,
                                                   const std::string& running,
                                                   std::shared_ptr<const Vocabulary> vocabulary) {
-  return fromMerge(
+  return fromDatabase(
       [&](DetectorState* state) {
         return mergeWithRunningDetector(paths, running, vocabulary, state);
       },
       vocabulary);
 }
 
-SavedDetector LoopDetector::fromMerge(
-    const std::function<std::unique_ptr<Database>(DetectorState*)>& merge,
+SavedDetector LoopDetector::fromDatabase(
+    const std::function<std::unique_ptr<Database>(DetectorState*)>& build,
     std::shared_ptr<const Vocabulary> vocabulary) {
   SavedDetector saved;
   saved.state_.reset(new DetectorState);
-  saved.database_ = merge(saved.state_.get());
+  saved.database_ = build(saved.state_.get());
   saved.vocabulary_ = std::move(vocabulary);
   return saved;
 }

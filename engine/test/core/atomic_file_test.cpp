@@ -87,16 +87,44 @@ TEST(AtomicFile, CommitPublishesWhatWasWrittenToTheTemporaryPath) {
   EXPECT_EQ(countTemporaries(d), 0);
 }
 
+// Appended, patched and read back while temporary; the old file stays until
+// the commit, and an abandoned stream leaves it as it was.
+TEST(AtomicFile, AStreamIsAppendedPatchedReadBackAndPublishedAtTheCommit) {
+  const std::string d = dir();
+  const std::string path = d + "/streamed.bin";
+  writeFileAtomically(path, std::string("old"));
+  {
+    AtomicFileStream out(path);
+    out.write("head????", 8);
+    out.write("body", 4);
+    EXPECT_EQ(out.size(), 12u);
+    out.writeAt("1234", 4, 4);  // the length field, known at the end
+    char back[12];
+    out.readAt(back, 12, 0);
+    EXPECT_EQ(std::string(back, 12), "head1234body");
+    EXPECT_THROW(out.readAt(back, 4, 10), IoError);  // past the end
+    EXPECT_EQ(readAll(path), "old");
+    out.commit();
+  }
+  EXPECT_EQ(readAll(path), "head1234body");
+  {
+    AtomicFileStream abandoned(path);
+    abandoned.write("half", 4);
+  }
+  EXPECT_EQ(readAll(path), "head1234body");
+  EXPECT_EQ(countTemporaries(d), 0);
+}
+
 TEST(AtomicFile, TemporariesOfDeadWritersAreRemovedOthersKept) {
   const std::string d = dir() + "/stale";
   ASSERT_EQ(std::system(("rm -rf '" + d + "' && mkdir -p '" + d + "'").c_str()), 0);
   const auto touch = [&](const std::string& name) { std::ofstream(d + "/" + name) << "x"; };
   const std::string alive = std::to_string(static_cast<long>(::getpid()));
   // 999999999 is above any pid_max (2^22): no such process.
-  touch(".tmp-999999999-0-db.bowgdb");  // a writer killed mid-save: removed
+  touch(".tmp-999999999-0-db.bowgdb");           // a writer killed mid-save: removed
   touch(".tmp-" + alive + "-999999-db.bowgdb");  // this process writing it: kept
-  touch(".tmp-999999999-0-other.bowgdb");   // another destination: kept
-  touch(".tmp-x-0-db.bowgdb");              // not our naming: kept
+  touch(".tmp-999999999-0-other.bowgdb");        // another destination: kept
+  touch(".tmp-x-0-db.bowgdb");                   // not our naming: kept
   {
     AtomicFileWriter w(d + "/db.bowgdb");
     std::ofstream(w.tempPath()) << "new";
@@ -120,11 +148,11 @@ TEST(AtomicFile, StaleTemporariesOfAPathAreRemovedWithoutAWrite) {
   };
   const std::string dead = ".tmp-999999999-";  // above any pid_max: no such process
   const std::string alive = ".tmp-" + std::to_string(static_cast<long>(::getpid())) + "-";
-  touch(dead + "0-db.bowgdb");        // a save killed mid-write: removed
+  touch(dead + "0-db.bowgdb");                            // a save killed mid-write: removed
   std::ofstream(d + "/" + dead + "1-db.bowgdb").close();  // killed before writing: removed
-  touch(alive + "7-db.bowgdb");       // a live writer's: kept
-  touch(dead + "0-other.bowgdb");     // another destination's: kept
-  touch(".tmp-x-0-db.bowgdb");        // not the writer's naming: kept
+  touch(alive + "7-db.bowgdb");                           // a live writer's: kept
+  touch(dead + "0-other.bowgdb");                         // another destination's: kept
+  touch(".tmp-x-0-db.bowgdb");                            // not the writer's naming: kept
   ASSERT_EQ(::mkdir((d + "/" + dead + "2-db.bowgdb").c_str(), 0755), 0);   // a directory: kept
   ASSERT_EQ(::mkfifo((d + "/" + dead + "3-db.bowgdb").c_str(), 0644), 0);  // a FIFO: kept
   // A link of that name to a file of ours: neither it nor its target goes.

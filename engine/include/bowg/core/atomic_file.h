@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <string>
 
 namespace bowg {
@@ -34,6 +35,36 @@ class AtomicFileWriter {
   std::string path_;
   std::string temp_path_;
   bool committed_ = false;
+};
+
+/// A file written atomically piece by piece, for files too large to be
+/// encoded in memory first (a network's archive): appended to, patched and
+/// read back while it is the temporary file; commit() fsyncs it and
+/// publishes it as AtomicFileWriter does. Destroyed without commit(), it
+/// leaves the destination as it was. Every failure is an IoError naming the
+/// destination and the system error.
+class AtomicFileStream {
+ public:
+  explicit AtomicFileStream(const std::string& path);
+  ~AtomicFileStream();
+  AtomicFileStream(const AtomicFileStream&) = delete;
+  AtomicFileStream& operator=(const AtomicFileStream&) = delete;
+
+  const std::string& path() const { return writer_.path(); }
+  /// Bytes written so far (the end of the file).
+  std::uint64_t size() const { return size_; }
+  /// Appends `n` bytes.
+  void write(const void* data, std::size_t n);
+  /// Overwrites `n` bytes at `offset` (within size()).
+  void writeAt(const void* data, std::size_t n, std::uint64_t offset);
+  /// Reads `n` bytes written before, at `offset`.
+  void readAt(void* data, std::size_t n, std::uint64_t offset) const;
+  void commit();
+
+ private:
+  AtomicFileWriter writer_;
+  int fd_ = -1;
+  std::uint64_t size_ = 0;
 };
 
 /// Writes `size` bytes atomically to `path` (throws IoError with the path and

@@ -234,9 +234,10 @@ class LoopDetector {
 
  private:
   struct State;
-  // A SavedDetector of what `merge` builds (into the state it is given).
-  static SavedDetector fromMerge(
-      const std::function<std::unique_ptr<Database>(DetectorState*)>& merge,
+  // A SavedDetector of the database `build` reads, decodes or merges (and
+  // of the state it restores into the state it is given).
+  static SavedDetector fromDatabase(
+      const std::function<std::unique_ptr<Database>(DetectorState*)>& build,
       std::shared_ptr<const Vocabulary> vocabulary);
   std::shared_ptr<const Vocabulary> vocabulary_;
   LoopDetectorOptions options_;
