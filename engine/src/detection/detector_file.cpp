@@ -60,16 +60,10 @@ std::string encodeDetectorFile(const Database& database, const DetectorState& st
 
 namespace {
 
-// Everything but the checksum, the payload size left 0; a streaming writer
-// is flushed after each entry.
-void writeBody(Writer* wp, const Database& database, const DetectorState& state) {
+// The entries, each flushed once written (a streaming writer's memory is one
+// entry).
+void writeEntries(Writer* wp, const Database& database) {
   Writer& w = *wp;
-  w.bytes(kMagic, 8);
-  w.u32(kVersion);
-  w.u64(database.vocabulary().fingerprint());
-  w.u64(0);  // payload size, written by the caller
-  w.u32(static_cast<std::uint32_t>(database.scoring()));
-
   w.u32(static_cast<std::uint32_t>(database.size()));
   std::vector<Descriptor> read;  // an entry's descriptors left on disk
   for (const DatabaseEntry& e : database.entries()) {
@@ -101,6 +95,18 @@ void writeBody(Writer* wp, const Database& database, const DetectorState& state)
     w.pairs(database.rawGroups(e.id));
     w.flush();
   }
+}
+
+// Everything but the checksum, the payload size left 0.
+void writeBody(Writer* wp, const Database& database, const DetectorState& state) {
+  Writer& w = *wp;
+  w.bytes(kMagic, 8);
+  w.u32(kVersion);
+  w.u64(database.vocabulary().fingerprint());
+  w.u64(0);  // payload size, written by the caller
+  w.u32(static_cast<std::uint32_t>(database.scoring()));
+
+  writeEntries(&w, database);
   w.pairs(state.previous_etas);
   writeIsland(&w, state.consistency.lastIsland());
   w.i32(state.consistency.chainLength());

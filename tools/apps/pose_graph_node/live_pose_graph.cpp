@@ -2,6 +2,7 @@
 
 #include <tf2_eigen/tf2_eigen.h>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -92,6 +93,7 @@ void LivePoseGraph::restart(const std::string& why) {
   graph_.reset(new pose_graph::PoseGraph(options_));
   pending_keyframes_.clear();
   pending_loops_.clear();
+  handled_id_ = -1;
   node_of_keyframe_.clear();
   node_stamps_.clear();
   node_odometry_.clear();
@@ -159,6 +161,7 @@ void LivePoseGraph::addCoveredKeyframes() {
     const std::uint32_t id = pending_keyframes_.front().first;
     const double stamp = pending_keyframes_.front().second;
     pending_keyframes_.pop_front();
+    handled_id_ = std::max<std::int64_t>(handled_id_, id);
     Eigen::Isometry3d odom;
     if (!odometry_.at(stamp, &odom)) {
       ++skipped_keyframes_;
@@ -188,12 +191,63 @@ void LivePoseGraph::addCoveredKeyframes() {
   if (addReadyLoops() || added) publish();
 }
 
+void LivePoseGraph::addLoop(const bowg_ros::LoopClosure& loop, std::size_t query,
+                            std::size_t match, const Eigen::Isometry3d& camera) {
+  const geometry_msgs::Quaternion& o = loop.relative_pose.pose.orientation;
+  const Eigen::Quaterniond rotation(o.w, o.x, o.y, o.z);
+  pose_graph::LoopEdge edge =
+      pose_graph::loopEdgeForCamera(rotation, camera, use_loop_rotation_ && loop.has_relative_pose);
+  edge.query = query;
+  edge.match = match;
+  bool added_metric = false;
+  if (use_metric_translation_ && loop.has_relative_pose && loop.translation_scale_known) {
+    // The query where the metric translation puts it, with its covariance.
+    Eigen::Isometry3d q_T_m = Eigen::Isometry3d::Identity();
+    q_T_m.linear() = rotation.normalized().toRotationMatrix();
+    const geometry_msgs::Point& t = loop.relative_pose.pose.position;
+    q_T_m.translation() = Eigen::Vector3d(t.x, t.y, t.z);
+    Eigen::Matrix3d c;
+    for (int r = 0; r < 3; ++r) {
+      for (int k = 0; k < 3; ++k) c(r, k) = loop.relative_pose.covariance[r * 6 + k];
+    }
+    pose_graph::LoopEdge metric = pose_graph::metricLoopEdge(q_T_m, c, camera);
+    metric.query = edge.query;
+    metric.match = edge.match;
+    try {
+      graph_->addLoop(metric);
+      added_metric = true;
+      ++metric_loops_;
+    } catch (const std::invalid_argument& e) {
+      ROS_WARN(
+          "bowg_pose_graph_node: loop %u -> %u: its metric translation is unusable (%s); "
+          "added as a same-place loop",
+          loop.query_id, loop.match_id, e.what());
+    }
+  }
+  if (!added_metric) graph_->addLoop(edge);
+  loop_nodes_.emplace_back(edge.query, edge.match);
+  ++loops_;
+}
+
+bool LivePoseGraph::neverANode(std::uint32_t id) const {
+  return static_cast<std::int64_t>(id) <= handled_id_ && node_of_keyframe_.count(id) == 0;
+}
+
 bool LivePoseGraph::addReadyLoops() {
   bool added = false;
   for (auto it = pending_loops_.begin(); it != pending_loops_.end();) {
     auto q = node_of_keyframe_.find(it->query_id), m = node_of_keyframe_.find(it->match_id);
     if (q == node_of_keyframe_.end() || m == node_of_keyframe_.end()) {
-      ++it;
+      if (neverANode(it->query_id) || neverANode(it->match_id)) {
+        ++dropped_loops_;
+        ROS_WARN_THROTTLE(5.0,
+                          "bowg_pose_graph_node: loop %u -> %u dropped: a keyframe of it was "
+                          "skipped or lost (%zu loops dropped)",
+                          it->query_id, it->match_id, dropped_loops_);
+        it = pending_loops_.erase(it);
+      } else {
+        ++it;  // its keyframes are still to come
+      }
       continue;
     }
     Eigen::Isometry3d camera = pose_graph::cameraAtBodyOrigin();
@@ -201,40 +255,7 @@ bool LivePoseGraph::addReadyLoops() {
       ++it;  // kept until TF has the mounting
       continue;
     }
-    const geometry_msgs::Quaternion& o = it->relative_pose.pose.orientation;
-    const Eigen::Quaterniond rotation(o.w, o.x, o.y, o.z);
-    pose_graph::LoopEdge edge = pose_graph::loopEdgeForCamera(
-        rotation, camera, use_loop_rotation_ && it->has_relative_pose);
-    edge.query = q->second;
-    edge.match = m->second;
-    bool added_metric = false;
-    if (use_metric_translation_ && it->has_relative_pose && it->translation_scale_known) {
-      // The query where the metric translation puts it, with its covariance.
-      Eigen::Isometry3d q_T_m = Eigen::Isometry3d::Identity();
-      q_T_m.linear() = rotation.normalized().toRotationMatrix();
-      const geometry_msgs::Point& t = it->relative_pose.pose.position;
-      q_T_m.translation() = Eigen::Vector3d(t.x, t.y, t.z);
-      Eigen::Matrix3d c;
-      for (int r = 0; r < 3; ++r) {
-        for (int k = 0; k < 3; ++k) c(r, k) = it->relative_pose.covariance[r * 6 + k];
-      }
-      pose_graph::LoopEdge metric = pose_graph::metricLoopEdge(q_T_m, c, camera);
-      metric.query = edge.query;
-      metric.match = edge.match;
-      try {
-        graph_->addLoop(metric);
-        added_metric = true;
-        ++metric_loops_;
-      } catch (const std::invalid_argument& e) {
-        ROS_WARN(
-            "bowg_pose_graph_node: loop %u -> %u: its metric translation is unusable (%s); "
-            "added as a same-place loop",
-            it->query_id, it->match_id, e.what());
-      }
-    }
-    if (!added_metric) graph_->addLoop(edge);
-    loop_nodes_.emplace_back(edge.query, edge.match);
-    ++loops_;
+    addLoop(*it, q->second, m->second, camera);
     added = true;
     it = pending_loops_.erase(it);
   }

@@ -31,6 +31,7 @@
 
 #include <Eigen/Geometry>
 #include <Eigen/StdVector>
+#include <cstdint>
 #include <deque>
 #include <map>
 #include <memory>
@@ -62,8 +63,16 @@ class LivePoseGraph {
   void reportTrajectoryError();
   /// Turns the keyframes whose stamp the odometry covers into nodes.
   void addCoveredKeyframes();
-  /// Adds the loops whose keyframes are nodes; true when one was added.
+  /// Adds the loops whose keyframes are nodes and drops those with a
+  /// keyframe that never will be; true when one was added.
   bool addReadyLoops();
+  /// Adds `loop` between nodes `query` and `match`: a metric edge where its
+  /// translation is usable and wanted, else a same-place edge.
+  void addLoop(const bowg_ros::LoopClosure& loop, std::size_t query, std::size_t match,
+               const Eigen::Isometry3d& camera);
+  /// Whether keyframe `id` was handled (or passed over, lost) without
+  /// becoming a node: skipped without odometry, or its status lost.
+  bool neverANode(std::uint32_t id) const;
   /// body_T_optical of the loop's camera; false (logged; the loop waits)
   /// when TF lacks it.
   bool cameraMounting(const bowg_ros::LoopClosure& loop, Eigen::Isometry3d* body_T_optical);
@@ -89,6 +98,10 @@ class LivePoseGraph {
   std::vector<double> node_stamps_;
   std::vector<Eigen::Isometry3d, Eigen::aligned_allocator<Eigen::Isometry3d>> node_odometry_;
   std::size_t loops_ = 0, metric_loops_ = 0, skipped_keyframes_ = 0, lost_keyframes_ = 0;
+  // Loops dropped because a keyframe of theirs never became a node (skipped
+  // or lost), and the largest keyframe id handled (-1: none yet).
+  std::size_t dropped_loops_ = 0;
+  std::int64_t handled_id_ = -1;
 
   // Ground truth per node: it travels on its own connection and may trail
   // the odometry, so a node waits for the truth to cover its stamp.
