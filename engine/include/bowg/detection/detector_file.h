@@ -23,7 +23,9 @@ class Vocabulary;
 ///   u64 Checksum64 of every preceding byte.
 /// Entries carry everything the indexes, the group table and the caches are
 /// rebuilt from; the options-dependent parts (scoring, level, m) follow the
-/// loading detector's options. Written atomically (atomic_file.h).
+/// loading detector's options. Written atomically (AtomicFileStream) and
+/// streamed an entry at a time: the payload size and the checksum are
+/// written once the rest is on disk, so the file is never held in memory.
 void saveDetectorFile(const std::string& path, const Database& database,
                       const DetectorState& state);
 /// The bytes saveDetectorFile() writes: taken under a lock that serialises
@@ -38,7 +40,7 @@ std::string encodeDetectorFile(const Database& database, const DetectorState& st
 /// The file is streamed, never held whole: its checksum is computed over it
 /// in chunks, then its payload decoded through a window of a few MB. The
 /// entries' descriptors stay in the file, which the database keeps open
-/// (descriptor_file.h): an archive takes ~9 kB of memory a keyframe.
+/// (descriptor_file.h): an archive takes ~12 kB of memory a keyframe.
 std::unique_ptr<Database> loadDetectorFile(const std::string& path,
                                            std::shared_ptr<const Vocabulary> vocabulary,
                                            ScoringType scoring, int direct_index_level,
