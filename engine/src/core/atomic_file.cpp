@@ -14,6 +14,7 @@
 #include <cstring>
 
 #include "bowg/core/errors.h"
+#include "core/positional_io.h"
 
 namespace bowg {
 namespace {
@@ -142,32 +143,16 @@ AtomicFileStream::~AtomicFileStream() {
   if (fd_ >= 0) ::close(fd_);
 }
 
-void AtomicFileStream::write(const void* data, std::size_t n) {
-  writeAt(data, n, size_);
-}
+void AtomicFileStream::write(const void* data, std::size_t n) { writeAt(data, n, size_); }
 
 void AtomicFileStream::writeAt(const void* data, std::size_t n, std::uint64_t offset) {
-  const char* p = static_cast<const char*>(data);
-  for (std::size_t done = 0; done < n;) {
-    const ssize_t got = ::pwrite(fd_, p + done, n - done, static_cast<off_t>(offset + done));
-    if (got < 0 && errno == EINTR) continue;
-    if (got < 0) throw IoError("cannot write '" + path() + "': " + systemError());
-    done += static_cast<std::size_t>(got);
-  }
+  pwriteAll(fd_, data, n, offset, "cannot write '" + path() + "'");
   size_ = std::max<std::uint64_t>(size_, offset + n);
 }
 
 void AtomicFileStream::readAt(void* data, std::size_t n, std::uint64_t offset) const {
-  char* p = static_cast<char*>(data);
-  for (std::size_t done = 0; done < n;) {
-    const ssize_t got = ::pread(fd_, p + done, n - done, static_cast<off_t>(offset + done));
-    if (got < 0 && errno == EINTR) continue;
-    if (got <= 0) {
-      throw IoError("cannot read back '" + path() + "' while writing it: " +
-                    (got < 0 ? systemError() : std::string("it ends early")));
-    }
-    done += static_cast<std::size_t>(got);
-  }
+  const std::string what = "cannot read back '" + path() + "' while writing it";
+  if (preadUpTo(fd_, data, n, offset, what) < n) throw IoError(what + ": it ends early");
 }
 
 void AtomicFileStream::commit() {

@@ -11,6 +11,7 @@
 #include <utility>
 
 #include "bowg/core/errors.h"
+#include "core/positional_io.h"
 
 namespace bowg {
 namespace {
@@ -182,19 +183,10 @@ std::string BoundedFile::readRest() {
 }
 
 void BoundedFile::readAt(void* dst, std::size_t n, std::uint64_t offset) const {
-  char* out = static_cast<char*>(dst);
-  std::size_t done = 0;
-  while (done < n) {
-    const ssize_t got = ::pread(fd_, out + done, n - done, static_cast<off_t>(offset + done));
-    if (got < 0 && errno == EINTR) continue;
-    if (got < 0) {
-      throw IoError("cannot read " + label_ + " '" + path_ + "': " + std::strerror(errno));
-    }
-    if (got == 0) {
-      throw IoError("cannot read " + label_ + " '" + path_ + "': it ends before byte " +
-                    std::to_string(offset + n) + " (shrunk since it was opened)");
-    }
-    done += static_cast<std::size_t>(got);
+  const std::string what = "cannot read " + label_ + " '" + path_ + "'";
+  if (preadUpTo(fd_, dst, n, offset, what) < n) {
+    throw IoError(what + ": it ends before byte " + std::to_string(offset + n) +
+                  " (shrunk since it was opened)");
   }
 }
 

@@ -2,15 +2,15 @@
 
 #include <cstring>
 
+#include "core/little_endian.h"
+
 namespace bowg {
 namespace {
 
 const std::uint64_t kFnvPrime = 0x100000001b3ull;
 
 inline std::uint64_t loadLe64(const unsigned char* p) {
-  std::uint64_t v = 0;
-  for (int i = 7; i >= 0; --i) v = (v << 8) | p[i];
-  return v;
+  return loadLittleEndian<std::uint64_t>(p);
 }
 
 inline std::uint64_t mixWord(std::uint64_t h, std::uint64_t w) { return (h ^ w) * kFnvPrime; }

@@ -5,6 +5,7 @@
 
 #include "bowg/core/checksum.h"
 #include "bowg/core/errors.h"
+#include "core/little_endian.h"
 
 namespace bowg {
 
@@ -37,9 +38,7 @@ void DescriptorFile::read(std::uint64_t offset, std::uint32_t count, std::uint64
     const auto* p = reinterpret_cast<const unsigned char*>(block.data()) +
                     static_cast<std::size_t>(f) * record_bytes_ + descriptor_offset_;
     for (std::uint64_t& word : (*out)[f].bits) {
-      // Little-endian whatever the host, as the file is written.
-      word = 0;
-      for (int b = 7; b >= 0; --b) word = (word << 8) | p[b];
+      word = loadLittleEndian<std::uint64_t>(p);
       p += 8;
     }
   }

@@ -20,6 +20,7 @@
 #include "bowg/database/missions.h"
 #include "bowg/detection/detector_state.h"
 #include "bowg/detection/islands.h"
+#include "core/little_endian.h"
 
 namespace bowg {
 namespace detector_file {
@@ -115,19 +116,15 @@ class Writer {
     }
   }
   std::string& str() { return out_; }
-  /// Bytes written, flushed or not.
-  std::uint64_t size() const { return flushed_ + out_.size(); }
   void flush() {
     if (sink_ == nullptr) return;
     sink_->write(out_.data(), out_.size());
-    flushed_ += out_.size();
     out_.clear();
   }
 
  private:
   std::string out_;
   AtomicFileStream* sink_ = nullptr;
-  std::uint64_t flushed_ = 0;
 };
 
 // Reads the payload either from bytes in memory or streamed from an open
@@ -168,9 +165,7 @@ class Reader {
   template <typename T>
   T littleEndian(const char* what) {
     need(sizeof(T), what);
-    T v = 0;
-    for (std::size_t i = 0; i < sizeof(T); ++i)
-      v |= static_cast<T>(static_cast<unsigned char>(p_[i])) << (8 * i);
+    const T v = loadLittleEndian<T>(reinterpret_cast<const unsigned char*>(p_));
     p_ += sizeof(T);
     return v;
   }

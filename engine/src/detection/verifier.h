@@ -73,6 +73,9 @@ class EntryViewCache {
 // queries stop at the temporal check before it), a database entry's for each
 // correspondence search with it: the database keeps words, not direct
 // indexes. RANSAC on correspondences already found needs none (features()).
+// A candidate of a loaded map has its descriptors on disk: the last one read
+// is kept, so its correspondences (match()), RANSAC (features()) and metric
+// step (entry()) read and check its block once.
 class Verifier {
  public:
   Verifier(const Vocabulary& vocabulary, const Database& database, const DatabaseEntry& query,
@@ -94,7 +97,11 @@ class Verifier {
   }
 
   /// Valid until the next call.
-  VerificationView match(EntryId id) { return entry(id, &match_storage_); }
+  VerificationView match(EntryId id) {
+    const DatabaseEntry& m = database_.entry(id);
+    unpackWithoutDescriptors(m, &match_storage_);
+    return VerificationView{&match_storage_.points, descriptorsOf(id, m), &match_storage_.direct};
+  }
 
   /// Entry `id`'s keypoints and descriptors without a direct index: enough
   /// for RANSAC on correspondences already found (verifyCorrespondences).
@@ -102,7 +109,7 @@ class Verifier {
   VerificationView features(EntryId id) {
     const DatabaseEntry& m = database_.entry(id);
     m.points.unpack(&features_points_);
-    return VerificationView{&features_points_, &m.descriptorsRead(&features_read_), nullptr};
+    return VerificationView{&features_points_, descriptorsOf(id, m), nullptr};
   }
 
   /// Entry `id`'s view from `cache` (made and stored there when absent).
@@ -117,20 +124,50 @@ class Verifier {
     return VerificationView{&storage->points, viewDescriptors(m, *storage), &storage->direct};
   }
 
-  /// Entry `id`'s view, its positions and direct index in `storage`.
+  /// Entry `id`'s view, its positions and direct index in `storage`; its
+  /// descriptors there too unless they are the last read (valid then until
+  /// the next match() or features()).
   VerificationView entry(EntryId id, EntryViewStorage* storage) const {
     const DatabaseEntry& m = database_.entry(id);
-    unpack(m, storage);
-    return VerificationView{&storage->points, viewDescriptors(m, *storage), &storage->direct};
+    if (id != read_id_) return viewOf(m, storage);
+    unpackWithoutDescriptors(m, storage);
+    return VerificationView{&storage->points, &read_, &storage->direct};
   }
+
+  /// Descriptor blocks read from disk so far (descriptor_file.h).
+  std::size_t blocksRead() const { return blocks_read_; }
 
   const CameraIntrinsics& intrinsics() const { return intrinsics_; }
   const DatabaseEntry& queryEntry() const { return query_; }
 
  private:
+  VerificationView viewOf(const DatabaseEntry& m, EntryViewStorage* storage) const {
+    unpack(m, storage);
+    return VerificationView{&storage->points, viewDescriptors(m, *storage), &storage->direct};
+  }
+
+  // Entry `id`'s descriptors: its own, or its block on disk read once.
+  const std::vector<Descriptor>* descriptorsOf(EntryId id, const DatabaseEntry& m) {
+    if (!m.on_disk.file) return &m.descriptors;
+    if (id != read_id_) {
+      read_id_ = kNoneRead;  // a read that throws leaves no stale block behind
+      m.descriptorsRead(&read_);
+      ++blocks_read_;
+      read_id_ = id;
+    }
+    return &read_;
+  }
+
   void unpack(const DatabaseEntry& e, EntryViewStorage* storage) const {
+    unpackWithoutDescriptors(e, storage);
+    if (e.on_disk.file) {
+      e.descriptorsRead(&storage->read);
+      ++blocks_read_;
+    }
+  }
+
+  void unpackWithoutDescriptors(const DatabaseEntry& e, EntryViewStorage* storage) const {
     e.points.unpack(&storage->points);
-    if (e.on_disk.file) e.descriptorsRead(&storage->read);
     if (!exhaustive_) {
       e.words.unpack(&storage->words);
       storage->direct = directIndexFromWords(vocabulary_, storage->words, database_.directLevel());
@@ -141,9 +178,12 @@ class Verifier {
   const Database& database_;
   const DatabaseEntry& query_;
   const CameraIntrinsics& intrinsics_;
+  static constexpr EntryId kNoneRead = static_cast<EntryId>(-1);
   EntryViewStorage query_storage_, match_storage_;
   std::vector<ImagePoint> features_points_;
-  std::vector<Descriptor> features_read_;
+  std::vector<Descriptor> read_;  // entry read_id_'s descriptors, read from disk
+  EntryId read_id_ = kNoneRead;
+  mutable std::size_t blocks_read_ = 0;
   bool exhaustive_;
   bool built_;
 };

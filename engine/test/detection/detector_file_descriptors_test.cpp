@@ -11,6 +11,7 @@
 
 #include "bowg/core/errors.h"
 #include "detection/detector_file_runs.h"
+#include "detection/verifier.h"
 
 namespace bowg {
 namespace {
@@ -81,6 +82,31 @@ TEST(DescriptorsOnDisk, ALoadedDatabaseReadsTheSavedDescriptorsBackAndHoldsNone)
 
 // Replaced atomically (a save renames the new file over the old) or deleted,
 // the file loaded stays the one read: the detector runs on as the saver.
+TEST(DescriptorsOnDisk, AVerifiedCandidateIsReadFromDiskOnce) {
+  Saved s("read_once.bowgdb");
+  LoopDetector b(s.voc, options());
+  b.load(s.path);
+  const Database& db = b.database();
+  const Database& da = s.a.database();
+  query_steps::Verifier v(*s.voc, db, db.entry(0), CameraIntrinsics(), false);
+  // Its correspondences, RANSAC and metric step: one read, the saved block.
+  EXPECT_EQ(*v.match(30).descriptors, da.entry(30).descriptors);
+  EXPECT_EQ(*v.features(30).descriptors, da.entry(30).descriptors);
+  query_steps::EntryViewStorage storage;
+  EXPECT_EQ(*v.entry(30, &storage).descriptors, da.entry(30).descriptors);
+  EXPECT_EQ(v.blocksRead(), 1u);
+  // Another candidate is read; the metric step's neighbours are read into
+  // their own storage and leave the last candidate's block in place.
+  EXPECT_EQ(*v.features(31).descriptors, da.entry(31).descriptors);
+  EXPECT_EQ(v.blocksRead(), 2u);
+  query_steps::EntryViewStorage neighbour;
+  EXPECT_EQ(*v.entry(29, &neighbour).descriptors, da.entry(29).descriptors);
+  EXPECT_EQ(v.blocksRead(), 3u);
+  EXPECT_EQ(*v.match(31).descriptors, da.entry(31).descriptors);
+  EXPECT_EQ(v.blocksRead(), 3u);
+  std::remove(s.path.c_str());
+}
+
 TEST(DescriptorsOnDisk, AFileReplacedOrDeletedAfterTheLoadStaysTheOneRead) {
   Saved s("replaced.bowgdb");
   LoopDetector b(s.voc, options());

@@ -36,6 +36,7 @@
 #include "bowg/core/atomic_file.h"
 #include "bowg/core/checksum.h"
 #include "bowg/core/errors.h"
+#include "core/positional_io.h"
 #include "vocabulary/formats/vocabulary_io_internal.h"
 #include "vocabulary/vocabulary_records.h"
 
@@ -61,15 +62,8 @@ static_assert(offsetof(Node, parent) == 0 && offsetof(Node, first_child) == 4 &&
               "Node layout must match the record layout");
 
 void readFully(int fd, void* out, std::size_t size, std::uint64_t offset, const std::string& path) {
-  char* p = static_cast<char*>(out);
-  while (size > 0) {
-    const ssize_t n = ::pread(fd, p, size, static_cast<off_t>(offset));
-    if (n < 0 && errno == EINTR) continue;
-    if (n < 0) throw IoError("cannot read '" + path + "': " + std::strerror(errno));
-    if (n == 0) fail(path, "truncated while reading");
-    p += n;
-    size -= static_cast<std::size_t>(n);
-    offset += static_cast<std::uint64_t>(n);
+  if (preadUpTo(fd, out, size, offset, "cannot read '" + path + "'") < size) {
+    fail(path, "truncated while reading");
   }
 }
 
