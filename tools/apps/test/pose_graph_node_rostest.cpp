@@ -332,11 +332,7 @@ class PoseGraphPlayback : public ::testing::Test {
 
   // After the run: keyframe n's status never arrives, n+1's does, with the
   // loop n+1 -> n (published before the status, as the nodelet does).
-  // Keyframe n will never be a node: each of the four nodes on
-  // /loop_closure drops the loop and says so instead of keeping it pending
-  // for ever.
-  void expectLoopIntoALostKeyframeDropped() {
-    const std::uint32_t n = truth_.size();
+  void playLoopIntoALostKeyframe(std::uint32_t n) {
     const ros::Time stamp(1000.0 + 0.1 * (n + 1));
     odom_.publish(odometryAndTruth(stamp, odometry_.back(), truth_.back()).first);
     bowg_ros::LoopClosure l;
@@ -350,6 +346,14 @@ class PoseGraphPlayback : public ::testing::Test {
     s.header.stamp = stamp;
     s.id = n + 1;
     status_.publish(s);
+  }
+
+  // Keyframe n will never be a node: each of the four nodes on
+  // /loop_closure drops the loop and says so instead of keeping it pending
+  // for ever.
+  void expectLoopIntoALostKeyframeDropped() {
+    const std::uint32_t n = truth_.size();
+    playLoopIntoALostKeyframe(n);
     waitFor(20.0, 0.1, [this] { return dropped_lines_.size() >= 4; });
     std::lock_guard<std::mutex> lock(dropped_lines_.mutex);
     std::set<std::string> nodes;
