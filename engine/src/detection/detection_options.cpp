@@ -10,6 +10,7 @@ using namespace check;
 
 void IslandOptions::validate() const {
   requireFiniteAtLeast("islands.min_score", min_score, 0.0);
+  requireFiniteAtLeast("islands.images_only_score_margin", images_only_score_margin, 0.0);
   requireIntAtLeast("islands.recent_exclusion", recent_exclusion, 0);
   requireFiniteAtLeast("islands.recent_exclusion_m", recent_exclusion_m, 0.0);
   requireFiniteAtLeast("islands.recent_exclusion_odometer_m", recent_exclusion_odometer_m, 0.0);

@@ -20,6 +20,11 @@
 
 namespace bowg {
 
+double minScoreFor(const IslandOptions& options, OdometryInput input) {
+  return input == OdometryInput::kNone ? options.min_score + options.images_only_score_margin
+                                       : options.min_score;
+}
+
 std::vector<Island> computeIslands(std::vector<std::pair<EntryId, double>> candidates,
                                    const IslandOptions& options) {
   options.validate();

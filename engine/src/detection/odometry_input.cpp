@@ -31,7 +31,8 @@ const char* describeAcceptance(OdometryInput input) {
              "the verified chain, followed in metres driven";
     case OdometryInput::kNone:
       return "none: windows in keyframes (keep them ~4 cm apart: min_keyframe_interval = "
-             "0.04 m / speed), every loop needs the verified chain, followed in keyframes";
+             "0.04 m / speed), candidates above min_score + images_only_score_margin, every "
+             "loop needs the verified chain, followed in keyframes";
   }
   return "unknown";
 }

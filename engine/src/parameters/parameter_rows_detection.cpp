@@ -17,6 +17,11 @@ void addDetectionRows(std::vector<Row>* rows) {
                             BOWG_FIELD(double, detector.islands.min_score),
                             "Acceptance threshold on the final score eta (the paper's second "
                             "alpha)"));
+  rows->push_back(doubleRow("images_only_score_margin", det, "islands.images_only_score_margin",
+                            0.0, 10.0, false,
+                            BOWG_FIELD(double, detector.islands.images_only_score_margin),
+                            "Added to min_score for keyframes without odometry (images only): no "
+                            "odometry gate stands between a look-alike and acceptance"));
   rows->push_back(intRow("recent_exclusion", det, "islands.recent_exclusion", 0, 1000000, false,
                          BOWG_FIELD(int, detector.islands.recent_exclusion),
                          "The most recent keyframes are never loop candidates"));
@@ -186,8 +191,8 @@ void addDetectionRows(std::vector<Row>* rows) {
   rows->push_back(intRow("metric_covariance_samples", det, "metric.covariance_samples", 2, 1000,
                          false, BOWG_FIELD(int, detector.metric.covariance_samples),
                          "Bootstrap resamples the translation's covariance is measured from"));
-  rows->push_back(doubleRow("metric_covariance_scale", det, "metric.covariance_scale", 0.01,
-                            1000.0, false, BOWG_FIELD(double, detector.metric.covariance_scale),
+  rows->push_back(doubleRow("metric_covariance_scale", det, "metric.covariance_scale", 0.01, 1000.0,
+                            false, BOWG_FIELD(double, detector.metric.covariance_scale),
                             "Factor on the measured covariance (calibrated: the 95 % ellipsoid "
                             "holds the truth 95 % of the time)"));
 }

@@ -4,9 +4,8 @@
 
 #include <gtest/gtest.h>
 
-#include <cmath>
-
 #include <algorithm>
+#include <cmath>
 #include <random>
 #include <stdexcept>
 #include <utility>
@@ -44,6 +43,19 @@ void expectIsland(const Island& i, EntryId first, EntryId last, double score, En
   EXPECT_EQ(i.best_entry, best);
   EXPECT_DOUBLE_EQ(i.best_score, best_score);
   EXPECT_EQ(i.size, size);
+}
+
+TEST(MinScoreFor, ImagesOnlyAddsTheMargin) {
+  IslandOptions o;
+  o.min_score = 1.0;
+  o.images_only_score_margin = 0.1;
+  EXPECT_DOUBLE_EQ(minScoreFor(o, OdometryInput::kPositions), 1.0);
+  EXPECT_DOUBLE_EQ(minScoreFor(o, OdometryInput::kOdometer), 1.0);
+  EXPECT_DOUBLE_EQ(minScoreFor(o, OdometryInput::kNone), 1.1);
+  o.images_only_score_margin = 0.0;
+  EXPECT_DOUBLE_EQ(minScoreFor(o, OdometryInput::kNone), 1.0);
+  o.images_only_score_margin = -0.1;
+  EXPECT_THROW(o.validate(), std::exception);
 }
 
 TEST(ComputeIslands, HandMadeCandidates) {

@@ -4,6 +4,7 @@
 // follow the chain (a look-alike elsewhere) is refused.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -118,6 +119,38 @@ TEST(LoopDetectorChain, WithAnOdometerTheChainIsFollowedInMetres) {
     EXPECT_EQ(chained[i].status, LoopStatus::kLoopDetected) << i;
   }
   EXPECT_EQ(chained.back().status, LoopStatus::kNoVerifiedChain);
+}
+
+TEST(LoopDetectorChain, WithImagesOnlyTheThresholdIsRaisedByItsMargin) {
+  // Every revisit query closes its loop in both modes at min_score 0. With
+  // a margin above the best revisit score, images-only queries have no
+  // candidate left (min_score + margin), while queries with an odometer
+  // keep min_score and every loop; a margin below the lowest score changes
+  // nothing.
+  LoopDetectorOptions o = chainOptions(0);
+  const std::vector<LoopResult> images = drive(o, kRevisit, false);
+  const std::vector<LoopResult> odometer = drive(o, kRevisit, true);
+  double lowest = 1e9, highest = 0.0;
+  for (const LoopResult& r : images) {
+    ASSERT_EQ(r.status, LoopStatus::kLoopDetected);
+    lowest = std::min(lowest, r.best.eta);
+    highest = std::max(highest, r.best.eta);
+  }
+  ASSERT_GT(lowest, 0.0);
+  o.islands.images_only_score_margin = highest * 1.01;
+  const std::vector<LoopResult> images_high = drive(o, kRevisit, false);
+  const std::vector<LoopResult> odometer_high = drive(o, kRevisit, true);
+  for (std::size_t i = 0; i < kRevisit.size(); ++i) {
+    EXPECT_EQ(images_high[i].status, LoopStatus::kNoScoreAboveThreshold) << i;
+    ASSERT_EQ(odometer_high[i].status, odometer[i].status) << i;
+    EXPECT_EQ(odometer_high[i].match_id, odometer[i].match_id) << i;
+  }
+  o.islands.images_only_score_margin = lowest * 0.99;
+  const std::vector<LoopResult> images_low = drive(o, kRevisit, false);
+  for (std::size_t i = 0; i < kRevisit.size(); ++i) {
+    ASSERT_EQ(images_low[i].status, LoopStatus::kLoopDetected) << i;
+    EXPECT_EQ(images_low[i].match_id, images[i].match_id) << i;
+  }
 }
 
 TEST(LoopDetectorChain, UniqueInliersAreWhatTheRecentPastDoesNotSee) {

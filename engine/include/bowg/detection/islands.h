@@ -9,6 +9,7 @@
 
 #include "bowg/core/types.h"
 #include "bowg/detection/detection_options.h"
+#include "bowg/detection/odometry_input.h"
 
 namespace bowg {
 
@@ -36,6 +37,10 @@ std::vector<Island> computeIslands(std::vector<std::pair<EntryId, double>> candi
 /// max(a.first, b.first) - min(a.last, b.last) is at most max_distance
 /// (overlapping intervals have a gap <= 0).
 bool islandsConsistent(const Island& a, const Island& b, int max_distance);
+
+/// The threshold a query with `input` applies: options.min_score, plus
+/// options.images_only_score_margin when it has no odometry.
+double minScoreFor(const IslandOptions& options, OdometryInput input);
 
 /// One island a query followed, with the length of its chain (consecutive
 /// queries with consistent islands ending at it, itself included).
