@@ -9,10 +9,6 @@ namespace {
 
 const std::uint64_t kFnvPrime = 0x100000001b3ull;
 
-inline std::uint64_t loadLe64(const unsigned char* p) {
-  return loadLittleEndian<std::uint64_t>(p);
-}
-
 inline std::uint64_t mixWord(std::uint64_t h, std::uint64_t w) { return (h ^ w) * kFnvPrime; }
 
 }  // namespace
@@ -32,7 +28,7 @@ void Checksum64::update(const void* data, std::size_t size) {
   }
   std::uint64_t h = hash_;
   while (size >= 8) {
-    h = mixWord(h, loadLe64(p));
+    h = mixWord(h, loadLittleEndian<std::uint64_t>(p));
     p += 8;
     size -= 8;
   }
@@ -55,7 +51,7 @@ void updateBoth(Checksum64* a, Checksum64* b, const void* data, std::size_t size
   const std::size_t words = size / 8;
   std::uint64_t ha = a->hash_, hb = b->hash_;
   for (std::size_t i = 0; i < words; ++i, p += 8) {
-    const std::uint64_t w = loadLe64(p);
+    const std::uint64_t w = loadLittleEndian<std::uint64_t>(p);
     ha = mixWord(ha, w);
     hb = mixWord(hb, w);
   }

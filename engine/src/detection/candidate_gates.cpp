@@ -3,6 +3,9 @@
 
 #include <algorithm>
 
+#include "bowg/detection/islands.h"
+#include "bowg/detection/odometry_input.h"
+
 namespace bowg {
 namespace query_steps {
 
@@ -20,7 +23,10 @@ std::vector<AnchorEntries> loopAnchors(const QueryContext& ctx) {
 void applyOdometryGates(const QueryContext& ctx, const DatabaseEntry& query_entry,
                         const std::vector<AnchorEntries>& anchors,
                         std::vector<std::pair<EntryId, double>>* etas, LoopResult* r) {
-  const IslandOptions& io = ctx.options.islands;
+  // Candidates under the query's threshold are left to islandsOf and not
+  // counted as gated.
+  const IslandOptions io = islandOptionsFor(
+      ctx.options.islands, odometryInput(query_entry.odometer, query_entry.position));
   const bool anchored = !anchors.empty();
   if (!(io.odometry_gate_m > 0.0) && !anchored) return;
   const auto outside = [&](const std::pair<EntryId, double>& c) {

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 
+#include "bowg/detection/islands.h"
 #include "bowg/detection/odometry_input.h"
 #include "bowg/scoring/similarity.h"
 #include "bowg/scoring/temporal_alignment.h"
@@ -40,18 +41,6 @@ EntryId candidateLimit(const Database& database, const IslandOptions& options, d
   std::size_t limit = entriesDrivenUpTo(database, odometer - options.recent_exclusion_m);
   while (limit > 0 && std::isnan(database.entries()[limit - 1].odometer)) --limit;
   return static_cast<EntryId>(limit);
-}
-
-// The recent-exclusion window of the query: recent_exclusion_odometer_m
-// replaces recent_exclusion_m when the query has an odometer but no
-// odometry position.
-IslandOptions exclusionWindow(const IslandOptions& options, const DatabaseEntry& query) {
-  IslandOptions window = options;
-  if (odometryInput(query.odometer, query.position) == OdometryInput::kOdometer &&
-      options.recent_exclusion_odometer_m > 0.0) {
-    window.recent_exclusion_m = options.recent_exclusion_odometer_m;
-  }
-  return window;
 }
 
 // The normalisers' I_{t-1} (SimilarityOptions::normaliser_distance_m): the
@@ -116,8 +105,9 @@ bool scoreCandidates(const QueryContext& ctx, const DatabaseQuery& q,
   r->word_normaliser = norm.s_w;
   r->group_normaliser = with_groups ? norm.s_g : 0.0;
   r->distribution_normaliser = with_distribution ? norm.s_d : 0.0;
+  const OdometryInput input = odometryInput(query_entry.odometer, query_entry.position);
   const EntryId limit =
-      candidateLimit(database, exclusionWindow(options.islands, query_entry), query_entry.odometer);
+      candidateLimit(database, islandOptionsFor(options.islands, input), query_entry.odometer);
   if (limit == 0) return finish(LoopStatus::kDatabaseTooSmall);
   // What eqs. 2 and 4 divide by: s(I_t, I_t-1), raised to the normaliser
   // floor where it is unusually small.

@@ -20,9 +20,13 @@
 
 namespace bowg {
 
-double minScoreFor(const IslandOptions& options, OdometryInput input) {
-  return input == OdometryInput::kNone ? options.min_score + options.images_only_score_margin
-                                       : options.min_score;
+IslandOptions islandOptionsFor(const IslandOptions& options, OdometryInput input) {
+  IslandOptions applied = options;
+  if (input == OdometryInput::kNone) applied.min_score += options.images_only_score_margin;
+  if (input == OdometryInput::kOdometer && options.recent_exclusion_odometer_m > 0.0) {
+    applied.recent_exclusion_m = options.recent_exclusion_odometer_m;
+  }
+  return applied;
 }
 
 std::vector<Island> computeIslands(std::vector<std::pair<EntryId, double>> candidates,

@@ -28,13 +28,12 @@ struct ChainRecord {
 };
 
 // Islands (Sec. III-D, eq. 10) of the gated candidates above the query's
-// threshold (minScoreFor: higher with images only), with the odometers of
-// their ends.
+// threshold (islandOptionsFor: higher with images only), with the odometers
+// of their ends.
 std::vector<Island> islandsOf(const QueryContext& ctx, const DatabaseEntry& query_entry,
                               std::vector<std::pair<EntryId, double>>&& etas) {
-  IslandOptions options = ctx.options.islands;
-  options.min_score =
-      minScoreFor(options, odometryInput(query_entry.odometer, query_entry.position));
+  const IslandOptions options = islandOptionsFor(
+      ctx.options.islands, odometryInput(query_entry.odometer, query_entry.position));
   std::vector<Island> islands = computeIslands(std::move(etas), options);
   for (Island& i : islands) {
     i.first_m = ctx.database.entry(i.first).odometer;

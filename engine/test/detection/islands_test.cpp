@@ -45,17 +45,32 @@ void expectIsland(const Island& i, EntryId first, EntryId last, double score, En
   EXPECT_EQ(i.size, size);
 }
 
-TEST(MinScoreFor, ImagesOnlyAddsTheMargin) {
+TEST(IslandOptionsFor, ImagesOnlyAddsTheMargin) {
   IslandOptions o;
   o.min_score = 1.0;
   o.images_only_score_margin = 0.1;
-  EXPECT_DOUBLE_EQ(minScoreFor(o, OdometryInput::kPositions), 1.0);
-  EXPECT_DOUBLE_EQ(minScoreFor(o, OdometryInput::kOdometer), 1.0);
-  EXPECT_DOUBLE_EQ(minScoreFor(o, OdometryInput::kNone), 1.1);
+  EXPECT_DOUBLE_EQ(islandOptionsFor(o, OdometryInput::kPositions).min_score, 1.0);
+  EXPECT_DOUBLE_EQ(islandOptionsFor(o, OdometryInput::kOdometer).min_score, 1.0);
+  EXPECT_DOUBLE_EQ(islandOptionsFor(o, OdometryInput::kNone).min_score, 1.1);
   o.images_only_score_margin = 0.0;
-  EXPECT_DOUBLE_EQ(minScoreFor(o, OdometryInput::kNone), 1.0);
+  EXPECT_DOUBLE_EQ(islandOptionsFor(o, OdometryInput::kNone).min_score, 1.0);
   o.images_only_score_margin = -0.1;
   EXPECT_THROW(o.validate(), std::exception);
+}
+
+TEST(IslandOptionsFor, OdometerOnlyUsesItsOwnExclusionWindow) {
+  IslandOptions o;
+  o.recent_exclusion_m = 2.0;
+  o.recent_exclusion_odometer_m = 5.0;
+  EXPECT_DOUBLE_EQ(islandOptionsFor(o, OdometryInput::kOdometer).recent_exclusion_m, 5.0);
+  EXPECT_DOUBLE_EQ(islandOptionsFor(o, OdometryInput::kPositions).recent_exclusion_m, 2.0);
+  EXPECT_DOUBLE_EQ(islandOptionsFor(o, OdometryInput::kNone).recent_exclusion_m, 2.0);
+  // 0 = the odometer-only query keeps recent_exclusion_m.
+  o.recent_exclusion_odometer_m = 0.0;
+  EXPECT_DOUBLE_EQ(islandOptionsFor(o, OdometryInput::kOdometer).recent_exclusion_m, 2.0);
+  // The margin is the images-only query's alone.
+  o.images_only_score_margin = 0.3;
+  EXPECT_DOUBLE_EQ(islandOptionsFor(o, OdometryInput::kOdometer).min_score, o.min_score);
 }
 
 TEST(ComputeIslands, HandMadeCandidates) {

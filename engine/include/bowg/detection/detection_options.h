@@ -18,7 +18,7 @@ struct IslandOptions {
   double min_score = 0.3;
   /// Added to min_score for a query without odometry (images only): no
   /// odometry gate stands between a look-alike and the verified chain, so
-  /// its candidates must clear a higher bar (minScoreFor). >= 0.
+  /// its candidates must clear a higher bar (islandOptionsFor). >= 0.
   double images_only_score_margin = 0.0;
   /// The most recent keyframes are never candidates (the robot just saw
   /// them). >= 0.

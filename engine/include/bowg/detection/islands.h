@@ -38,9 +38,11 @@ std::vector<Island> computeIslands(std::vector<std::pair<EntryId, double>> candi
 /// (overlapping intervals have a gap <= 0).
 bool islandsConsistent(const Island& a, const Island& b, int max_distance);
 
-/// The threshold a query with `input` applies: options.min_score, plus
-/// options.images_only_score_margin when it has no odometry.
-double minScoreFor(const IslandOptions& options, OdometryInput input);
+/// The island options a query with `input` applies: min_score raised by
+/// images_only_score_margin when it has no odometry, and the recent-exclusion
+/// window recent_exclusion_odometer_m (when set) when it has an odometer but
+/// no positions. Every other value as in `options`.
+IslandOptions islandOptionsFor(const IslandOptions& options, OdometryInput input);
 
 /// One island a query followed, with the length of its chain (consecutive
 /// queries with consistent islands ending at it, itself included).

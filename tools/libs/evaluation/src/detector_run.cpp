@@ -1,6 +1,7 @@
 #include "bowg_evaluation/detector_run.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <iomanip>
 #include <limits>
@@ -9,6 +10,7 @@
 
 #include "bowg/core/resident_memory.h"
 #include "bowg/database/database.h"
+#include "bowg/detection/islands.h"
 
 namespace bowg {
 namespace eval {
@@ -84,6 +86,7 @@ DetectorRun runDetector(std::shared_ptr<const Vocabulary> vocabulary,
     }
     const LoopResult r = detector.process(input);
     k.mission = r.mission;
+    k.odometry_input = r.odometry_input;
     // Entries are numbered in insertion order, and every frame is inserted
     // (also those without features), so entry id == first_entry + frame index.
     k.status = r.status;
@@ -141,10 +144,20 @@ std::vector<LoopPose> loopPosesOf(const DetectorRun& run) {
   return out;
 }
 
+double appliedThreshold(const DetectorRun& run) {
+  std::array<std::size_t, 3> count{};
+  for (const KeyframeRecord& k : run.keyframes) ++count[static_cast<std::size_t>(k.odometry_input)];
+  const auto most = std::max_element(count.begin(), count.end());
+  const OdometryInput input = run.keyframes.empty()
+                                  ? OdometryInput::kPositions
+                                  : static_cast<OdometryInput>(most - count.begin());
+  return islandOptionsFor(run.options.islands, input).min_score;
+}
+
 PrPoint operatingPoint(const DetectorRun& run, const GroundTruth& gt) {
   // Every loop counts: the threshold already acted inside the detector.
   PrPoint p = evaluateAt(detectionsOf(run), gt, -std::numeric_limits<double>::infinity());
-  p.threshold = run.options.islands.min_score;
+  p.threshold = appliedThreshold(run);
   return p;
 }
 

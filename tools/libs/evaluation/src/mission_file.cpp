@@ -91,7 +91,7 @@ PrPoint crossMissionPoint(const DetectorRun& run, const GroundTruth& gt) {
     if (mission(d.match) != mission(d.query)) detections.push_back(d);
   }
   PrPoint p = evaluateAt(detections, cross, -std::numeric_limits<double>::infinity());
-  p.threshold = run.options.islands.min_score;
+  p.threshold = appliedThreshold(run);
   return p;
 }
 

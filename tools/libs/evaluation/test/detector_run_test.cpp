@@ -104,6 +104,29 @@ TEST(DetectorRunTest, OneRecordPerKeyframeAndConsistentOutputs) {
   EXPECT_EQ(bins[1].first, 15u);
 }
 
+// The threshold a run reports is the one its keyframes applied: images-only
+// keyframes raise min_score by the margin (islandOptionsFor).
+TEST(AppliedThreshold, FollowsTheOdometryMostKeyframesCameWith) {
+  DetectorRun run;
+  run.options.islands.min_score = 1.0;
+  run.options.islands.images_only_score_margin = 0.1;
+  EXPECT_DOUBLE_EQ(appliedThreshold(run), 1.0);  // no keyframe
+  const auto add = [&run](OdometryInput input, int n) {
+    for (int i = 0; i < n; ++i) {
+      KeyframeRecord k;
+      k.odometry_input = input;
+      run.keyframes.push_back(k);
+    }
+  };
+  add(OdometryInput::kNone, 3);
+  add(OdometryInput::kOdometer, 1);
+  EXPECT_DOUBLE_EQ(appliedThreshold(run), 1.1);
+  add(OdometryInput::kPositions, 4);
+  EXPECT_DOUBLE_EQ(appliedThreshold(run), 1.0);
+  GroundTruth gt;
+  EXPECT_DOUBLE_EQ(operatingPoint(run, gt).threshold, 1.0);
+}
+
 }  // namespace
 }  // namespace eval
 }  // namespace bowg

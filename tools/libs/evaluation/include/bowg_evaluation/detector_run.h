@@ -13,6 +13,7 @@
 
 #include "bowg/core/types.h"
 #include "bowg/detection/loop_detector.h"
+#include "bowg/detection/odometry_input.h"
 #include "bowg/vocabulary/vocabulary.h"
 #include "bowg_evaluation/ground_truth.h"
 #include "bowg_evaluation/loop_pose_file.h"
@@ -59,6 +60,8 @@ struct KeyframeRecord {
   double candidate_score = 0;  ///< its final score eta
   int match = -1;              ///< the loop's frame when status == kLoopDetected
   std::uint32_t mission = 0;   ///< the keyframe's mission (LoopResult::mission)
+  /// The odometry it came with (LoopResult::odometry_input).
+  OdometryInput odometry_input = OdometryInput::kNone;
   int correspondences = 0, inliers = 0;
   std::size_t features = 0;
   std::size_t database_size = 0;  ///< entries before this keyframe was added
@@ -132,8 +135,12 @@ std::vector<Detection> detectionsOf(const DetectorRun& run);
 /// The relative poses of the run's loops (loop_pose_file.h).
 std::vector<LoopPose> loopPosesOf(const DetectorRun& run);
 
+/// The threshold the run's keyframes applied: min_score as the odometry most
+/// of them came with raises it (islandOptionsFor; min_score for an empty run).
+double appliedThreshold(const DetectorRun& run);
+
 /// The run's operating point: every loop it found scored against `gt`, the
-/// point's threshold being the run's min_score (one point of the exact PR
+/// point's threshold being appliedThreshold(run) (one point of the exact PR
 /// curve, whose other points are runs at other min_scores).
 PrPoint operatingPoint(const DetectorRun& run, const GroundTruth& gt);
 
