@@ -20,6 +20,9 @@ sequences="${BOWG_PEER_SEQUENCES:-fig8_varspeed_5cm,circuit_15cm_roll30}"
 alpha="${BOWG_PEER_ALPHA:-0.3}"
 out="${BOWG_PEER_DIR:-$repo/output/peer}"
 config="$repo/config/pipe.yaml"
+# Ours at the preset's own threshold only: one run per round, no sweep.
+min_score="$(awk '$1 == "min_score:" { print $2 }' "$config")"
+[ -n "$min_score" ] || { echo "peer_benchmark: no min_score in $config" >&2; exit 1; }
 vocabulary="$repo/data/default_vocabulary.bowgvoc"
 export PATH="/usr/bin:$PATH"
 
@@ -58,7 +61,7 @@ for name in "${names[@]}"; do
   # query-match gap older than the query (its --dislocal, in frames).
   gap="$(awk -F'[:,]' '!/^#/ && NF > 1 { for (i = 2; i <= NF; ++i) if ($i != "" && (m == "" || $1 - $i < m)) m = $1 - $i }
                       END { print (m == "" ? 30 : m) }' "$seq_dir/ground_truth.txt")"
-  echo "== $name: $rounds rounds, DLoopDetector alpha $alpha dislocal $gap, ours config/pipe.yaml"
+  echo "== $name: $rounds rounds, DLoopDetector alpha $alpha dislocal $gap, ours $config (min_score $min_score)"
   for i in $(seq 1 "$rounds"); do
     "$kit/peer.sh" run --images "$seq_dir" --gt "$seq_dir/ground_truth.txt" \
       --vocabulary "$peer_vocabulary" --alphas "$alpha" --dislocal "$gap" \
@@ -67,7 +70,7 @@ for name in "${names[@]}"; do
     "$tools/bowg_evaluate" --images "$seq_dir" --rate "$rate" --gt "$seq_dir/ground_truth.txt" \
       --odometry "$seq_dir/poses.csv" --odometry-poses "$seq_dir/odometry.csv" \
       --vocabulary "$vocabulary" --config "$config" \
-      --thresholds 1.2 --jobs 1 --quiet --output "$out/runs/$name/ours_$i" >/dev/null
+      --thresholds "$min_score" --jobs 1 --quiet --output "$out/runs/$name/ours_$i" >/dev/null
     pairs+=("$name:$out/runs/$name/peer_$i:$out/runs/$name/ours_$i")
   done
 done
