@@ -12,6 +12,8 @@
 # BOWG_SKIP_BUILD=1, BOWG_SKIP_DEPS=1.
 set -euo pipefail
 repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+# shellcheck source=suite_lib.sh
+source "$repo/scripts/suite_lib.sh"
 ws="${BOWG_WS:-$repo/.ws}"
 rounds="${BOWG_BUDGET_ROUNDS:-3}"
 presets="${BOWG_BUDGET_PRESETS:-pipe,pipe_gftt,generic}"
@@ -48,7 +50,7 @@ echo "== $sequence: $rounds rounds of ${names[*]}"
 for i in $(seq 1 "$rounds"); do
   for p in "${names[@]}"; do
     config="$repo/config/$p.yaml"
-    min_score="$(sed -nE 's/^min_score:[[:space:]]*([0-9.]+).*/\1/p' "$config")"
+    min_score="$(preset_min_score "$config")"
     "$tools/bowg_evaluate" --images "$seq_dir" --rate "$rate" --gt "$seq_dir/ground_truth.txt" \
       --odometry "$seq_dir/odometry.csv" --odometry-poses "$seq_dir/odometry.csv" \
       --vocabulary "$vocabulary" --config "$config" --thresholds "$min_score" --jobs 1 --quiet \

@@ -21,8 +21,9 @@ alpha="${BOWG_PEER_ALPHA:-0.3}"
 out="${BOWG_PEER_DIR:-$repo/output/peer}"
 config="$repo/config/pipe.yaml"
 # Ours at the preset's own threshold only: one run per round, no sweep.
-min_score="$(awk '$1 == "min_score:" { print $2 }' "$config")"
-[ -n "$min_score" ] || { echo "peer_benchmark: no min_score in $config" >&2; exit 1; }
+# shellcheck source=suite_lib.sh
+source "$repo/scripts/suite_lib.sh"
+min_score="$(preset_min_score "$config")"
 vocabulary="$repo/data/default_vocabulary.bowgvoc"
 export PATH="/usr/bin:$PATH"
 

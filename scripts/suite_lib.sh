@@ -1,6 +1,17 @@
 # Sourced by scripts/robustness_suite.sh and scripts/reinspection_suite.sh:
 # what both suites do before and around their runs. Expects `repo`, `ws`,
-# `out` and `shared` set by the suite.
+# `out` and `shared` set by the suite. The benchmarks that run a preset at its
+# own threshold (peer_benchmark.sh, cpu_budget.sh) source it for
+# preset_min_score only.
+
+# preset_min_score CONFIG: the min_score CONFIG sets (what the detector
+# applies with odometry); exits 1 naming the file when it sets none.
+preset_min_score() {
+  local value
+  value="$(awk '$1 == "min_score:" { print $2 }' "$1")"
+  [ -n "$value" ] || { echo "no min_score in $1" >&2; exit 1; }
+  echo "$value"
+}
 
 # trim S: S without leading and trailing white space.
 trim() { local s="$1"; s="${s#"${s%%[![:space:]]*}"}"; echo "${s%"${s##*[![:space:]]}"}"; }

@@ -4,7 +4,6 @@
 #include <algorithm>
 
 #include "bowg/detection/islands.h"
-#include "bowg/detection/odometry_input.h"
 
 namespace bowg {
 namespace query_steps {
@@ -25,8 +24,7 @@ void applyOdometryGates(const QueryContext& ctx, const DatabaseEntry& query_entr
                         std::vector<std::pair<EntryId, double>>* etas, LoopResult* r) {
   // Candidates under the query's threshold are left to islandsOf and not
   // counted as gated.
-  const IslandOptions io = islandOptionsFor(
-      ctx.options.islands, odometryInput(query_entry.odometer, query_entry.position));
+  const IslandOptions& io = ctx.islands;
   const bool anchored = !anchors.empty();
   if (!(io.odometry_gate_m > 0.0) && !anchored) return;
   const auto outside = [&](const std::pair<EntryId, double>& c) {

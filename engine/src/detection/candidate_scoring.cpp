@@ -7,7 +7,6 @@
 #include <limits>
 
 #include "bowg/detection/islands.h"
-#include "bowg/detection/odometry_input.h"
 #include "bowg/scoring/similarity.h"
 #include "bowg/scoring/temporal_alignment.h"
 
@@ -66,6 +65,44 @@ bool lowNormaliser(const Normalisers& tested, const SimilarityOptions& so, bool 
          (with_distribution && low(tested.distribution, so.min_distribution_normaliser));
 }
 
+// Eqs. 2, 4, 5 and 6-7 for every scored entry, in ascending entry order,
+// into ctx.candidates and etas.
+void finalScores(const QueryContext& ctx, const std::vector<EntryScores>& scores,
+                 const Normalisers& divisor, bool with_groups, bool with_distribution,
+                 double odometer, std::vector<std::pair<EntryId, double>>* etas) {
+  const LoopDetectorOptions& options = ctx.options;
+  const DetectorState& state = ctx.state;
+  etas->reserve(scores.size());
+  // Eq. 7's predecessor in metres when odometry allows it
+  // (TemporalScoreOptions::alignment_window_m), else in keyframes.
+  const TemporalScoreOptions& to = options.temporal_score;
+  const bool metric_alignment =
+      to.alignment_window_m > 0.0 && !std::isnan(odometer) && !std::isnan(state.previous_odometer);
+  const double driven = metric_alignment ? odometer - state.previous_odometer : 0.0;
+  ctx.candidates.reserve(scores.size());
+  // The scores come in ascending entry order: one forward walk of the
+  // temporal memory for all of them.
+  AlignedPreviousScores aligned =
+      metric_alignment ? AlignedPreviousScores(state.previous_etas, ctx.database.odometers(),
+                                               driven, to.alignment_window_m)
+                       : AlignedPreviousScores(state.previous_etas, state.missed_queries, to);
+  for (const EntryScores& s : scores) {
+    CandidateScores c;
+    c.entry = s.entry;
+    c.eta_w = normaliseScore(s.s_w, divisor.word);
+    c.eta_g = with_groups ? normaliseScore(s.s_g, divisor.group) : 0.0;
+    c.eta_d = with_distribution ? normaliseScore(s.s_d, divisor.distribution) : 0.0;
+    c.eta_sim = combineSimilarity(c.eta_w, c.eta_g, c.eta_d, options.word_groups,
+                                  options.distribution, options.similarity);
+    // Eqs. 6-7: eta(t-1, tj-1) is the previous query's final score of the
+    // entry before this one (alignment_window 0), or the best-aligned one
+    // near it (temporal_alignment.h); 0 when none was scored then.
+    c.eta = temporalScore(c.eta_sim, aligned(s.entry), options.temporal_score);
+    ctx.candidates.push_back(c);
+    etas->emplace_back(c.entry, c.eta);
+  }
+}
+
 }  // namespace
 
 void recordUnscoredQuery(const LoopDetectorOptions& options, DetectorState* state) {
@@ -105,9 +142,7 @@ bool scoreCandidates(const QueryContext& ctx, const DatabaseQuery& q,
   r->word_normaliser = norm.s_w;
   r->group_normaliser = with_groups ? norm.s_g : 0.0;
   r->distribution_normaliser = with_distribution ? norm.s_d : 0.0;
-  const OdometryInput input = odometryInput(query_entry.odometer, query_entry.position);
-  const EntryId limit =
-      candidateLimit(database, islandOptionsFor(options.islands, input), query_entry.odometer);
+  const EntryId limit = candidateLimit(database, ctx.islands, query_entry.odometer);
   if (limit == 0) return finish(LoopStatus::kDatabaseTooSmall);
   // What eqs. 2 and 4 divide by: s(I_t, I_t-1), raised to the normaliser
   // floor where it is unusually small.
@@ -130,35 +165,7 @@ bool scoreCandidates(const QueryContext& ctx, const DatabaseQuery& q,
 
   const std::vector<EntryScores> scores = database.query(q, limit, with_groups, &ctx.scratch);
   r->candidates_scored = scores.size();
-  etas->reserve(scores.size());
-  // Eq. 7's predecessor in metres when odometry allows it
-  // (TemporalScoreOptions::alignment_window_m), else in keyframes.
-  const TemporalScoreOptions& to = options.temporal_score;
-  const bool metric_alignment = to.alignment_window_m > 0.0 && !std::isnan(query_entry.odometer) &&
-                                !std::isnan(state.previous_odometer);
-  const double driven = metric_alignment ? query_entry.odometer - state.previous_odometer : 0.0;
-  ctx.candidates.reserve(scores.size());
-  // The scores come in ascending entry order: one forward walk of the
-  // temporal memory for all of them.
-  AlignedPreviousScores aligned =
-      metric_alignment ? AlignedPreviousScores(state.previous_etas, database.odometers(), driven,
-                                               to.alignment_window_m)
-                       : AlignedPreviousScores(state.previous_etas, state.missed_queries, to);
-  for (const EntryScores& s : scores) {
-    CandidateScores c;
-    c.entry = s.entry;
-    c.eta_w = normaliseScore(s.s_w, divisor.word);
-    c.eta_g = with_groups ? normaliseScore(s.s_g, divisor.group) : 0.0;
-    c.eta_d = with_distribution ? normaliseScore(s.s_d, divisor.distribution) : 0.0;
-    c.eta_sim =
-        combineSimilarity(c.eta_w, c.eta_g, c.eta_d, options.word_groups, options.distribution, so);
-    // Eqs. 6-7: eta(t-1, tj-1) is the previous query's final score of the
-    // entry before this one (alignment_window 0), or the best-aligned one
-    // near it (temporal_alignment.h); 0 when none was scored then.
-    c.eta = temporalScore(c.eta_sim, aligned(s.entry), options.temporal_score);
-    ctx.candidates.push_back(c);
-    etas->emplace_back(c.entry, c.eta);
-  }
+  finalScores(ctx, scores, divisor, with_groups, with_distribution, query_entry.odometer, etas);
   state.previous_etas = *etas;  // sorted by entry id, as the scores are
   state.missed_queries = 0;
   state.previous_odometer = query_entry.odometer;

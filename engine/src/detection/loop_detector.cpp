@@ -322,8 +322,9 @@ LoopResult LoopDetector::process(const KeyframeInput& keyframe) {
   r.timings.word_groups_ms = msBetween(t1, t2);
 
   // 5. Query, then the entry joins the indexes (it never matches itself).
-  const query_steps::QueryContext ctx{*vocabulary_,     options_,      *database_,     *state_,
-                                      last_candidates_, state_->views, state_->scratch};
+  const IslandOptions islands = islandOptionsFor(options_.islands, r.odometry_input);
+  const query_steps::QueryContext ctx{*vocabulary_,     options_,      *database_,      *state_,
+                                      last_candidates_, state_->views, state_->scratch, islands};
   try {
     query_steps::runQuery(ctx, q, entry, keyframe.intrinsics, with_groups, with_distribution, &r);
   } catch (...) {

@@ -10,6 +10,7 @@
 #include "bowg/database/database.h"
 #include "bowg/database/query_scratch.h"
 #include "bowg/detection/detector_state.h"
+#include "bowg/detection/islands.h"
 #include "bowg/detection/loop_detector.h"
 #include "bowg/vocabulary/vocabulary.h"
 #include "detection/verifier.h"
@@ -32,6 +33,11 @@ struct QueryContext {
   std::vector<CandidateScores>& candidates;  ///< the query's, sorted by entry id
   EntryViewCache& views;                     ///< recent entries' views, across queries
   QueryScratch& scratch;                     ///< the database query's working memory
+  /// options.islands as this query's odometry applies them
+  /// (islandOptionsFor): its threshold and recent-exclusion window. The
+  /// scoring, the gates' count and the islands read these; the other
+  /// stages' island fields do not depend on the odometry.
+  const IslandOptions& islands;
 };
 
 }  // namespace query_steps

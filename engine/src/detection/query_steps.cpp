@@ -28,13 +28,11 @@ struct ChainRecord {
 };
 
 // Islands (Sec. III-D, eq. 10) of the gated candidates above the query's
-// threshold (islandOptionsFor: higher with images only), with the odometers
+// threshold (QueryContext::islands: higher with images only), with the odometers
 // of their ends.
-std::vector<Island> islandsOf(const QueryContext& ctx, const DatabaseEntry& query_entry,
+std::vector<Island> islandsOf(const QueryContext& ctx,
                               std::vector<std::pair<EntryId, double>>&& etas) {
-  const IslandOptions options = islandOptionsFor(
-      ctx.options.islands, odometryInput(query_entry.odometer, query_entry.position));
-  std::vector<Island> islands = computeIslands(std::move(etas), options);
+  std::vector<Island> islands = computeIslands(std::move(etas), ctx.islands);
   for (Island& i : islands) {
     i.first_m = ctx.database.entry(i.first).odometer;
     i.last_m = ctx.database.entry(i.last).odometer;
@@ -115,7 +113,7 @@ void runQuery(const QueryContext& ctx, const DatabaseQuery& q, const DatabaseEnt
   const std::vector<AnchorEntries> anchors = loopAnchors(ctx);
   applyOdometryGates(ctx, query_entry, anchors, &etas, r);
   // 3. Islands, and the choice among them by geometric re-ranking.
-  std::vector<Island> islands = islandsOf(ctx, query_entry, std::move(etas));
+  std::vector<Island> islands = islandsOf(ctx, std::move(etas));
   if (islands.empty()) {
     r->status = LoopStatus::kNoScoreAboveThreshold;
     ctx.state.consistency.miss(options.temporal_verification);

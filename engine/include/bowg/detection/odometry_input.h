@@ -3,6 +3,8 @@
 // an odometer alone (metres driven: a crawler's cable counter), or nothing.
 #pragma once
 
+#include <cstddef>
+
 #include "bowg/core/types.h"
 
 namespace bowg {
@@ -12,6 +14,8 @@ enum class OdometryInput {
   kOdometer,   ///< metres driven only: windows in metres, the verified chain in metres
   kNone,       ///< images only: windows in keyframes, the verified chain in keyframes
 };
+/// How many values OdometryInput has (a count per input is an array of it).
+constexpr std::size_t kOdometryInputs = 3;
 
 /// The input of a keyframe with this odometer and position (NaN = unknown;
 /// a position without an odometer places nothing: the gates need both).

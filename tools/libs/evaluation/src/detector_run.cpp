@@ -145,7 +145,7 @@ std::vector<LoopPose> loopPosesOf(const DetectorRun& run) {
 }
 
 double appliedThreshold(const DetectorRun& run) {
-  std::array<std::size_t, 3> count{};
+  std::array<std::size_t, kOdometryInputs> count{};
   for (const KeyframeRecord& k : run.keyframes) ++count[static_cast<std::size_t>(k.odometry_input)];
   const auto most = std::max_element(count.begin(), count.end());
   const OdometryInput input = run.keyframes.empty()
