@@ -52,7 +52,10 @@ inline LoopDetectorOptions corridorPresetOptions(int recent_exclusion) {
   // The corridor's consecutive keyframes see nearly the same wall, so a
   // revisit scores about what the previous keyframe does (eta ~1): the
   // preset's min_score, chosen on pipe sequences, would let none through.
+  // The keyframes come without odometry: the preset's images-only margin
+  // would raise their threshold above it again.
   o.islands.min_score = 1.0;
+  o.islands.images_only_score_margin = 0.0;
   return o;
 }
 
