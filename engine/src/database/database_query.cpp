@@ -2,6 +2,10 @@
 // or a group with the query, through the inverse index, in one walk of the
 // query's lists.
 #include <algorithm>
+#include <cstdint>
+#include <cstring>
+#include <stdexcept>
+#include <string>
 
 #include "bowg/database/database.h"
 #include "bowg/scoring/distribution.h"
@@ -28,47 +32,39 @@ void forEachQueryWord(const InverseIndex& index, const std::vector<QueryWord>& w
 }
 
 // The word and group terms of every posting of the query's lists with an
-// entry below n, into the scratch's accumulators; returns how many entries
-// it touched (their ids first in scratch->touched).
+// entry below n, into the scratch's accumulators; every entry reached is
+// flagged (collectTouched lists them afterwards).
 template <typename Term>
-std::size_t accumulate(const InverseIndex& index, std::size_t n, Term term, QueryScratch* scratch) {
-  std::size_t touched = 0;
-  auto touch = [scratch, &touched](EntryId id) {
-    if (!scratch->touched_flag[id]) {
-      scratch->touched_flag[id] = 1;
-      scratch->touched[touched++] = id;
-    }
-  };
+void accumulate(const InverseIndex& index, std::size_t n, Term term, QueryScratch* scratch) {
   forEachQueryWord(index, scratch->words, [&](WordId w, double qw, double qg) {
     for (const Posting& p : index.list(w)) {
       const EntryId e = p.entry();
       if (e >= n) break;  // lists are in ascending entry order
       if (qw != 0.0 && p.word != 0.f) {
-        scratch->word_acc[e] += term(qw, static_cast<double>(p.word));
-        touch(e);
+        scratch->sums[e].word += term(qw, static_cast<double>(p.word));
+        scratch->touched_flag[e] = 1;
       }
       const std::uint32_t code = p.groupCode();
       if (qg != 0.0 && code != 0) {
-        scratch->group_acc[e] += qg * index.groupCount(w, p);
-        touch(e);
+        scratch->sums[e].group += qg * index.groupCount(w, p);
+        scratch->touched_flag[e] = 1;
       }
     }
   });
-  return touched;
 }
 
 // accumulate() for a metric whose term is +0 when either weight is 0 (L1:
 // |x| + 0 - |x|; L2 and the dot product: x * 0), so that the word term needs
 // no test, nor the group term (qg * 0 for a posting without a group): adding
-// +0 to a sum that starts at +0 changes no bit. The entry is touched without
-// a branch: written past the end, and the end moved when it is new. In an
-// aliased pipe most postings' tests go either way and were mispredicted.
+// +0 to a sum that starts at +0 changes no bit. The entry is flagged without
+// a branch (in an aliased pipe most postings' tests go either way and were
+// mispredicted) and without reading its flag: a walk that also listed each
+// new entry as it went waited on every flag's load, a cache miss in a large
+// map, before the next posting could be listed.
 template <typename Term>
-std::size_t accumulateZeroSafe(const InverseIndex& index, std::size_t n, Term term,
-                               QueryScratch* scratch) {
-  std::size_t touched = 0;
-  std::vector<double>& word_acc = scratch->word_acc;
-  std::vector<double>& group_acc = scratch->group_acc;
+void accumulateZeroSafe(const InverseIndex& index, std::size_t n, Term term,
+                        QueryScratch* scratch) {
+  std::vector<QueryScratch::Sums>& sums = scratch->sums;
   std::vector<std::uint8_t>& flag = scratch->touched_flag;
   forEachQueryWord(index, scratch->words, [&](WordId w, double qw, double qg) {
     const bool with_word = qw != 0.0, with_group = qg != 0.0;
@@ -76,36 +72,40 @@ std::size_t accumulateZeroSafe(const InverseIndex& index, std::size_t n, Term te
       const EntryId e = p.entry();
       if (e >= n) break;  // lists are in ascending entry order
       const std::uint32_t code = p.groupCode();
-      word_acc[e] += term(qw, static_cast<double>(p.word));
+      sums[e].word += term(qw, static_cast<double>(p.word));
       // A count in the overflow table is looked up only when it counts.
       const double count = code < Posting::kGroupOverflow ? static_cast<double>(code)
                            : with_group                   ? index.overflowCount(w, e)
                                                           : 0.0;
-      group_acc[e] += qg * count;
-      const std::uint8_t active =
+      sums[e].group += qg * count;
+      flag[e] |=
           static_cast<std::uint8_t>((with_word & (p.word != 0.f)) | (with_group & (code != 0)));
-      scratch->touched[touched] = e;
-      touched += active & (flag[e] ^ 1u);
-      flag[e] |= active;
     }
   });
-  return touched;
 }
 
-// The touched entries in ascending id order: sorted, or, where a query
-// touches a large share of the database (an aliased pipe revisited lap after
-// lap), read off the flags in one pass, which is cheaper than sorting that
-// many ids.
-void sortTouched(std::size_t n, std::size_t touched, QueryScratch* scratch) {
-  if (touched * 16 < n) {
-    std::sort(scratch->touched.begin(),
-              scratch->touched.begin() + static_cast<std::ptrdiff_t>(touched));
-    return;
+// The flagged entries below n into scratch->touched, ascending; returns how
+// many. One pass over the flags, without a branch per entry (a large map's
+// queries flag about half of it at random); eight flags at a time are
+// skipped where none is set (a query of rare words).
+std::size_t collectTouched(std::size_t n, QueryScratch* scratch) {
+  const std::uint8_t* flag = scratch->touched_flag.data();
+  EntryId* touched = scratch->touched.data();
+  std::size_t k = 0, id = 0;
+  for (; id + 8 <= n; id += 8) {
+    std::uint64_t eight;
+    std::memcpy(&eight, flag + id, sizeof eight);
+    if (eight == 0) continue;
+    for (std::size_t j = id; j < id + 8; ++j) {
+      touched[k] = static_cast<EntryId>(j);
+      k += flag[j];
+    }
   }
-  std::size_t k = 0;
-  for (EntryId id = 0; id < n; ++id) {
-    if (scratch->touched_flag[id]) scratch->touched[k++] = id;
+  for (; id < n; ++id) {
+    touched[k] = static_cast<EntryId>(id);
+    k += flag[id];
   }
+  return k;
 }
 
 }  // namespace
@@ -141,9 +141,8 @@ std::vector<EntryScores> Database::query(const DatabaseQuery& q, EntryId limit,
 std::vector<EntryScores> Database::query(const DatabaseQuery& q, EntryId limit, bool with_groups,
                                          QueryScratch* scratch) const {
   const std::size_t n = std::min<std::size_t>(limit, entries_.size());
-  if (scratch->word_acc.size() < entries_.size()) {
-    scratch->word_acc.resize(entries_.size(), 0.0);
-    scratch->group_acc.resize(entries_.size(), 0.0);
+  if (scratch->sums.size() < entries_.size()) {
+    scratch->sums.resize(entries_.size());
     scratch->touched_flag.resize(entries_.size(), 0);
     scratch->touched.resize(entries_.size() + 1);  // one past the last: the branch-free touch
   }
@@ -153,25 +152,23 @@ std::vector<EntryScores> Database::query(const DatabaseQuery& q, EntryId limit, 
   // = raw / sum (its TF, the division applied per entry in finishScores).
   const double base = bowScoreBase(scoring_, q.bow);
   collectQueryWords(q, with_groups, scratch);
-  std::size_t touched = 0;
   // The metric is chosen once per query, not once per posting.
   switch (scoring_) {
     case ScoringType::kL1:
-      touched = accumulateZeroSafe(
+      accumulateZeroSafe(
           index_, n, [](double x, double y) { return l1ScoreTerm(x, y); }, scratch);
       break;
     case ScoringType::kL2:
     case ScoringType::kDotProduct:
-      touched = accumulateZeroSafe(
+      accumulateZeroSafe(
           index_, n, [](double x, double y) { return x * y; }, scratch);
       break;
     default:
-      touched = accumulate(
+      accumulate(
           index_, n, [this](double x, double y) { return bowScoreTerm(scoring_, x, y); }, scratch);
       break;
   }
-  sortTouched(n, touched, scratch);
-  return finishScores(q, with_groups, base, touched, scratch);
+  return finishScores(q, with_groups, base, collectTouched(n, scratch), scratch);
 }
 
 std::vector<EntryScores> Database::finishScores(const DatabaseQuery& q, bool with_groups,
@@ -179,22 +176,33 @@ std::vector<EntryScores> Database::finishScores(const DatabaseQuery& q, bool wit
                                                 QueryScratch* scratch) const {
   std::vector<EntryScores> out;
   out.reserve(touched);
+  const bool with_distribution = !q.distribution.empty();
+  if (with_distribution &&
+      q.distribution.size() != static_cast<std::size_t>(distributions_.bins())) {
+    throw std::invalid_argument("Database::query: the query's distribution vector has " +
+                                std::to_string(q.distribution.size()) + " bins, the database's " +
+                                std::to_string(distributions_.bins()));
+  }
+  // A large map's query scores hundreds of thousands of entries: the query's
+  // side of the distribution score is prepared once.
+  DistributionScorer distribution(q.distribution);
   for (std::size_t t = 0; t < touched; ++t) {
     const EntryId id = scratch->touched[t];
+    // The table's row of an entry some places ahead: the entries touched lie
+    // scattered over a large map, and each row was waited on.
+    if (with_distribution && t + 8 < touched) {
+      prefetchRead(distributions_.values(scratch->touched[t + 8]));
+    }
     EntryScores s;
     s.entry = id;
     // An entry reached through groups only shares no word: its word score is
     // what scoreBowVectors() gives for disjoint vectors (0, or exp(-base) for KL).
-    s.s_w = bowScoreFinish(scoring_, scratch->word_acc[id], base);
+    s.s_w = bowScoreFinish(scoring_, scratch->sums[id].word, base);
     const double sum = index_.groupSum(id);  // > 0 for an entry reached through a group
-    s.s_g = with_groups ? groupScoreFromDot(sum > 0.0 ? scratch->group_acc[id] / sum : 0.0) : 0.0;
-    if (!q.distribution.empty()) {
-      distributions_.copy(id, &scratch->distribution);
-      s.s_d = distributionScore(q.distribution, scratch->distribution);
-    }
+    s.s_g = with_groups ? groupScoreFromDot(sum > 0.0 ? scratch->sums[id].group / sum : 0.0) : 0.0;
+    if (with_distribution) s.s_d = distribution.score(distributions_.values(id));
     out.push_back(s);
-    scratch->word_acc[id] = 0.0;
-    scratch->group_acc[id] = 0.0;
+    scratch->sums[id] = QueryScratch::Sums();
     scratch->touched_flag[id] = 0;
   }
   return out;

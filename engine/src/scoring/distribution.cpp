@@ -7,6 +7,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 
 namespace bowg {
 namespace {
@@ -96,8 +97,53 @@ std::vector<double> distributionVector(const std::vector<ImagePoint>& points, do
   return v;
 }
 
-// Fan bins whose scratch arrays fit on the stack (the presets use 8).
-const std::size_t kMaxStackBins = 64;
+DistributionScorer::DistributionScorer(const std::vector<double>& query)
+    : twice_(2 * query.size()), dots_(query.size()) {
+  const std::size_t m = query.size();
+  for (std::size_t i = 0; i < m; ++i) twice_[i] = twice_[i + m] = query[i];
+}
+
+namespace {
+
+// The best of the m shifts' dot products of `twice` (the query twice over)
+// with db. A roll of the camera by 2*pi*i/m shifts the bins cyclically by i:
+// the score is the best alignment over the m columns M_i of the
+// distribution matrix, m_ij = v_((i+j) mod m). All m dot products at once,
+// term j added to each in turn (the order of each sum is j = 0..m-1, as one
+// dot product at a time would add them): the inner loop runs over the
+// alignments, contiguous in the query read twice over, and vectorises.
+template <typename Size>
+double bestShift(const double* twice, const double* db, Size m, double* dot) {
+  for (std::size_t i = 0; i < m; ++i) dot[i] = 0.0;
+  for (std::size_t j = 0; j < m; ++j) {
+    const double d = db[j];
+    const double* q = twice + j;
+    for (std::size_t i = 0; i < m; ++i) dot[i] += q[i] * d;
+  }
+  double best = 0.0;
+  for (std::size_t i = 0; i < m; ++i)
+    if (dot[i] > best) best = dot[i];
+  // Rounding can exceed 1 by an ulp for identical unit vectors.
+  return best > 1.0 ? 1.0 : best;
+}
+
+// The presets' fan_bins (a large map's query scores ~10^5 entries): with m
+// known and the sums in a local array, the compiler keeps them in registers
+// and unrolls the loops into whole vector operations; the same sums in the
+// same order.
+const std::size_t kPresetBins = 8;
+double bestShiftOfEight(const double* twice, const double* db) {
+  double dot[kPresetBins];
+  return bestShift(twice, db, std::integral_constant<std::size_t, kPresetBins>(), dot);
+}
+
+}  // namespace
+
+double DistributionScorer::score(const double* db) {
+  const std::size_t m = dots_.size();
+  if (m == kPresetBins) return bestShiftOfEight(twice_.data(), db);
+  return bestShift(twice_.data(), db, m, dots_.data());
+}
 
 double distributionScore(const std::vector<double>& query, const std::vector<double>& db) {
   if (query.size() != db.size()) {
@@ -106,37 +152,7 @@ double distributionScore(const std::vector<double>& query, const std::vector<dou
                                 "); were they built with the same "
                                 "number of fan bins?");
   }
-  const std::size_t m = query.size();
-  if (m == 0) return 0.0;
-  // A roll of the camera by 2*pi*i/m shifts the bins cyclically by i: the
-  // score is the best alignment over the m columns M_i of the distribution
-  // matrix, m_ij = v_((i+j) mod m). All m dot products at once, term j
-  // added to each in turn (the order of each sum is j = 0..m-1, as one
-  // dot product at a time would add them): the inner loop runs over the
-  // alignments, contiguous in the query read twice over, and vectorises.
-  double twice[2 * kMaxStackBins];
-  double dots[kMaxStackBins];
-  std::vector<double> heap_twice, heap_dots;
-  double* q2 = twice;
-  double* dot = dots;
-  if (m > kMaxStackBins) {
-    heap_twice.resize(2 * m);
-    heap_dots.resize(m);
-    q2 = heap_twice.data();
-    dot = heap_dots.data();
-  }
-  for (std::size_t i = 0; i < m; ++i) q2[i] = q2[i + m] = query[i];
-  for (std::size_t i = 0; i < m; ++i) dot[i] = 0.0;
-  for (std::size_t j = 0; j < m; ++j) {
-    const double d = db[j];
-    const double* q = q2 + j;
-    for (std::size_t i = 0; i < m; ++i) dot[i] += q[i] * d;
-  }
-  double best = 0.0;
-  for (std::size_t i = 0; i < m; ++i)
-    if (dot[i] > best) best = dot[i];
-  // Rounding can exceed 1 by an ulp for identical unit vectors.
-  return best > 1.0 ? 1.0 : best;
+  return DistributionScorer(query).score(db.data());
 }
 
 }  // namespace bowg

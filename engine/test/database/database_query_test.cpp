@@ -340,7 +340,10 @@ TEST(Database, AReusedQueryScratchScoresAsAFreshOne) {
     EXPECT_TRUE(same(big.query(qb, 17, false, &scratch), big.query(qb, 17, false)));
     EXPECT_TRUE(same(small.query(qs, 12, true, &scratch), small.query(qs, 12, true)));
   }
-  for (double v : scratch.word_acc) EXPECT_EQ(v, 0.0);
+  for (const QueryScratch::Sums& v : scratch.sums) {
+    EXPECT_EQ(v.word, 0.0);
+    EXPECT_EQ(v.group, 0.0);
+  }
   for (std::uint8_t f : scratch.touched_flag) EXPECT_EQ(f, 0u);
 }
 

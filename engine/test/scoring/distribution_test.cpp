@@ -204,8 +204,8 @@ TEST(DistributionScore, SizeMismatchThrows) {
 
 TEST(DistributionScore, EveryAlignmentSummedInTheOrderOfTheDefinition) {
   // The definition, one alignment at a time: max_i sum_j v_((i+j) mod m) w_j,
-  // j ascending. The score must be that, bit for bit, for any m (the stack
-  // scratch holds 64 bins, more go to the heap) and any vectors.
+  // j ascending. The score must be that, bit for bit, for any m and any
+  // vectors.
   std::mt19937_64 rng(17);
   std::uniform_real_distribution<double> u(0.0, 1.0);
   for (std::size_t m = 1; m <= 70; ++m) {
@@ -225,6 +225,39 @@ TEST(DistributionScore, EveryAlignmentSummedInTheOrderOfTheDefinition) {
     }
   }
   EXPECT_DOUBLE_EQ(distributionScore({}, {}), 0.0);
+}
+
+TEST(DistributionScorer, OneQueryScoresManyVectorsAsDistributionScoreDoes) {
+  // A database query scores every entry it reaches with one scorer: each
+  // score must be distributionScore's, bit for bit, whatever came before
+  // (the shifts' sums are reset per vector). The hand case first: the
+  // worked example of BestShiftOfTwoDifferentVectors (0.64), then its
+  // query against itself (1) and against a vector of one bin (0.8: the
+  // best shift puts the query's 0.8 on it).
+  const std::vector<double> q{0.6, 0.8, 0.0, 0.0};
+  DistributionScorer scorer(q);
+  ASSERT_EQ(scorer.bins(), 4u);
+  const double db[] = {0.8, 0.0, 0.6, 0.0};
+  const double one_bin[] = {0.0, 0.0, 1.0, 0.0};
+  EXPECT_NEAR(scorer.score(db), 0.64, 1e-12);
+  EXPECT_DOUBLE_EQ(scorer.score(q.data()), 1.0);
+  EXPECT_NEAR(scorer.score(one_bin), 0.8, 1e-12);
+  EXPECT_NEAR(scorer.score(db), 0.64, 1e-12);
+
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (std::size_t m : {1u, 8u, 13u, 70u}) {
+    std::vector<double> query(m);
+    for (double& v : query) v = u(rng);
+    DistributionScorer many(query);
+    for (int trial = 0; trial < 50; ++trial) {
+      std::vector<double> w(m);
+      for (double& v : w) v = u(rng) / static_cast<double>(m);
+      ASSERT_EQ(many.score(w.data()), distributionScore(query, w)) << "m " << m;
+    }
+  }
+  DistributionScorer empty({});
+  EXPECT_DOUBLE_EQ(empty.score(nullptr), 0.0);
 }
 
 }  // namespace

@@ -22,6 +22,10 @@ class DistributionTable {
   void append(const std::vector<double>& vector);
   /// Entry `id`'s vector into `out` (reused: no allocation once sized).
   void copy(EntryId id, std::vector<double>* out) const;
+  /// Entry `id`'s bins() values, valid until the next append or reset.
+  const double* values(EntryId id) const {
+    return values_.data() + static_cast<std::size_t>(id) * static_cast<std::size_t>(bins_);
+  }
   void reserve(std::size_t entries) { values_.reserve(entries * static_cast<std::size_t>(bins_)); }
   std::size_t heapBytes() const;
 

@@ -15,7 +15,12 @@ struct QueryScratch {
   /// Dense accumulators over the entries and the entries touched (instead
   /// of a hash map per query). Between queries every accumulator and flag
   /// is 0 again: a query resets what it touched.
-  std::vector<double> word_acc, group_acc;
+  /// An entry's word and group sums side by side: a posting adds to both,
+  /// and in a large map each entry's line was a cache miss of its own.
+  struct Sums {
+    double word = 0.0, group = 0.0;
+  };
+  std::vector<Sums> sums;
   std::vector<std::uint8_t> touched_flag;
   std::vector<EntryId> touched;  ///< one slot past the end: the branch-free touch
   /// The query's words and groups with their weights, in id order.
@@ -24,8 +29,6 @@ struct QueryScratch {
     double qw, qg;
   };
   std::vector<QueryWord> words;
-  /// One entry's distribution vector, as the scores read it.
-  std::vector<double> distribution;
 };
 
 }  // namespace bowg

@@ -3,6 +3,7 @@
 // distance).
 #pragma once
 
+#include <cstddef>
 #include <vector>
 
 #include "bowg/core/types.h"
@@ -24,5 +25,21 @@ std::vector<double> distributionVector(const std::vector<ImagePoint>& points, do
 /// shifted by i (m_ij = v_((i+j) mod m)). Sizes must match (throws
 /// std::invalid_argument otherwise). In [0, 1] for non-negative unit vectors.
 double distributionScore(const std::vector<double>& query, const std::vector<double>& db);
+
+/// distributionScore(query, db) for many db vectors of one query (a database
+/// query scores every entry it reaches): the query's cyclic shifts are laid
+/// out once, not once per vector. One per query and thread.
+class DistributionScorer {
+ public:
+  explicit DistributionScorer(const std::vector<double>& query);
+  std::size_t bins() const { return dots_.size(); }
+  /// The score against the bins() values at `db`, bit for bit
+  /// distributionScore's.
+  double score(const double* db);
+
+ private:
+  std::vector<double> twice_;  ///< the query twice over: shift i starts at i
+  std::vector<double> dots_;   ///< one dot product per shift
+};
 
 }  // namespace bowg
