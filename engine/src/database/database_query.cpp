@@ -176,16 +176,13 @@ std::vector<EntryScores> Database::finishScores(const DatabaseQuery& q, bool wit
                                                 QueryScratch* scratch) const {
   std::vector<EntryScores> out;
   out.reserve(touched);
+  // An empty distribution vector asks for no distribution score.
   const bool with_distribution = !q.distribution.empty();
-  if (with_distribution &&
-      q.distribution.size() != static_cast<std::size_t>(distributions_.bins())) {
-    throw std::invalid_argument("Database::query: the query's distribution vector has " +
-                                std::to_string(q.distribution.size()) + " bins, the database's " +
-                                std::to_string(distributions_.bins()));
-  }
   // A large map's query scores hundreds of thousands of entries: the query's
   // side of the distribution score is prepared once.
-  DistributionScorer distribution(q.distribution);
+  DistributionScorer distribution(
+      q.distribution, with_distribution ? static_cast<std::size_t>(distributions_.bins()) : 0,
+      "Database::query");
   for (std::size_t t = 0; t < touched; ++t) {
     const EntryId id = scratch->touched[t];
     // The table's row of an entry some places ahead: the entries touched lie

@@ -86,18 +86,20 @@ void finalScores(const QueryContext& ctx, const std::vector<EntryScores>& scores
       metric_alignment ? AlignedPreviousScores(state.previous_etas, ctx.database.odometers(),
                                                driven, to.alignment_window_m)
                        : AlignedPreviousScores(state.previous_etas, state.missed_queries, to);
+  // The options are checked once per query, each candidate's score once.
+  const CandidateScoreCombiner combine(options.word_groups, options.distribution,
+                                       options.similarity, options.temporal_score);
   for (const EntryScores& s : scores) {
     CandidateScores c;
     c.entry = s.entry;
     c.eta_w = normaliseScore(s.s_w, divisor.word);
     c.eta_g = with_groups ? normaliseScore(s.s_g, divisor.group) : 0.0;
     c.eta_d = with_distribution ? normaliseScore(s.s_d, divisor.distribution) : 0.0;
-    c.eta_sim = combineSimilarity(c.eta_w, c.eta_g, c.eta_d, options.word_groups,
-                                  options.distribution, options.similarity);
+    c.eta_sim = combine.similarity(c.eta_w, c.eta_g, c.eta_d);
     // Eqs. 6-7: eta(t-1, tj-1) is the previous query's final score of the
     // entry before this one (alignment_window 0), or the best-aligned one
     // near it (temporal_alignment.h); 0 when none was scored then.
-    c.eta = temporalScore(c.eta_sim, aligned(s.entry), options.temporal_score);
+    c.eta = combine.temporal(c.eta_sim, aligned(s.entry), c.entry);
     ctx.candidates.push_back(c);
     etas->emplace_back(c.entry, c.eta);
   }

@@ -97,8 +97,15 @@ std::vector<double> distributionVector(const std::vector<ImagePoint>& points, do
   return v;
 }
 
-DistributionScorer::DistributionScorer(const std::vector<double>& query)
+DistributionScorer::DistributionScorer(const std::vector<double>& query, std::size_t db_bins,
+                                       const char* caller)
     : twice_(2 * query.size()), dots_(query.size()) {
+  if (query.size() != db_bins) {
+    throw std::invalid_argument(std::string(caller) + ": the query's distribution vector has " +
+                                std::to_string(query.size()) + " bins, the scored one " +
+                                std::to_string(db_bins) +
+                                "; were they built with the same number of fan bins?");
+  }
   const std::size_t m = query.size();
   for (std::size_t i = 0; i < m; ++i) twice_[i] = twice_[i + m] = query[i];
 }
@@ -146,13 +153,7 @@ double DistributionScorer::score(const double* db) {
 }
 
 double distributionScore(const std::vector<double>& query, const std::vector<double>& db) {
-  if (query.size() != db.size()) {
-    throw std::invalid_argument("distributionScore: vector sizes differ (" +
-                                std::to_string(query.size()) + " vs " + std::to_string(db.size()) +
-                                "); were they built with the same "
-                                "number of fan bins?");
-  }
-  return DistributionScorer(query).score(db.data());
+  return DistributionScorer(query, db.size(), "distributionScore").score(db.data());
 }
 
 }  // namespace bowg

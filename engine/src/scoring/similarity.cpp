@@ -24,24 +24,10 @@ double combineSimilarity(double eta_w, double eta_g, double eta_d, const WordGro
   // Only the scores a combination uses are checked: the caller may leave the
   // score of a switched-off module unset.
   requireFinite("combineSimilarity", "eta_w", eta_w);
-  const double l1 = similarity.lambda_1;
-  const double l2 = similarity.lambda_2;
-  if (groups.enabled && distribution.enabled) {
-    requireFinite("combineSimilarity", "eta_g", eta_g);
-    requireFinite("combineSimilarity", "eta_d", eta_d);
-    return l1 * eta_w + l2 * eta_g + (1.0 - l1 - l2) * eta_d;  // eq. 9
-  }
-  if (groups.enabled) {
-    requireFinite("combineSimilarity", "eta_g", eta_g);
-    return l1 * eta_w + (1.0 - l1) * eta_g;  // eq. 5
-  }
-  if (distribution.enabled) {
-    // Not in the paper (it never runs the distribution without groups): eq. 5
-    // with eta_d in place of eta_g, so that lambda_1 keeps its meaning.
-    requireFinite("combineSimilarity", "eta_d", eta_d);
-    return l1 * eta_w + (1.0 - l1) * eta_d;
-  }
-  return eta_w;  // pure bag of words (ablation row "bow")
+  if (groups.enabled) requireFinite("combineSimilarity", "eta_g", eta_g);
+  if (distribution.enabled) requireFinite("combineSimilarity", "eta_d", eta_d);
+  return similarity_terms::combined(eta_w, eta_g, eta_d, groups.enabled, distribution.enabled,
+                                    similarity.lambda_1, similarity.lambda_2);
 }
 
 double previousScoreWeight(double eta, double eta_prev, const TemporalScoreOptions& options) {
@@ -50,16 +36,34 @@ double previousScoreWeight(double eta, double eta_prev, const TemporalScoreOptio
   options.validate();  // alpha > 0: eq. 6 divides by it
   requireFinite("previousScoreWeight", "eta", eta);
   requireFinite("previousScoreWeight", "eta_prev", eta_prev);
-  // Eq. 6: the previous score weighs less the more it differs from the current
-  // one, so a single transient spike (or dip) does not carry over.
-  const double d = (eta - eta_prev) / options.alpha;
-  return options.w_max / (1.0 + d * d);
+  return similarity_terms::previousWeight(eta, eta_prev, options.w_max, options.alpha);
 }
 
 double temporalScore(double eta, double eta_prev, const TemporalScoreOptions& options) {
   if (!options.enabled) return eta;  // ablation rows without the temporal score
   const double w_prev = previousScoreWeight(eta, eta_prev, options);
-  return w_prev * eta_prev + (1.0 - w_prev) * eta;  // eq. 7
+  return similarity_terms::temporal(eta, eta_prev, w_prev);  // eq. 7
+}
+
+CandidateScoreCombiner::CandidateScoreCombiner(const WordGroupOptions& groups,
+                                               const DistributionOptions& distribution,
+                                               const SimilarityOptions& similarity,
+                                               const TemporalScoreOptions& temporal)
+    : groups_(groups.enabled),
+      distribution_(distribution.enabled),
+      temporal_(temporal.enabled),
+      l1_(similarity.lambda_1),
+      l2_(similarity.lambda_2),
+      w_max_(temporal.w_max),
+      alpha_(temporal.alpha) {
+  similarity.validate();
+  if (temporal.enabled) temporal.validate();  // alpha > 0: eq. 6 divides by it
+}
+
+void CandidateScoreCombiner::failNotFinite(EntryId entry, double eta_sim, double eta_prev) {
+  throw std::invalid_argument("candidate scores: entry " + std::to_string(entry) +
+                              "'s score is not finite (eta_sim " + std::to_string(eta_sim) +
+                              ", previous " + std::to_string(eta_prev) + ")");
 }
 
 }  // namespace bowg

@@ -8,6 +8,7 @@
 #include <limits>
 #include <random>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 namespace bowg {
@@ -235,7 +236,7 @@ TEST(DistributionScorer, OneQueryScoresManyVectorsAsDistributionScoreDoes) {
   // query against itself (1) and against a vector of one bin (0.8: the
   // best shift puts the query's 0.8 on it).
   const std::vector<double> q{0.6, 0.8, 0.0, 0.0};
-  DistributionScorer scorer(q);
+  DistributionScorer scorer(q, 4, "test");
   ASSERT_EQ(scorer.bins(), 4u);
   const double db[] = {0.8, 0.0, 0.6, 0.0};
   const double one_bin[] = {0.0, 0.0, 1.0, 0.0};
@@ -249,15 +250,23 @@ TEST(DistributionScorer, OneQueryScoresManyVectorsAsDistributionScoreDoes) {
   for (std::size_t m : {1u, 8u, 13u, 70u}) {
     std::vector<double> query(m);
     for (double& v : query) v = u(rng);
-    DistributionScorer many(query);
+    DistributionScorer many(query, m, "test");
     for (int trial = 0; trial < 50; ++trial) {
       std::vector<double> w(m);
       for (double& v : w) v = u(rng) / static_cast<double>(m);
       ASSERT_EQ(many.score(w.data()), distributionScore(query, w)) << "m " << m;
     }
   }
-  DistributionScorer empty({});
+  DistributionScorer empty({}, 0, "test");
   EXPECT_DOUBLE_EQ(empty.score(nullptr), 0.0);
+  // A vector of another bin count is refused by name, before any score.
+  try {
+    DistributionScorer(q, 8, "Database::query");
+    FAIL() << "a query of 4 bins against vectors of 8 was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("Database::query"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("4 bins"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace

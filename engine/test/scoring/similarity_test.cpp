@@ -6,6 +6,8 @@
 
 #include <limits>
 #include <stdexcept>
+#include <string>
+#include <utility>
 
 #include "bowg/core/errors.h"
 
@@ -112,6 +114,60 @@ TEST(Eq7, BadInputThrows) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   EXPECT_THROW(temporalScore(nan, 0.3, temporal(0.6, 0.2)), std::invalid_argument);
   EXPECT_THROW(temporalScore(0.5, nan, temporal(0.6, 0.2)), std::invalid_argument);
+}
+
+TEST(CandidateScoreCombiner, GivesTheCheckedFunctionsValuesByHand) {
+  // The hand cases above through the per-query combiner: eq. 9 0.66, then
+  // eqs. 6-7 on 0.5 after 0.3: 0.44.
+  WordGroupOptions g;
+  DistributionOptions d;
+  d.enabled = true;
+  SimilarityOptions s;
+  s.lambda_1 = 0.5;
+  s.lambda_2 = 0.3;
+  const CandidateScoreCombiner both(g, d, s, temporal(0.6, 0.2));
+  EXPECT_NEAR(both.similarity(0.8, 0.6, 0.4), 0.66, 1e-12);
+  EXPECT_DOUBLE_EQ(both.similarity(0.8, 0.6, 0.4), combineSimilarity(0.8, 0.6, 0.4, g, d, s));
+  EXPECT_NEAR(both.temporal(0.5, 0.3, 7), 0.44, 1e-12);
+  EXPECT_DOUBLE_EQ(both.temporal(0.5, 0.3, 7), temporalScore(0.5, 0.3, temporal(0.6, 0.2)));
+  // Groups only (eq. 5: 0.70) and without the temporal score (eta_sim back).
+  g.enabled = true;
+  d.enabled = false;
+  TemporalScoreOptions off = temporal(0.6, 0.2);
+  off.enabled = false;
+  const CandidateScoreCombiner groups_only(g, d, s, off);
+  EXPECT_NEAR(groups_only.similarity(0.8, 0.6, 0.4), 0.70, 1e-12);
+  EXPECT_DOUBLE_EQ(groups_only.temporal(0.5, 0.3, 7), 0.5);
+}
+
+TEST(CandidateScoreCombiner, ChecksTheOptionsOnceAndEveryFinalScore) {
+  const WordGroupOptions g;
+  const DistributionOptions d;
+  SimilarityOptions s;
+  EXPECT_THROW(CandidateScoreCombiner(g, d, s, temporal(0.6, 0.0)), InvalidParameter);
+  s.lambda_1 = 0.8;
+  s.lambda_2 = 0.4;  // eq. 9's weight of eta_d would be negative
+  EXPECT_THROW(CandidateScoreCombiner(g, d, SimilarityOptions(s), temporal(0.6, 0.2)),
+               InvalidParameter);
+  // A score that is not finite, current or previous, is refused naming the
+  // entry.
+  const CandidateScoreCombiner combine(g, d, SimilarityOptions(), temporal(0.6, 0.2));
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  for (const auto& scores : {std::make_pair(nan, 0.3), std::make_pair(0.5, nan),
+                             std::make_pair(inf, 0.3), std::make_pair(0.5, inf)}) {
+    try {
+      combine.temporal(scores.first, scores.second, 42);
+      FAIL() << scores.first << " after " << scores.second << " was accepted";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("entry 42"), std::string::npos) << e.what();
+    }
+  }
+  // A score of a switched-off module may stay unset.
+  WordGroupOptions groups_off;
+  groups_off.enabled = false;
+  const CandidateScoreCombiner bow(groups_off, d, SimilarityOptions(), temporal(0.6, 0.2));
+  EXPECT_DOUBLE_EQ(bow.similarity(0.3, nan, nan), 0.3);
 }
 
 TEST(Normalise, DividesByTheNormaliser) {

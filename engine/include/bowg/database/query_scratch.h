@@ -12,17 +12,19 @@
 namespace bowg {
 
 struct QueryScratch {
-  /// Dense accumulators over the entries and the entries touched (instead
-  /// of a hash map per query). Between queries every accumulator and flag
-  /// is 0 again: a query resets what it touched.
-  /// An entry's word and group sums side by side: a posting adds to both,
-  /// and in a large map each entry's line was a cache miss of its own.
+  /// One entry's word and group sums side by side: a posting adds to both,
+  /// and in a large map each entry's line is a cache miss of its own.
   struct Sums {
     double word = 0.0, group = 0.0;
   };
+  /// Dense sums and flags over the entries (instead of a hash map per
+  /// query). Between queries every sum and flag is 0 again: a query resets
+  /// what it touched.
   std::vector<Sums> sums;
   std::vector<std::uint8_t> touched_flag;
-  std::vector<EntryId> touched;  ///< one slot past the end: the branch-free touch
+  /// The flagged entries, listed after the walk; one slot past the end: the
+  /// branch-free listing.
+  std::vector<EntryId> touched;
   /// The query's words and groups with their weights, in id order.
   struct QueryWord {
     WordId w;

@@ -31,7 +31,10 @@ double distributionScore(const std::vector<double>& query, const std::vector<dou
 /// out once, not once per vector. One per query and thread.
 class DistributionScorer {
  public:
-  explicit DistributionScorer(const std::vector<double>& query);
+  /// `db_bins`: the length of every vector it will score; throws
+  /// std::invalid_argument naming `caller` when the query's differs (the two
+  /// were built with different numbers of fan bins).
+  DistributionScorer(const std::vector<double>& query, std::size_t db_bins, const char* caller);
   std::size_t bins() const { return dots_.size(); }
   /// The score against the bins() values at `db`, bit for bit
   /// distributionScore's.
