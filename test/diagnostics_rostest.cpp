@@ -2,9 +2,11 @@
 // turn frames into keyframes gives the level and the reason a robot's
 // monitoring needs (test/diagnostics.test).
 #include <nav_msgs/Odometry.h>
+#include <std_msgs/Float64.h>
 
 #include <string>
 
+#include "bowg_ros/OdometerStamped.h"
 #include "nodelet_harness.h"
 
 namespace bowg_ros {
@@ -66,6 +68,58 @@ TEST(Diagnostics, ADistanceGateWithoutOdometryWarnsUntilOdometryArrives) {
 // Bad frames on the compressed topic are refused from their header before
 // decoding (a PNG declaring 30000 x 30000 pixels would take 900 MB) and
 // counted by the reason the offline tools give; the nodelet goes on.
+// A stamped odometer (odometer_stamped): a frame gets the reading at its
+// stamp even when the image is handled first, and one whose reading never
+// comes goes on after ~odometer_wait, counted. Seen through the distance
+// gate: 0.5 m between keyframes.
+TEST(Diagnostics, AFrameWaitsForTheStampedOdometerReadingAtItsStamp) {
+  DiagnosticsWatcher diagnostics;
+  Detector d("/stamped", {{"min_keyframe_distance", XmlRpc::XmlRpcValue(0.5)},
+                          {"odometer_wait", XmlRpc::XmlRpcValue(0.3)}});
+  ASSERT_TRUE(d.loaded());
+  ros::NodeHandle nh;
+  ros::Publisher stamped = nh.advertise<OdometerStamped>("/stamped/odometer_stamped", 10);
+  ros::Publisher unstamped = nh.advertise<std_msgs::Float64>("/stamped/odometer", 10);
+  for (int i = 0;
+       i < 100 && (stamped.getNumSubscribers() == 0 || unstamped.getNumSubscribers() == 0); ++i) {
+    ros::WallDuration(0.05).sleep();
+  }
+  const auto reading = [&](double stamp, double metres) {
+    OdometerStamped r;
+    r.header.stamp = ros::Time(stamp);
+    r.metres = metres;
+    stamped.publish(r);
+  };
+  const cv::Mat world = test::makeWorld(kViewWidth + 10 * kStep, kViewHeight, 5);
+  reading(100.0, 0.0);
+  ros::WallDuration(0.1).sleep();
+  d.publish(test::viewAt(world, 0, kViewWidth), 100.0);  // the first keyframe
+  ASSERT_TRUE(d.waitForStatuses(1, 20.0));
+  // The image of 100.1 before its reading (1 m further): it waits for it and
+  // is a keyframe. Taken on arrival, it would have had 0 m: too close.
+  d.publish(test::viewAt(world, kStep, kViewWidth), 100.1);
+  ros::WallDuration(0.1).sleep();
+  reading(100.1, 1.0);
+  ASSERT_TRUE(d.waitForStatuses(2, 20.0));
+  // The unstamped topic is ignored now: 5 m on it change nothing.
+  std_msgs::Float64 far;
+  far.data = 5.0;
+  unstamped.publish(far);
+  ros::WallDuration(0.1).sleep();
+  // No reading for 100.2: after 0.3 s it goes on with 1 m, 0 m from the last
+  // keyframe: too close, and counted.
+  d.publish(test::viewAt(world, 2 * kStep, kViewWidth), 100.2);
+  DiagnosticStatus last;
+  EXPECT_TRUE(diagnostics.waitFor(d.name(), DiagnosticStatus::WARN,
+                                  "1 frames went on without the reading at their stamp on "
+                                  "/stamped/odometer_stamped",
+                                  10.0, &last))
+      << "level " << int(last.level) << ": " << last.message;
+  EXPECT_EQ(diagnostics.value(d.name(), "frames without their odometer reading"), "1");
+  EXPECT_EQ(diagnostics.value(d.name(), "frames received"), "3");
+  EXPECT_EQ(d.statuses().size(), 2u);
+}
+
 TEST(Diagnostics, BadCompressedFramesAreCountedByReason) {
   DiagnosticsWatcher diagnostics;
   Detector d("/badcompressed", {{"use_compressed", XmlRpc::XmlRpcValue(true)}});

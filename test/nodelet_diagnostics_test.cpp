@@ -20,6 +20,7 @@ class NodeletDiagnosticsTest : public ::testing::Test {
     settings.camera_info_topic = "/cam/camera_info";
     settings.odom_topic = "/cam/odom";
     settings.odometer_topic = "/cam/odometer";
+    settings.odometer_stamped_topic = "/cam/odometer_stamped";
     settings.window = 30.0;
     diagnostics.configure(settings);
     nodelet.started = true;
@@ -141,6 +142,24 @@ TEST_F(NodeletDiagnosticsTest, StampSkipsWarnWhileRecentAndStayCounted) {
   EXPECT_EQ(value(status, "skipped frames (stamp order)"), "1");
 }
 
+TEST_F(NodeletDiagnosticsTest, FramesWithoutTheirOdometerReadingWarnWhileRecent) {
+  EXPECT_EQ(value(diagnose(), "frames without their odometer reading"), "0");
+  diagnostics.frameReceived(100.0, GateDecision::kAccept);
+  diagnostics.odometerLate();
+  diagnostics.odometerLate();
+  auto status = diagnose();
+  EXPECT_EQ(status.level, DiagnosticStatus::WARN);
+  EXPECT_EQ(status.message,
+            "2 frames went on without the reading at their stamp on /cam/odometer_stamped "
+            "(waited ~odometer_wait): its readings come late or stopped");
+  EXPECT_EQ(value(status, "frames without their odometer reading"), "2");
+  advance(31);
+  diagnostics.frameReceived(101.0, GateDecision::kAccept);
+  status = diagnose();
+  EXPECT_EQ(status.level, DiagnosticStatus::OK) << status.message;
+  EXPECT_EQ(value(status, "frames without their odometer reading"), "2");
+}
+
 TEST_F(NodeletDiagnosticsTest, ATimeJumpCountsANewRunWithoutAWarning) {
   diagnostics.frameReceived(100.0, GateDecision::kAccept);
   diagnostics.frameReceived(1.0, GateDecision::kTimeJump);
@@ -231,8 +250,8 @@ TEST_F(NodeletDiagnosticsTest, ADistanceGateWithoutOdometryWarnsOnceFramesArrive
   auto status = diagnose();
   EXPECT_EQ(status.level, DiagnosticStatus::WARN);
   EXPECT_EQ(status.message,
-            "~min_keyframe_distance is set but no odometry arrived on /cam/odom or "
-            "/cam/odometer: only the time gate applies");
+            "~min_keyframe_distance is set but no odometry arrived on /cam/odom, "
+            "/cam/odometer or /cam/odometer_stamped: only the time gate applies");
   nodelet.has_odometry = true;
   status = diagnose();
   EXPECT_EQ(status.level, DiagnosticStatus::OK);

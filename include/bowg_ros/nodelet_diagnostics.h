@@ -30,7 +30,7 @@ struct DiagnosticsSettings {
   Input input = Input::kImage;
   std::string image_topic;     ///< the image topic (compressed: without "/compressed")
   std::string features_topic;  ///< keyframe_features
-  std::string camera_info_topic, odom_topic, odometer_topic;
+  std::string camera_info_topic, odom_topic, odometer_topic, odometer_stamped_topic;
   double window = 30.0;        ///< s: how long a condition stays in the status
   bool distance_gate = false;  ///< ~min_keyframe_distance > 0
 };
@@ -65,6 +65,10 @@ class NodeletDiagnostics {
   /// one does not hide another.
   bool badImage(bowg::ImageProblem problem);
   void cameraInfoReceived();
+  /// A frame went on without the stamped odometer's reading at its stamp
+  /// (it waited ~odometer_wait s, odometer_merge.h): its metres driven are
+  /// the latest that had come.
+  void odometerLate();
   /// A keyframe went through the detector; returns the loops found so far.
   std::size_t keyframeProcessed(const bowg::LoopResult& result, bool outside_odometry,
                                 double convert_ms, double feature_ms);
@@ -103,6 +107,7 @@ class NodeletDiagnostics {
   std::size_t metric_loops_ = 0;             ///< loops with a metric translation
   std::size_t metric_outside_odometry_ = 0;  ///< metric translations the odometry rules out
   std::size_t skipped_out_of_order_ = 0, errors_ = 0, time_jump_resets_ = 0;
+  std::size_t odometer_late_ = 0;  ///< frames that went on without their reading
   /// Images refused, by reason (bowg/features/image_check.h): the same
   /// reasons the offline tools count.
   bowg::ImageProblemCounts bad_images_;
@@ -113,7 +118,7 @@ class NodeletDiagnostics {
   // When each condition last happened: a condition is reported while it
   // happened within the window.
   Clock::time_point started_, last_frame_, last_camera_info_, last_rejected_, last_stamp_skip_,
-      last_drop_, last_error_;
+      last_drop_, last_error_, last_odometer_late_;
   bool any_frame_ = false, any_camera_info_ = false;
   std::size_t drops_seen_ = 0;
   Window window_;

@@ -45,6 +45,8 @@ LoopDetectorNodelet::~LoopDetectorNodelet() {
   features_sub_.shutdown();
   odom_sub_.shutdown();
   odometer_sub_.shutdown();
+  odometer_stamped_sub_.shutdown();
+  odometer_timer_.stop();
   diagnostics_timer_.stop();
   if (queue_) queue_->shutdown();
   if (worker_.joinable()) worker_.join();
@@ -204,8 +206,34 @@ void LoopDetectorNodelet::advertiseInterfaces(ros::NodeHandle& nh, ros::NodeHand
       [this](const dynamic_reconfigure::Config& requested) { return reconfigure(requested); }));
 }
 
-// Image (raw or compressed) or upstream features, camera_info and odometry.
+// Odometry: positions, an odometer, a stamped odometer. Subscribed before
+// the frames (a frame's callback asks whether the stamped odometer has a
+// publisher).
+void LoopDetectorNodelet::subscribeOdometry(ros::NodeHandle& nh) {
+  // Odometry feeds the distance gate and the keyframes' odometer (windows in
+  // metres: recent_exclusion_m, alignment_window_m, max_island_distance_m);
+  // without a publisher those fall back to keyframes.
+  odom_sub_ = nh.subscribe(publicName("odom"), 50, &LoopDetectorNodelet::odometryCallback, this);
+  // A robot without positions may still count the metres it drives (a
+  // crawler's cable counter): std_msgs/Float64 on `odometer`.
+  odometer_sub_ =
+      nh.subscribe(publicName("odometer"), 50, &LoopDetectorNodelet::odometerCallback, this);
+  // The same metres stamped when measured (bowg_ros/OdometerStamped on
+  // `odometer_stamped`): a frame then waits, up to ~odometer_wait, for the
+  // reading at its stamp, whatever order the topics arrive in.
+  odometer_stamped_sub_ = nh.subscribe(publicName("odometer_stamped"), 50,
+                                       &LoopDetectorNodelet::odometerStampedCallback, this);
+  odometer_timer_ = nh.createWallTimer(ros::WallDuration(std::max(0.01, odometer_wait_ / 4.0)),
+                                       [this](const ros::WallTimerEvent&) {
+                                         std::lock_guard<std::mutex> lock(gate_mutex_);
+                                         if (odometer_merge_.waiting() > 0) releaseMerged();
+                                       });
+}
+
+// Odometry, then image (raw or compressed) or upstream features, and
+// camera_info.
 void LoopDetectorNodelet::subscribeInputs(ros::NodeHandle& nh, ros::NodeHandle& pnh) {
+  subscribeOdometry(nh);
   // The callbacks only gate
   // and enqueue; the subscriber queues are at least ~queue_size deep so that a
   // large ~queue_size makes a fast bag replay lossless (drops then happen, and
@@ -236,14 +264,6 @@ void LoopDetectorNodelet::subscribeInputs(ros::NodeHandle& nh, ros::NodeHandle& 
   // the sibling of the image topic, image_pipeline's convention.
   info_sub_ = nh.subscribe(image_transport::getCameraInfoTopic(publicName("image")), 1,
                            &LoopDetectorNodelet::cameraInfoCallback, this);
-  // Odometry feeds the distance gate and the keyframes' odometer (windows in
-  // metres: recent_exclusion_m, alignment_window_m, max_island_distance_m);
-  // without a publisher those fall back to keyframes.
-  odom_sub_ = nh.subscribe(publicName("odom"), 50, &LoopDetectorNodelet::odometryCallback, this);
-  // A robot without positions may still count the metres it drives (a
-  // crawler's cable counter): std_msgs/Float64 on `odometer`.
-  odometer_sub_ =
-      nh.subscribe(publicName("odometer"), 50, &LoopDetectorNodelet::odometerCallback, this);
 }
 
 void LoopDetectorNodelet::onInit() {

@@ -3,8 +3,9 @@
 // on a worker thread, messages out:
 //
 //   image (+ camera_info) or keyframe_features
-//     -> camera callback: encoding check, stamp order, keyframe gate, push
-//        (never blocks: bounded queue drops the oldest frame)
+//     -> camera callback: encoding check, (with a stamped odometer: the
+//        wait for the reading at the frame's stamp), stamp order, keyframe
+//        gate, push (never blocks: bounded queue drops the oldest frame)
 //     -> worker thread: grey conversion, features, LoopDetector::process()
 //        under the detector lock
 //     -> loop_closure, ~keyframe_status, ~debug_image (lazy), diagnostics
@@ -21,9 +22,11 @@
 //                    file holds it (a load reads and checks the file first,
 //                    then swaps it in; a save serializes under it and writes
 //                    after); the final save runs once the worker stopped.
-//   gate_mutex_      gate_ (stamp order, odometry) and intrinsics_. Taken by
-//                    the input callbacks, the worker (intrinsics),
-//                    restartRun() and diagnose().
+//   gate_mutex_      gate_ (stamp order, odometry), odometer_merge_ and
+//                    intrinsics_. Taken by the input callbacks, the
+//                    odometer timer, the worker (intrinsics), restartRun()
+//                    and diagnose(); frames go into queue_ under it, so
+//                    they enter in the order the gate saw them.
 //   inside NodeletDiagnostics (diagnostics_): its counters.
 //   inside BoundedQueue (queue_): the frames between callbacks and worker.
 //
@@ -77,6 +80,7 @@
 #include "bowg_ros/LoadReferenceMaps.h"
 #include "bowg_ros/LoopClosure.h"
 #include "bowg_ros/MergeDatabases.h"
+#include "bowg_ros/OdometerStamped.h"
 #include "bowg_ros/SaveDatabase.h"
 #include "bowg_ros/bounded_queue.h"
 #include "bowg_ros/debug_image_publisher.h"
@@ -85,6 +89,7 @@
 #include "bowg_ros/live_parameters.h"
 #include "bowg_ros/live_tuning_server.h"
 #include "bowg_ros/nodelet_diagnostics.h"
+#include "bowg_ros/odometer_merge.h"
 #include "bowg_ros/ros_conversions.h"
 
 namespace bowg_ros {
@@ -147,6 +152,7 @@ class LoopDetectorNodelet : public nodelet::Nodelet {
   DiagnosticsSettings diagnosticsSettings() const;
   void advertiseInterfaces(ros::NodeHandle& nh, ros::NodeHandle& pnh);
   void subscribeInputs(ros::NodeHandle& nh, ros::NodeHandle& pnh);
+  void subscribeOdometry(ros::NodeHandle& nh);
   bool loadParameters(ros::NodeHandle& pnh);
   /// Every other private parameter into options_ through the engine's
   /// parameter table; false (fatal()) on an unknown or invalid one.
@@ -161,9 +167,22 @@ class LoopDetectorNodelet : public nodelet::Nodelet {
   void cameraInfoCallback(const sensor_msgs::CameraInfoConstPtr& msg);
   void odometryCallback(const nav_msgs::OdometryConstPtr& msg);
   void odometerCallback(const std_msgs::Float64ConstPtr& msg);
+  void odometerStampedCallback(const OdometerStamped::ConstPtr& msg);
+  /// One odometer reading into the gate (either topic); gate_mutex_ held.
+  void applyOdometerReading(double metres);
+  /// True when frames wait for the stamped odometer (odometer_merge.h): a
+  /// publisher or a reading on odometer_stamped, or frames still waiting.
+  /// gate_mutex_ held.
+  bool waitsForOdometer() const;
+  /// Hands on what the stamped odometer's merge holds ready; gate_mutex_ held.
+  void releaseMerged();
   void reportOdometryInput(bowg::OdometryInput input);
-  /// Stamp order + keyframe gate; true when `frame` was queued.
-  bool offer(Frame frame);
+  /// A frame in: through the stamped odometer's merge when there is one,
+  /// else straight to admit().
+  void offer(Frame frame);
+  /// Stamp order + keyframe gate, then the queue; `odometer_late`: it went
+  /// on without its odometer reading. gate_mutex_ held.
+  void admit(Frame frame, bool odometer_late);
 
   void workerLoop();
   void processFrame(const Frame& frame);
@@ -220,6 +239,8 @@ class LoopDetectorNodelet : public nodelet::Nodelet {
   int queue_size_ = 2;
   bool use_compressed_ = false, use_features_input_ = false, publish_correspondences_ = false;
   KeyframeGateOptions gate_options_;
+  /// s a frame waits for the stamped odometer's reading at its stamp.
+  double odometer_wait_ = 0.2;
   double diagnostics_window_ = 30.0;  ///< s: how long a condition stays in the diagnostics
   std::string startup_error_;         ///< why the nodelet did not start (empty: it did)
   /// The feature options at start-up, for their image size limit (not a
@@ -238,6 +259,7 @@ class LoopDetectorNodelet : public nodelet::Nodelet {
   // Camera callback side (see the locks above).
   std::mutex gate_mutex_;
   KeyframeGate gate_;
+  OdometerMerge<Frame> odometer_merge_;
   bowg::CameraIntrinsics intrinsics_;
 
   // Worker thread only.
@@ -255,7 +277,10 @@ class LoopDetectorNodelet : public nodelet::Nodelet {
   // ROS interfaces.
   std::unique_ptr<image_transport::ImageTransport> it_, private_it_;
   image_transport::Subscriber image_sub_;
-  ros::Subscriber compressed_sub_, features_sub_, info_sub_, odom_sub_, odometer_sub_;
+  ros::Subscriber compressed_sub_, features_sub_, info_sub_, odom_sub_, odometer_sub_,
+      odometer_stamped_sub_;
+  /// Releases frames that waited ~odometer_wait for their reading.
+  ros::WallTimer odometer_timer_;
   ros::Publisher loop_pub_, status_pub_;
   // The services run on a queue and a thread of the nodelet's own, so a long
   // save does not hold up images, and the nodelet's ROS handles use one

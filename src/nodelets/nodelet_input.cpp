@@ -1,28 +1,59 @@
 // LoopDetectorNodelet: the input callbacks. They only check, gate and enqueue
 // (never block: the bounded queue drops the oldest frame); the worker converts.
+// With a stamped odometer a frame first waits, briefly, for the reading at
+// its stamp (odometer_merge.h).
 #include <cmath>
 
 #include "loop_detector_nodelet.h"
 
 namespace bowg_ros {
 
-bool LoopDetectorNodelet::offer(Frame frame) {
+namespace {
+
+double steadySeconds() {
+  return std::chrono::duration<double>(Clock::now().time_since_epoch()).count();
+}
+
+}  // namespace
+
+void LoopDetectorNodelet::offer(Frame frame) {
+  std::lock_guard<std::mutex> lock(gate_mutex_);
+  if (!waitsForOdometer()) return admit(std::move(frame), false);
+  odometer_merge_.addFrame(frame.header.stamp.toSec(), steadySeconds(), std::move(frame));
+  releaseMerged();
+}
+
+bool LoopDetectorNodelet::waitsForOdometer() const {
+  return odometer_merge_.hasReadings() || odometer_merge_.waiting() > 0 ||
+         odometer_stamped_sub_.getNumPublishers() > 0;
+}
+
+void LoopDetectorNodelet::releaseMerged() {
+  odometer_merge_.release(
+      steadySeconds(), odometer_wait_, [this](double metres) { applyOdometerReading(metres); },
+      [this](Frame&& frame, bool late) { admit(std::move(frame), late); });
+}
+
+void LoopDetectorNodelet::admit(Frame frame, bool odometer_late) {
   const double stamp = frame.header.stamp.toSec();
-  GateDecision d;
-  {
-    std::lock_guard<std::mutex> lock(gate_mutex_);
-    d = gate_.check(stamp);
-    frame.odometer = gate_.odometer();
-    frame.position = gate_.position();
-    frame.epoch = gate_.epoch();
-  }
+  const GateDecision d = gate_.check(stamp);
+  frame.odometer = gate_.odometer();
+  frame.position = gate_.position();
+  frame.epoch = gate_.epoch();
   diagnostics_.frameReceived(stamp, d);
+  if (odometer_late) {
+    diagnostics_.odometerLate();
+    NODELET_WARN_THROTTLE(5.0,
+                          "frame at %.6f went on without the reading at its stamp on %s "
+                          "(waited ~odometer_wait %.3f s): the latest reading before it is used",
+                          stamp, publicName("odometer_stamped").c_str(), odometer_wait_);
+  }
   if (isStampRejection(d)) {
     NODELET_WARN_THROTTLE(2.0,
                           "frame at %.6f skipped: %s (a replay that starts over: call ~reset, "
                           "or set ~reset_on_time_jump)",
                           stamp, toString(d));
-    return false;
+    return;
   }
   if (d == GateDecision::kTimeJump) {
     NODELET_WARN(
@@ -30,9 +61,8 @@ bool LoopDetectorNodelet::offer(Frame frame) {
         "the database starts empty",
         stamp);
   }
-  if (!isKeyframe(d)) return false;
-  queue_->push(std::move(frame));
-  return true;
+  // Queued under the gate's lock: frames enter in the order the gate saw them.
+  if (isKeyframe(d)) queue_->push(std::move(frame));
 }
 
 // Images are checked here, where the drop is counted, from the message
@@ -77,17 +107,43 @@ void LoopDetectorNodelet::cameraInfoCallback(const sensor_msgs::CameraInfoConstP
 }
 
 void LoopDetectorNodelet::odometerCallback(const std_msgs::Float64ConstPtr& msg) {
-  bool used;
-  {
-    std::lock_guard<std::mutex> lock(gate_mutex_);
-    used = gate_.addOdometerReading(msg->data);
+  std::lock_guard<std::mutex> lock(gate_mutex_);
+  if (odometer_merge_.hasReadings()) {
+    NODELET_INFO_ONCE("%s is ignored: stamped readings of the same odometer arrive on %s",
+                      publicName("odometer").c_str(), publicName("odometer_stamped").c_str());
+    return;
   }
-  if (!used && std::isfinite(msg->data)) {
-    NODELET_INFO_ONCE("%s is ignored: odometry positions arrive on %s and measure the same path",
-                      publicName("odometer").c_str(), publicName("odom").c_str());
-  } else if (!used) {
-    NODELET_WARN_THROTTLE(5.0, "odometer reading %f on %s is not finite: ignored", msg->data,
-                          publicName("odometer").c_str());
+  applyOdometerReading(msg->data);
+}
+
+void LoopDetectorNodelet::odometerStampedCallback(const OdometerStamped::ConstPtr& msg) {
+  const double stamp = msg->header.stamp.toSec();
+  std::lock_guard<std::mutex> lock(gate_mutex_);
+  if (!odometer_merge_.addReading(stamp, msg->metres)) {
+    // Far back with ~reset_on_time_jump: a replay that started over.
+    const double jump = gate_options_.time_jump_reset;
+    if (!(jump > 0.0 && stamp < odometer_merge_.lastStamp() - jump)) {
+      NODELET_WARN_THROTTLE(5.0,
+                            "odometer reading at %.6f on %s is older than the previous: ignored",
+                            stamp, publicName("odometer_stamped").c_str());
+      return;
+    }
+    odometer_merge_.restartReadings();
+    odometer_merge_.addReading(stamp, msg->metres);
+  }
+  releaseMerged();
+}
+
+void LoopDetectorNodelet::applyOdometerReading(double metres) {
+  if (gate_.addOdometerReading(metres)) return;
+  if (std::isfinite(metres)) {
+    NODELET_INFO_ONCE(
+        "odometer readings (%s, %s) are ignored: odometry positions arrive on %s and measure "
+        "the same path",
+        publicName("odometer").c_str(), publicName("odometer_stamped").c_str(),
+        publicName("odom").c_str());
+  } else {
+    NODELET_WARN_THROTTLE(5.0, "odometer reading %f is not finite: ignored", metres);
   }
 }
 

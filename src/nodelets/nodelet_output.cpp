@@ -29,6 +29,7 @@ DiagnosticsSettings LoopDetectorNodelet::diagnosticsSettings() const {
   settings.camera_info_topic = image_transport::getCameraInfoTopic(publicName("image"));
   settings.odom_topic = publicName("odom");
   settings.odometer_topic = publicName("odometer");
+  settings.odometer_stamped_topic = publicName("odometer_stamped");
   settings.window = diagnostics_window_;
   settings.distance_gate = gate_options_.min_distance > 0.0;
   return settings;

@@ -30,6 +30,7 @@ const char* const kNodeParameters[] = {
     "mission_name",
     "mission_id",
     "reference_maps",
+    "odometer_wait",
 };
 
 bool isNodeParameter(const std::string& name) {
@@ -75,6 +76,11 @@ bool LoopDetectorNodelet::loadParameters(ros::NodeHandle& pnh) {
   if (!(diagnostics_window_ > 0.0) || !std::isfinite(diagnostics_window_)) {
     return fatal("~diagnostics_window must be a finite number of seconds > 0 (got " +
                  std::to_string(diagnostics_window_) + ")");
+  }
+  pnh.param("odometer_wait", odometer_wait_, 0.2);
+  if (!(odometer_wait_ >= 0.0) || !std::isfinite(odometer_wait_)) {
+    return fatal("~odometer_wait must be a finite number of seconds >= 0 (got " +
+                 std::to_string(odometer_wait_) + ")");
   }
   if (queue_size_ < 1) {
     return fatal("~queue_size must be >= 1 (got " + std::to_string(queue_size_) + ")");

@@ -25,9 +25,10 @@ void LoopDetectorNodelet::reportOdometryInput(bowg::OdometryInput input) {
   if (logged_input_ == static_cast<int>(input)) return;
   logged_input_ = static_cast<int>(input);
   if (input == bowg::OdometryInput::kNone) {
-    NODELET_WARN("odometry input: %s (nothing on %s or %s; ~min_keyframe_interval is %.3f s)",
+    NODELET_WARN("odometry input: %s (nothing on %s, %s or %s; ~min_keyframe_interval is %.3f s)",
                  bowg::describeAcceptance(input), publicName("odom").c_str(),
-                 publicName("odometer").c_str(), gate_options_.min_interval);
+                 publicName("odometer").c_str(), publicName("odometer_stamped").c_str(),
+                 gate_options_.min_interval);
   } else {
     NODELET_INFO("odometry input: %s", bowg::describeAcceptance(input));
   }

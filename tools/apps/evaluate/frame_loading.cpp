@@ -23,6 +23,8 @@
 #include "bowg_bag_reading/bag_images.h"
 #include "bowg_evaluation/intrinsics_file.h"
 #include "bowg_evaluation/odometry_file.h"
+#include "bowg_ros/OdometerStamped.h"
+#include "bowg_ros/odometer_merge.h"
 #include "bowg_ros/ros_conversions.h"
 #include "console_output.h"
 
@@ -124,6 +126,76 @@ std::vector<FrameInput> loadFolder(const Args& a, const FeatureExtractor& extrac
   return frames;
 }
 
+// The odometer readings of a bag as the nodelet takes them: std_msgs/Float64
+// in bag order (a frame gets the path of the readings before it),
+// bowg_ros/OdometerStamped by stamp (a frame gets the path of the readings
+// stamped at or before it: the nodelet's OdometerMerge, with no time limit).
+// The path sums |change| from the first reading, as the keyframe gate does.
+class BagOdometer {
+ public:
+  BagOdometer(const std::string& bag, const std::string& topic, std::vector<FrameInput>* frames)
+      : bag_(bag), topic_(topic), frames_(frames) {}
+
+  /// The bag's readings on the topic are stamped: from the first frame on,
+  /// frames wait for them (as the nodelet's do while the topic has a
+  /// publisher).
+  void expectStamped(rosbag::View& view) {
+    for (const rosbag::ConnectionInfo* c : view.getConnections()) {
+      if (c->topic == topic_ && c->datatype == "bowg_ros/OdometerStamped") stamped_ = true;
+    }
+  }
+
+  void reading(const rosbag::MessageInstance& m) {
+    if (const std_msgs::Float64::ConstPtr r = m.instantiate<std_msgs::Float64>()) {
+      if (!stamped_) add(r->data);  // the stamped readings win, as in the nodelet
+      return;
+    }
+    const bowg_ros::OdometerStamped::ConstPtr r = m.instantiate<bowg_ros::OdometerStamped>();
+    if (!r) {
+      throw FormatError(bag_ + ": " + topic_ +
+                        " is neither std_msgs/Float64 nor bowg_ros/OdometerStamped");
+    }
+    stamped_ = true;
+    if (merge_.addReading(r->header.stamp.toSec(), r->metres)) release(false);
+  }
+
+  /// frames_->back() was just added, stamped `stamp`.
+  void frameAdded(double stamp) {
+    if (!stamped_) {
+      frames_->back().odometer = path_;
+      return;
+    }
+    merge_.addFrame(stamp, 0.0, frames_->size() - 1);
+    release(false);
+  }
+
+  /// Frames wait for a stamped reading at or after their stamp.
+  bool waiting() const { return merge_.waiting() > 0; }
+
+  /// The frames no reading reached: the path of every reading.
+  void finish() { release(true); }
+
+ private:
+  void add(double metres) {
+    if (!std::isfinite(metres)) return;  // the nodelet ignores them too
+    path_ = std::isnan(path_) ? 0.0 : path_ + std::fabs(metres - last_);
+    last_ = metres;
+  }
+  // Every frame "arrives" at 0 and waits 1 s: no frame is late before the
+  // end, where all go on (now 1).
+  void release(bool all) {
+    merge_.release(
+        all ? 1.0 : 0.0, 1.0, [this](double metres) { add(metres); },
+        [this](std::size_t&& i, bool) { (*frames_)[i].odometer = path_; });
+  }
+
+  std::string bag_, topic_;
+  std::vector<FrameInput>* frames_;
+  bowg_ros::OdometerMerge<std::size_t> merge_{std::numeric_limits<std::size_t>::max()};
+  bool stamped_ = false;
+  double path_ = std::numeric_limits<double>::quiet_NaN(), last_ = 0.0;
+};
+
 std::vector<FrameInput> loadBag(const Args& a, const FeatureExtractor& extractor) {
   std::vector<FrameInput> frames;
   FrameCollector collect(extractor, &frames);
@@ -137,10 +209,9 @@ std::vector<FrameInput> loadBag(const Args& a, const FeatureExtractor& extractor
   std::vector<std::string> topics{a.image_topic};
   if (a.info_topic != "none") topics.push_back(a.info_topic);
   if (!a.odometer_topic.empty()) topics.push_back(a.odometer_topic);
-  // The odometer readings' path (|change| summed, as the nodelet's keyframe
-  // gate sums them) when the image comes; NaN before the first reading.
-  double odometer = std::numeric_limits<double>::quiet_NaN(), last_reading = 0.0;
+  BagOdometer odometer(a.bag, a.odometer_topic, &frames);
   rosbag::View view(bag, rosbag::TopicQuery(topics));
+  odometer.expectStamped(view);
   rosbag::View images_only(bag, rosbag::TopicQuery(a.image_topic));
   std::size_t total = images_only.size();
   if (total == 0) throw FormatError("the bag " + a.bag + " has no messages on " + a.image_topic);
@@ -148,7 +219,8 @@ std::vector<FrameInput> loadBag(const Args& a, const FeatureExtractor& extractor
   CameraIntrinsics intrinsics;
   ImageProblemCounts skipped;
   for (const rosbag::MessageInstance& m : view) {
-    if (frames.size() >= total) break;
+    // Past the last frame only the readings its stamp may still wait for.
+    if (frames.size() >= total && !odometer.waiting()) break;
     if (m.getTopic() == a.info_topic) {
       // The first valid camera_info, checked as the nodelet checks it.
       const sensor_msgs::CameraInfo::ConstPtr info = m.instantiate<sensor_msgs::CameraInfo>();
@@ -156,18 +228,13 @@ std::vector<FrameInput> loadBag(const Args& a, const FeatureExtractor& extractor
       continue;
     }
     if (m.getTopic() == a.odometer_topic) {
-      const std_msgs::Float64::ConstPtr reading = m.instantiate<std_msgs::Float64>();
-      if (!reading) {
-        throw FormatError(a.bag + ": " + a.odometer_topic + " is not std_msgs/Float64");
-      }
-      if (!std::isfinite(reading->data)) continue;  // the nodelet ignores them too
-      odometer = std::isnan(odometer) ? 0.0 : odometer + std::fabs(reading->data - last_reading);
-      last_reading = reading->data;
+      odometer.reading(m);
       continue;
     }
+    if (frames.size() >= total) continue;
     if (static_cast<long>(frames.size()) < a.skip_frames) {  // left out: only its place is kept
       collect.add(cv::Mat(), 0.0, intrinsics);  // a stamp that never raises the next frame's
-      frames.back().odometer = odometer;
+      odometer.frameAdded(m.getTime().toSec());
       continue;
     }
     const bowg::bag::BagImage image = bowg::bag::readBagImage(m, a.bag, extractor.options());
@@ -175,9 +242,10 @@ std::vector<FrameInput> loadBag(const Args& a, const FeatureExtractor& extractor
       skipImage("frame " + std::to_string(frames.size()), image.check, &skipped);
     }
     collect.add(image.grey, image.stamp.toSec(), intrinsics);
-    frames.back().odometer = odometer;
+    odometer.frameAdded(image.stamp.toSec());
     bar(frames.size(), total);
   }
+  odometer.finish();
   reportSkipped(skipped, frames.size());
   return frames;
 }

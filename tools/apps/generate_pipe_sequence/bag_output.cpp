@@ -17,6 +17,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "bowg_ros/OdometerStamped.h"
+
 namespace bowg {
 namespace generate_pipe_sequence_app {
 namespace {
@@ -149,6 +151,15 @@ void BagOutput::writeOdometry(const pipe_sim::FrameState& f, const pipe_sim::Cam
   std_msgs::Float64 reading;
   reading.data = odometer_;
   bag_.write("/odometer", stampOf(f.stamp - kOdometerLead), reading);
+  // The same reading stamped when measured, with the frame: a replay's
+  // nodelet gives each frame the reading at its stamp, whatever order the
+  // two topics arrive in.
+  bowg_ros::OdometerStamped stamped;
+  stamped.header.seq = f.index;
+  stamped.header.stamp = stampOf(f.stamp);
+  stamped.header.frame_id = "odom";
+  stamped.metres = odometer_;
+  bag_.write("/odometer_stamped", stampOf(f.stamp - kOdometerLead), stamped);
 }
 
 void BagOutput::finish() {

@@ -32,8 +32,9 @@ class BagOutput {
   /// `covariance` (x y z, rotation about x y z), stamped f.stamp; and on
   /// /odometer (std_msgs/Float64) the path length of the odometry's
   /// positions so far, what a robot without positions counts (a cable
-  /// counter), stamped kOdometerLead before the frame so that a player
-  /// delivers it before the frame's image.
+  /// counter), and the same on /odometer_stamped (bowg_ros/OdometerStamped,
+  /// its header stamped f.stamp); both recorded kOdometerLead before the
+  /// frame so that a player delivers them before the frame's image.
   void writeOdometry(const pipe_sim::FrameState& f, const pipe_sim::CameraPose& pose,
                      const cv::Vec4d& q, const cv::Matx<double, 6, 6>& covariance);
 

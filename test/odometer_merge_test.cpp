@@ -1,0 +1,127 @@
+// OdometerMerge: a frame gets the readings stamped up to it, whichever
+// arrived first; late and overflowing frames go on, marked late.
+#include "bowg_ros/odometer_merge.h"
+
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+namespace bowg_ros {
+namespace {
+
+// What the merge handed on, in order: "r<metres>" for a reading, "f<id>"
+// for a frame on time, "L<id>" for a late one.
+struct Log {
+  std::vector<std::string> events;
+  void release(OdometerMerge<int>* merge, double now, double wait) {
+    merge->release(
+        now, wait, [this](double metres) { events.push_back("r" + std::to_string(int(metres))); },
+        [this](int&& id, bool late) { events.push_back((late ? "L" : "f") + std::to_string(id)); });
+  }
+};
+
+using Events = std::vector<std::string>;
+
+TEST(OdometerMerge, AFrameWaitsForTheReadingAtItsStamp) {
+  OdometerMerge<int> merge;
+  Log log;
+  // The image of t = 1.0 is handled before the reading stamped 1.0.
+  ASSERT_TRUE(merge.addReading(0.9, 9));
+  merge.addFrame(1.0, /*arrival*/ 100.0, 1);
+  log.release(&merge, 100.01, 0.2);
+  // 0.9 < 1.0: the frame waits; the reading before it goes on.
+  EXPECT_EQ(log.events, Events({"r9"}));
+  ASSERT_TRUE(merge.addReading(1.0, 10));
+  log.release(&merge, 100.02, 0.2);
+  EXPECT_EQ(log.events, Events({"r9", "r10", "f1"}));
+  EXPECT_EQ(merge.waiting(), 0u);
+}
+
+TEST(OdometerMerge, ReadingsAfterAFrameStayAfterIt) {
+  OdometerMerge<int> merge;
+  Log log;
+  merge.addFrame(1.0, 100.0, 1);
+  merge.addFrame(2.0, 100.1, 2);
+  // One reading past both frames arrives with two before it: each frame
+  // gets exactly the readings stamped at or before it.
+  ASSERT_TRUE(merge.addReading(0.5, 5));
+  ASSERT_TRUE(merge.addReading(1.5, 15));
+  ASSERT_TRUE(merge.addReading(2.5, 25));
+  log.release(&merge, 100.2, 0.2);
+  EXPECT_EQ(log.events, Events({"r5", "f1", "r15", "f2", "r25"}));
+}
+
+TEST(OdometerMerge, WithNoFrameWaitingReadingsGoOnAtOnce) {
+  OdometerMerge<int> merge;
+  Log log;
+  ASSERT_TRUE(merge.addReading(3.0, 30));
+  log.release(&merge, 0.0, 0.2);
+  EXPECT_EQ(log.events, Events({"r30"}));
+  // A frame the readings have passed goes on at once too.
+  merge.addFrame(2.0, 0.0, 7);
+  log.release(&merge, 0.0, 0.2);
+  EXPECT_EQ(log.events, Events({"r30", "f7"}));
+}
+
+TEST(OdometerMerge, AFrameWhoseReadingNeverComesGoesOnLate) {
+  OdometerMerge<int> merge;
+  Log log;
+  ASSERT_TRUE(merge.addReading(0.9, 9));
+  merge.addFrame(1.0, 100.0, 1);
+  merge.addFrame(1.1, 100.1, 2);
+  log.release(&merge, 100.19, 0.2);  // waited 0.19 s < 0.2
+  EXPECT_EQ(log.events, Events({"r9"}));
+  log.release(&merge, 100.2, 0.2);  // frame 1 waited 0.2 s: late; frame 2 0.1 s
+  EXPECT_EQ(log.events, Events({"r9", "L1"}));
+  log.release(&merge, 100.3, 0.2);
+  EXPECT_EQ(log.events, Events({"r9", "L1", "L2"}));
+}
+
+TEST(OdometerMerge, BeyondItsBoundTheOldestFrameGoesOnLate) {
+  OdometerMerge<int> merge(2);
+  Log log;
+  merge.addFrame(1.0, 0.0, 1);
+  merge.addFrame(2.0, 0.0, 2);
+  log.release(&merge, 0.0, 10.0);
+  EXPECT_EQ(log.events, Events({}));
+  merge.addFrame(3.0, 0.0, 3);
+  log.release(&merge, 0.0, 10.0);
+  EXPECT_EQ(log.events, Events({"L1"}));
+  EXPECT_EQ(merge.waiting(), 2u);
+}
+
+TEST(OdometerMerge, AReadingStampedBeforeThePreviousIsDropped) {
+  OdometerMerge<int> merge;
+  Log log;
+  ASSERT_TRUE(merge.addReading(2.0, 20));
+  EXPECT_FALSE(merge.addReading(1.0, 10));
+  EXPECT_TRUE(merge.addReading(2.0, 21));  // the same stamp is not out of order
+  log.release(&merge, 0.0, 0.2);
+  EXPECT_EQ(log.events, Events({"r20", "r21"}));
+}
+
+TEST(OdometerMerge, ANewRunOfReadingsTakesEarlierStampsAndKeepsTheFrames) {
+  OdometerMerge<int> merge;
+  Log log;
+  ASSERT_TRUE(merge.addReading(50.0, 50));
+  merge.addFrame(1.0, 0.0, 1);  // a frame of the new run, already here
+  log.release(&merge, 0.0, 0.2);
+  EXPECT_EQ(log.events, Events({"f1", "r50"}));  // 50 >= 1: the readings passed it
+  merge.addFrame(2.0, 0.0, 2);
+  EXPECT_FALSE(merge.addReading(1.5, 1));  // older than 50: refused until restarted
+  EXPECT_DOUBLE_EQ(merge.lastStamp(), 50.0);
+  ASSERT_TRUE(merge.addReading(60.0, 60));  // not handed on: dropped by the restart
+  merge.restartReadings();
+  EXPECT_FALSE(merge.hasReadings());
+  EXPECT_EQ(merge.waiting(), 1u);
+  ASSERT_TRUE(merge.addReading(1.5, 1));
+  log.release(&merge, 0.0, 0.2);
+  EXPECT_EQ(log.events, Events({"f1", "r50", "r1"}));  // 1.5 < 2: frame 2 waits
+  ASSERT_TRUE(merge.addReading(2.0, 2));
+  log.release(&merge, 0.0, 0.2);
+  EXPECT_EQ(log.events, Events({"f1", "r50", "r1", "r2", "f2"}));
+}
+
+}  // namespace
+}  // namespace bowg_ros
