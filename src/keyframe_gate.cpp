@@ -47,8 +47,7 @@ void KeyframeGate::setOptions(const KeyframeGateOptions& options) {
 }
 
 GateDecision KeyframeGate::check(double stamp) {
-  if (has_frame_ && options_.time_jump_reset > 0.0 &&
-      stamp < last_frame_stamp_ - options_.time_jump_reset) {
+  if (has_frame_ && isTimeJump(stamp, last_frame_stamp_, options_.time_jump_reset)) {
     reset();
     ++epoch_;
     has_frame_ = has_keyframe_ = true;

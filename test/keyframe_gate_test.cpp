@@ -214,6 +214,14 @@ TEST(KeyframeGate, AJumpBackBeyondTheResetThresholdStartsANewRun) {
   EXPECT_EQ(off.epoch(), 0u);
 }
 
+TEST(KeyframeGate, ATimeJumpIsMoreThanTheResetBackFromThePreviousStamp) {
+  EXPECT_TRUE(isTimeJump(94.9, 100.0, 5.0));   // 5.1 s back
+  EXPECT_FALSE(isTimeJump(95.0, 100.0, 5.0));  // exactly 5: not more
+  EXPECT_FALSE(isTimeJump(99.0, 100.0, 5.0));  // out of order only
+  EXPECT_FALSE(isTimeJump(101.0, 100.0, 5.0));
+  EXPECT_FALSE(isTimeJump(0.0, 1000.0, 0.0));  // 0: never
+}
+
 TEST(KeyframeGate, RejectsInvalidOptions) {
   KeyframeGateOptions o;
   o.min_interval = -1.0;

@@ -53,6 +53,13 @@ inline bool isStampRejection(GateDecision d) {
 }
 const char* toString(GateDecision d);
 
+/// True when `stamp` (s) lies more than `reset` s before `previous`: a replay
+/// that started over, with ~reset_on_time_jump (`reset` > 0; 0 = never). One
+/// rule for frames (KeyframeGate::check) and stamped odometer readings.
+inline bool isTimeJump(double stamp, double previous, double reset) {
+  return reset > 0.0 && stamp < previous - reset;
+}
+
 class KeyframeGate {
  public:
   explicit KeyframeGate(const KeyframeGateOptions& options = KeyframeGateOptions());

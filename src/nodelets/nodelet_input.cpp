@@ -121,8 +121,7 @@ void LoopDetectorNodelet::odometerStampedCallback(const OdometerStamped::ConstPt
   std::lock_guard<std::mutex> lock(gate_mutex_);
   if (!odometer_merge_.addReading(stamp, msg->metres)) {
     // Far back with ~reset_on_time_jump: a replay that started over.
-    const double jump = gate_options_.time_jump_reset;
-    if (!(jump > 0.0 && stamp < odometer_merge_.lastStamp() - jump)) {
+    if (!isTimeJump(stamp, odometer_merge_.lastStamp(), gate_options_.time_jump_reset)) {
       NODELET_WARN_THROTTLE(5.0,
                             "odometer reading at %.6f on %s is older than the previous: ignored",
                             stamp, publicName("odometer_stamped").c_str());
