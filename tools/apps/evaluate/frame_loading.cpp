@@ -24,6 +24,7 @@
 #include "bowg_evaluation/intrinsics_file.h"
 #include "bowg_evaluation/odometry_file.h"
 #include "bowg_ros/OdometerStamped.h"
+#include "bowg_ros/keyframe_gate.h"
 #include "bowg_ros/odometer_merge.h"
 #include "bowg_ros/ros_conversions.h"
 #include "console_output.h"
@@ -147,7 +148,7 @@ class BagOdometer {
 
   void reading(const rosbag::MessageInstance& m) {
     if (const std_msgs::Float64::ConstPtr r = m.instantiate<std_msgs::Float64>()) {
-      if (!stamped_) add(r->data);  // the stamped readings win, as in the nodelet
+      if (!stamped_) gate_.addOdometerReading(r->data);  // the stamped readings win, as live
       return;
     }
     const bowg_ros::OdometerStamped::ConstPtr r = m.instantiate<bowg_ros::OdometerStamped>();
@@ -162,7 +163,7 @@ class BagOdometer {
   /// frames_->back() was just added, stamped `stamp`.
   void frameAdded(double stamp) {
     if (!stamped_) {
-      frames_->back().odometer = path_;
+      frames_->back().odometer = gate_.odometer();
       return;
     }
     merge_.addFrame(stamp, 0.0, frames_->size() - 1);
@@ -176,24 +177,21 @@ class BagOdometer {
   void finish() { release(true); }
 
  private:
-  void add(double metres) {
-    if (!std::isfinite(metres)) return;  // the nodelet ignores them too
-    path_ = std::isnan(path_) ? 0.0 : path_ + std::fabs(metres - last_);
-    last_ = metres;
-  }
   // Every frame "arrives" at 0 and waits 1 s: no frame is late before the
   // end, where all go on (now 1).
   void release(bool all) {
     merge_.release(
-        all ? 1.0 : 0.0, 1.0, [this](double metres) { add(metres); },
-        [this](std::size_t&& i, bool) { (*frames_)[i].odometer = path_; });
+        all ? 1.0 : 0.0, 1.0, [this](double metres) { gate_.addOdometerReading(metres); },
+        [this](std::size_t&& i, bool) { (*frames_)[i].odometer = gate_.odometer(); });
   }
 
   std::string bag_, topic_;
   std::vector<FrameInput>* frames_;
   bowg_ros::OdometerMerge<std::size_t> merge_{std::numeric_limits<std::size_t>::max()};
   bool stamped_ = false;
-  double path_ = std::numeric_limits<double>::quiet_NaN(), last_ = 0.0;
+  /// The nodelet's sum of the readings (|change|; non-finite ones ignored);
+  /// only its odometer is used, frames are not gated here.
+  bowg_ros::KeyframeGate gate_;
 };
 
 std::vector<FrameInput> loadBag(const Args& a, const FeatureExtractor& extractor) {
