@@ -180,9 +180,11 @@ std::vector<EntryScores> Database::finishScores(const DatabaseQuery& q, bool wit
   const bool with_distribution = !q.distribution.empty();
   // A large map's query scores hundreds of thousands of entries: the query's
   // side of the distribution score is prepared once.
-  DistributionScorer distribution(
-      q.distribution, with_distribution ? static_cast<std::size_t>(distributions_.bins()) : 0,
-      "Database::query");
+  DistributionScorer distribution;
+  if (with_distribution) {
+    distribution = DistributionScorer(
+        q.distribution, static_cast<std::size_t>(distributions_.bins()), "Database::query");
+  }
   for (std::size_t t = 0; t < touched; ++t) {
     const EntryId id = scratch->touched[t];
     // The table's row of an entry some places ahead: the entries touched lie

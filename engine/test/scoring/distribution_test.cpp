@@ -259,6 +259,8 @@ TEST(DistributionScorer, OneQueryScoresManyVectorsAsDistributionScoreDoes) {
   }
   DistributionScorer empty({}, 0, "test");
   EXPECT_DOUBLE_EQ(empty.score(nullptr), 0.0);
+  const DistributionScorer none;  // a query without distribution score
+  EXPECT_EQ(none.bins(), 0u);
   // A vector of another bin count is refused by name, before any score.
   try {
     DistributionScorer(q, 8, "Database::query");

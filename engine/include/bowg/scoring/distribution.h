@@ -35,6 +35,8 @@ class DistributionScorer {
   /// std::invalid_argument naming `caller` when the query's differs (the two
   /// were built with different numbers of fan bins).
   DistributionScorer(const std::vector<double>& query, std::size_t db_bins, const char* caller);
+  /// Scores nothing (bins() 0): a query that asks for no distribution score.
+  DistributionScorer() = default;
   std::size_t bins() const { return dots_.size(); }
   /// The score against the bins() values at `db`, bit for bit
   /// distributionScore's.
