@@ -37,10 +37,10 @@ void NodeletDiagnostics::frameReceived(double stamp, GateDecision decision) {
   if (decision == GateDecision::kTimeJump) ++time_jump_resets_;
 }
 
-void NodeletDiagnostics::odometerLate() {
+void NodeletDiagnostics::odometryLate() {
   std::lock_guard<std::mutex> lock(mutex_);
-  ++odometer_late_;
-  last_odometer_late_ = now_();
+  ++odometry_late_;
+  last_odometry_late_ = now_();
 }
 
 bool NodeletDiagnostics::badImage(bowg::ImageProblem problem) {
@@ -111,7 +111,7 @@ void NodeletDiagnostics::addValues(diagnostic_updater::DiagnosticStatusWrapper& 
   status.add("skipped frames (stamp order)", skipped_out_of_order_);
   if (!last_stamp_rejection_.empty()) status.add("last stamp-order skip", last_stamp_rejection_);
   status.add("new runs (time jumped back)", time_jump_resets_);
-  status.add("frames without their odometer reading", odometer_late_);
+  status.add("frames without the odometry at their stamp", odometry_late_);
   // One value per reason of bowg::ImageProblem, named as the tools name them.
   for (std::size_t i = 1; i < bowg::kImageProblemCount; ++i) {
     const auto reason = static_cast<bowg::ImageProblem>(i);
@@ -161,10 +161,12 @@ void NodeletDiagnostics::inputWarnings(const NodeletSnapshot& nodelet,
                         " frames skipped for their stamps (latest: " + last_stamp_rejection_ +
                         "); a replay that starts over needs ~reset or ~reset_on_time_jump");
   }
-  if (recent(odometer_late_ > 0, last_odometer_late_)) {
-    warnings->push_back(std::to_string(odometer_late_) + " frames went on without the reading at " +
-                        "their stamp on " + settings_.odometer_stamped_topic +
-                        " (waited ~odometer_wait): its readings come late or stopped");
+  if (recent(odometry_late_ > 0, last_odometry_late_)) {
+    warnings->push_back(
+        std::to_string(odometry_late_) + " frames went on without the odometry " +
+        "at their stamp on " + settings_.odom_topic + " or " + settings_.odometer_stamped_topic +
+        " (waited ~odometry_wait): the readings come late, stopped, or are stamped on "
+        "another clock than the images");
   }
   if (settings_.distance_gate && !nodelet.has_odometry && frames_received_ > 0) {
     warnings->push_back("~min_keyframe_distance is set but no odometry arrived on " +

@@ -65,17 +65,14 @@ TEST(Diagnostics, ADistanceGateWithoutOdometryWarnsUntilOdometryArrives) {
       << "level " << int(last.level) << ": " << last.message;
 }
 
-// Bad frames on the compressed topic are refused from their header before
-// decoding (a PNG declaring 30000 x 30000 pixels would take 900 MB) and
-// counted by the reason the offline tools give; the nodelet goes on.
 // A stamped odometer (odometer_stamped): a frame gets the reading at its
 // stamp even when the image is handled first, and one whose reading never
-// comes goes on after ~odometer_wait, counted. Seen through the distance
+// comes goes on after ~odometry_wait, counted. Seen through the distance
 // gate: 0.5 m between keyframes.
 TEST(Diagnostics, AFrameWaitsForTheStampedOdometerReadingAtItsStamp) {
   DiagnosticsWatcher diagnostics;
   Detector d("/stamped", {{"min_keyframe_distance", XmlRpc::XmlRpcValue(0.5)},
-                          {"odometer_wait", XmlRpc::XmlRpcValue(0.3)}});
+                          {"odometry_wait", XmlRpc::XmlRpcValue(0.3)}});
   ASSERT_TRUE(d.loaded());
   ros::NodeHandle nh;
   ros::Publisher stamped = nh.advertise<OdometerStamped>("/stamped/odometer_stamped", 10);
@@ -111,15 +108,59 @@ TEST(Diagnostics, AFrameWaitsForTheStampedOdometerReadingAtItsStamp) {
   d.publish(test::viewAt(world, 2 * kStep, kViewWidth), 100.2);
   DiagnosticStatus last;
   EXPECT_TRUE(diagnostics.waitFor(d.name(), DiagnosticStatus::WARN,
-                                  "1 frames went on without the reading at their stamp on "
-                                  "/stamped/odometer_stamped",
+                                  "1 frames went on without the odometry at their stamp on "
+                                  "/stamped/odom or /stamped/odometer_stamped",
                                   10.0, &last))
       << "level " << int(last.level) << ": " << last.message;
-  EXPECT_EQ(diagnostics.value(d.name(), "frames without their odometer reading"), "1");
+  EXPECT_EQ(diagnostics.value(d.name(), "frames without the odometry at their stamp"), "1");
   EXPECT_EQ(diagnostics.value(d.name(), "frames received"), "3");
   EXPECT_EQ(d.statuses().size(), 2u);
 }
 
+// Odometry positions (odom) by their stamps too: a frame gets the position
+// at its stamp even when the image is handled first, and one whose position
+// never comes goes on after ~odometry_wait, counted. Through the distance
+// gate: 0.5 m between keyframes.
+TEST(Diagnostics, AFrameWaitsForTheOdometryPositionAtItsStamp) {
+  DiagnosticsWatcher diagnostics;
+  Detector d("/stampedodom", {{"min_keyframe_distance", XmlRpc::XmlRpcValue(0.5)},
+                              {"odometry_wait", XmlRpc::XmlRpcValue(0.3)}});
+  ASSERT_TRUE(d.loaded());
+  const cv::Mat world = test::makeWorld(kViewWidth + 10 * kStep, kViewHeight, 5);
+  d.publishOdometry(cv::Point3d(0, 0, 0), 100.0);
+  d.publish(test::viewAt(world, 0, kViewWidth), 100.0);  // the first keyframe
+  ASSERT_TRUE(d.waitForStatuses(1, 20.0));
+  // The image of 100.1 before its position (1 m further): it waits for it
+  // and is a keyframe. Taken on arrival, it would have had 0 m: too close.
+  d.publish(test::viewAt(world, kStep, kViewWidth), 100.1);
+  ros::WallDuration(0.1).sleep();
+  d.publishOdometry(cv::Point3d(1, 0, 0), 100.1);
+  ASSERT_TRUE(d.waitForStatuses(2, 20.0));
+  // A position stamped after the next image (another 1 m) stays after it:
+  // the image of 100.2 has 0 m since the last keyframe, too close.
+  d.publish(test::viewAt(world, 2 * kStep, kViewWidth), 100.2);
+  ros::WallDuration(0.1).sleep();
+  d.publishOdometry(cv::Point3d(2, 0, 0), 100.25);
+  // No position for 100.3 (the last came at 100.25): it goes on after
+  // 0.3 s with the 1 m since the last keyframe: a keyframe, counted.
+  d.publish(test::viewAt(world, 3 * kStep, kViewWidth), 100.3);
+  DiagnosticStatus last;
+  EXPECT_TRUE(diagnostics.waitFor(d.name(), DiagnosticStatus::WARN,
+                                  "1 frames went on without the odometry at their stamp on "
+                                  "/stampedodom/odom or /stampedodom/odometer_stamped",
+                                  10.0, &last))
+      << "level " << int(last.level) << ": " << last.message;
+  EXPECT_EQ(diagnostics.value(d.name(), "frames without the odometry at their stamp"), "1");
+  EXPECT_EQ(diagnostics.value(d.name(), "frames received"), "4");
+  ASSERT_TRUE(d.waitForStatuses(3, 20.0));
+  const std::vector<KeyframeStatus> statuses = d.statuses();
+  ASSERT_EQ(statuses.size(), 3u);
+  EXPECT_DOUBLE_EQ(statuses[2].header.stamp.toSec(), 100.3);
+}
+
+// Bad frames on the compressed topic are refused from their header before
+// decoding (a PNG declaring 30000 x 30000 pixels would take 900 MB) and
+// counted by the reason the offline tools give; the nodelet goes on.
 TEST(Diagnostics, BadCompressedFramesAreCountedByReason) {
   DiagnosticsWatcher diagnostics;
   Detector d("/badcompressed", {{"use_compressed", XmlRpc::XmlRpcValue(true)}});

@@ -143,21 +143,23 @@ TEST_F(NodeletDiagnosticsTest, StampSkipsWarnWhileRecentAndStayCounted) {
 }
 
 TEST_F(NodeletDiagnosticsTest, FramesWithoutTheirOdometerReadingWarnWhileRecent) {
-  EXPECT_EQ(value(diagnose(), "frames without their odometer reading"), "0");
+  EXPECT_EQ(value(diagnose(), "frames without the odometry at their stamp"), "0");
   diagnostics.frameReceived(100.0, GateDecision::kAccept);
-  diagnostics.odometerLate();
-  diagnostics.odometerLate();
+  diagnostics.odometryLate();
+  diagnostics.odometryLate();
   auto status = diagnose();
   EXPECT_EQ(status.level, DiagnosticStatus::WARN);
   EXPECT_EQ(status.message,
-            "2 frames went on without the reading at their stamp on /cam/odometer_stamped "
-            "(waited ~odometer_wait): its readings come late or stopped");
-  EXPECT_EQ(value(status, "frames without their odometer reading"), "2");
+            "2 frames went on without the odometry at their stamp on /cam/odom or "
+            "/cam/odometer_stamped "
+            "(waited ~odometry_wait): the readings come late, stopped, or are stamped on another "
+            "clock than the images");
+  EXPECT_EQ(value(status, "frames without the odometry at their stamp"), "2");
   advance(31);
   diagnostics.frameReceived(101.0, GateDecision::kAccept);
   status = diagnose();
   EXPECT_EQ(status.level, DiagnosticStatus::OK) << status.message;
-  EXPECT_EQ(value(status, "frames without their odometer reading"), "2");
+  EXPECT_EQ(value(status, "frames without the odometry at their stamp"), "2");
 }
 
 TEST_F(NodeletDiagnosticsTest, ATimeJumpCountsANewRunWithoutAWarning) {

@@ -65,10 +65,10 @@ class NodeletDiagnostics {
   /// one does not hide another.
   bool badImage(bowg::ImageProblem problem);
   void cameraInfoReceived();
-  /// A frame went on without the stamped odometer's reading at its stamp
-  /// (it waited ~odometer_wait s, odometer_merge.h): its metres driven are
-  /// the latest that had come.
-  void odometerLate();
+  /// A frame went on without the stamped odometry at its stamp (it waited
+  /// ~odometry_wait s, odometry_merge.h): its position and metres driven
+  /// are the latest that had come.
+  void odometryLate();
   /// A keyframe went through the detector; returns the loops found so far.
   std::size_t keyframeProcessed(const bowg::LoopResult& result, bool outside_odometry,
                                 double convert_ms, double feature_ms);
@@ -107,7 +107,7 @@ class NodeletDiagnostics {
   std::size_t metric_loops_ = 0;             ///< loops with a metric translation
   std::size_t metric_outside_odometry_ = 0;  ///< metric translations the odometry rules out
   std::size_t skipped_out_of_order_ = 0, errors_ = 0, time_jump_resets_ = 0;
-  std::size_t odometer_late_ = 0;  ///< frames that went on without their reading
+  std::size_t odometry_late_ = 0;  ///< frames that went on without their reading
   /// Images refused, by reason (bowg/features/image_check.h): the same
   /// reasons the offline tools count.
   bowg::ImageProblemCounts bad_images_;
@@ -118,7 +118,7 @@ class NodeletDiagnostics {
   // When each condition last happened: a condition is reported while it
   // happened within the window.
   Clock::time_point started_, last_frame_, last_camera_info_, last_rejected_, last_stamp_skip_,
-      last_drop_, last_error_, last_odometer_late_;
+      last_drop_, last_error_, last_odometry_late_;
   bool any_frame_ = false, any_camera_info_ = false;
   std::size_t drops_seen_ = 0;
   Window window_;

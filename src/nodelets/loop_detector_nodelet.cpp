@@ -46,7 +46,7 @@ LoopDetectorNodelet::~LoopDetectorNodelet() {
   odom_sub_.shutdown();
   odometer_sub_.shutdown();
   odometer_stamped_sub_.shutdown();
-  odometer_timer_.stop();
+  odometry_timer_.stop();
   diagnostics_timer_.stop();
   if (queue_) queue_->shutdown();
   if (worker_.joinable()) worker_.join();
@@ -212,21 +212,23 @@ void LoopDetectorNodelet::advertiseInterfaces(ros::NodeHandle& nh, ros::NodeHand
 void LoopDetectorNodelet::subscribeOdometry(ros::NodeHandle& nh) {
   // Odometry feeds the distance gate and the keyframes' odometer (windows in
   // metres: recent_exclusion_m, alignment_window_m, max_island_distance_m);
-  // without a publisher those fall back to keyframes.
+  // without a publisher those fall back to keyframes. Stamped positions
+  // (the usual) go through the merge as odometer_stamped's readings do: a
+  // frame gets the position at its stamp.
   odom_sub_ = nh.subscribe(publicName("odom"), 50, &LoopDetectorNodelet::odometryCallback, this);
   // A robot without positions may still count the metres it drives (a
   // crawler's cable counter): std_msgs/Float64 on `odometer`.
   odometer_sub_ =
       nh.subscribe(publicName("odometer"), 50, &LoopDetectorNodelet::odometerCallback, this);
   // The same metres stamped when measured (bowg_ros/OdometerStamped on
-  // `odometer_stamped`): a frame then waits, up to ~odometer_wait, for the
+  // `odometer_stamped`): a frame then waits, up to ~odometry_wait, for the
   // reading at its stamp, whatever order the topics arrive in.
   odometer_stamped_sub_ = nh.subscribe(publicName("odometer_stamped"), 50,
                                        &LoopDetectorNodelet::odometerStampedCallback, this);
-  odometer_timer_ = nh.createWallTimer(ros::WallDuration(std::max(0.01, odometer_wait_ / 4.0)),
+  odometry_timer_ = nh.createWallTimer(ros::WallDuration(std::max(0.01, odometry_wait_ / 4.0)),
                                        [this](const ros::WallTimerEvent&) {
                                          std::lock_guard<std::mutex> lock(gate_mutex_);
-                                         if (odometer_merge_.waiting() > 0) releaseMerged();
+                                         if (odometry_merge_.waiting() > 0) releaseMerged();
                                        });
 }
 

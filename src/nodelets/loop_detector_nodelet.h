@@ -3,8 +3,8 @@
 // on a worker thread, messages out:
 //
 //   image (+ camera_info) or keyframe_features
-//     -> camera callback: encoding check, (with a stamped odometer: the
-//        wait for the reading at the frame's stamp), stamp order, keyframe
+//     -> camera callback: encoding check, (with stamped odometry: the
+//        wait for the readings at the frame's stamp), stamp order, keyframe
 //        gate, push (never blocks: bounded queue drops the oldest frame)
 //     -> worker thread: grey conversion, features, LoopDetector::process()
 //        under the detector lock
@@ -22,7 +22,7 @@
 //                    file holds it (a load reads and checks the file first,
 //                    then swaps it in; a save serializes under it and writes
 //                    after); the final save runs once the worker stopped.
-//   gate_mutex_      gate_ (stamp order, odometry), odometer_merge_ and
+//   gate_mutex_      gate_ (stamp order, odometry), odometry_merge_ and
 //                    intrinsics_. Taken by the input callbacks, the
 //                    odometer timer, the worker (intrinsics), restartRun()
 //                    and diagnose(); frames go into queue_ under it, so
@@ -89,7 +89,7 @@
 #include "bowg_ros/live_parameters.h"
 #include "bowg_ros/live_tuning_server.h"
 #include "bowg_ros/nodelet_diagnostics.h"
-#include "bowg_ros/odometer_merge.h"
+#include "bowg_ros/odometry_merge.h"
 #include "bowg_ros/ros_conversions.h"
 
 namespace bowg_ros {
@@ -170,19 +170,27 @@ class LoopDetectorNodelet : public nodelet::Nodelet {
   void odometerStampedCallback(const OdometerStamped::ConstPtr& msg);
   /// One odometer reading into the gate (either topic); gate_mutex_ held.
   void applyOdometerReading(double metres);
-  /// True when frames wait for the stamped odometer (odometer_merge.h): a
-  /// publisher or a reading on odometer_stamped, or frames still waiting.
+  /// One odometry reading (a position or metres driven) into the gate;
   /// gate_mutex_ held.
-  bool waitsForOdometer() const;
-  /// Hands on what the stamped odometer's merge holds ready; gate_mutex_ held.
+  void applyReading(const OdometryReading& r);
+  /// A stamped reading from `topic` (odom, odometer_stamped) into the
+  /// merge: one older than its topic's previous is dropped with a warning,
+  /// or, far back with ~reset_on_time_jump, starts the topic's run over;
+  /// then the merge's ready frames go on. gate_mutex_ held.
+  void addStampedReading(double stamp, const OdometryReading& r, const char* topic);
+  /// True when frames wait for stamped odometry (odometry_merge.h): a
+  /// reading on odom or odometer_stamped, a publisher on odometer_stamped,
+  /// or frames still waiting. gate_mutex_ held.
+  bool waitsForOdometry() const;
+  /// Hands on what the stamped odometry's merge holds ready; gate_mutex_ held.
   void releaseMerged();
   void reportOdometryInput(bowg::OdometryInput input);
-  /// A frame in: through the stamped odometer's merge when there is one,
+  /// A frame in: through the stamped odometry's merge when there is one,
   /// else straight to admit().
   void offer(Frame frame);
-  /// Stamp order + keyframe gate, then the queue; `odometer_late`: it went
+  /// Stamp order + keyframe gate, then the queue; `odometry_late`: it went
   /// on without its odometer reading. gate_mutex_ held.
-  void admit(Frame frame, bool odometer_late);
+  void admit(Frame frame, bool odometry_late);
 
   void workerLoop();
   void processFrame(const Frame& frame);
@@ -239,8 +247,8 @@ class LoopDetectorNodelet : public nodelet::Nodelet {
   int queue_size_ = 2;
   bool use_compressed_ = false, use_features_input_ = false, publish_correspondences_ = false;
   KeyframeGateOptions gate_options_;
-  /// s a frame waits for the stamped odometer's reading at its stamp.
-  double odometer_wait_ = 0.2;
+  /// s a frame waits for the stamped odometry at its stamp.
+  double odometry_wait_ = 0.2;
   double diagnostics_window_ = 30.0;  ///< s: how long a condition stays in the diagnostics
   std::string startup_error_;         ///< why the nodelet did not start (empty: it did)
   /// The feature options at start-up, for their image size limit (not a
@@ -259,7 +267,7 @@ class LoopDetectorNodelet : public nodelet::Nodelet {
   // Camera callback side (see the locks above).
   std::mutex gate_mutex_;
   KeyframeGate gate_;
-  OdometerMerge<Frame> odometer_merge_;
+  OdometryMerge<Frame> odometry_merge_;
   bowg::CameraIntrinsics intrinsics_;
 
   // Worker thread only.
@@ -279,8 +287,8 @@ class LoopDetectorNodelet : public nodelet::Nodelet {
   image_transport::Subscriber image_sub_;
   ros::Subscriber compressed_sub_, features_sub_, info_sub_, odom_sub_, odometer_sub_,
       odometer_stamped_sub_;
-  /// Releases frames that waited ~odometer_wait for their reading.
-  ros::WallTimer odometer_timer_;
+  /// Releases frames that waited ~odometry_wait for their reading.
+  ros::WallTimer odometry_timer_;
   ros::Publisher loop_pub_, status_pub_;
   // The services run on a queue and a thread of the nodelet's own, so a long
   // save does not hold up images, and the nodelet's ROS handles use one

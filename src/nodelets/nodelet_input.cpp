@@ -1,7 +1,7 @@
 // LoopDetectorNodelet: the input callbacks. They only check, gate and enqueue
 // (never block: the bounded queue drops the oldest frame); the worker converts.
-// With a stamped odometer a frame first waits, briefly, for the reading at
-// its stamp (odometer_merge.h).
+// With stamped odometry (odom, odometer_stamped) a frame first waits,
+// briefly, for the readings at its stamp (odometry_merge.h).
 #include <cmath>
 
 #include "loop_detector_nodelet.h"
@@ -18,35 +18,41 @@ double steadySeconds() {
 
 void LoopDetectorNodelet::offer(Frame frame) {
   std::lock_guard<std::mutex> lock(gate_mutex_);
-  if (!waitsForOdometer()) return admit(std::move(frame), false);
-  odometer_merge_.addFrame(frame.header.stamp.toSec(), steadySeconds(), std::move(frame));
+  if (!waitsForOdometry()) return admit(std::move(frame), false);
+  odometry_merge_.addFrame(frame.header.stamp.toSec(), steadySeconds(), std::move(frame));
   releaseMerged();
 }
 
-bool LoopDetectorNodelet::waitsForOdometer() const {
-  return odometer_merge_.hasReadings() || odometer_merge_.waiting() > 0 ||
+bool LoopDetectorNodelet::waitsForOdometry() const {
+  return odometry_merge_.hasReadings() || odometry_merge_.waiting() > 0 ||
          odometer_stamped_sub_.getNumPublishers() > 0;
 }
 
 void LoopDetectorNodelet::releaseMerged() {
-  odometer_merge_.release(
-      steadySeconds(), odometer_wait_, [this](double metres) { applyOdometerReading(metres); },
+  odometry_merge_.release(
+      steadySeconds(), odometry_wait_, [this](const OdometryReading& r) { applyReading(r); },
       [this](Frame&& frame, bool late) { admit(std::move(frame), late); });
 }
 
-void LoopDetectorNodelet::admit(Frame frame, bool odometer_late) {
+void LoopDetectorNodelet::applyReading(const OdometryReading& r) {
+  if (r.source == OdometryReading::kPosition) return gate_.addPosition(r.x, r.y, r.z);
+  applyOdometerReading(r.metres);
+}
+
+void LoopDetectorNodelet::admit(Frame frame, bool odometry_late) {
   const double stamp = frame.header.stamp.toSec();
   const GateDecision d = gate_.check(stamp);
   frame.odometer = gate_.odometer();
   frame.position = gate_.position();
   frame.epoch = gate_.epoch();
   diagnostics_.frameReceived(stamp, d);
-  if (odometer_late) {
-    diagnostics_.odometerLate();
+  if (odometry_late) {
+    diagnostics_.odometryLate();
     NODELET_WARN_THROTTLE(5.0,
-                          "frame at %.6f went on without the reading at its stamp on %s "
-                          "(waited ~odometer_wait %.3f s): the latest reading before it is used",
-                          stamp, publicName("odometer_stamped").c_str(), odometer_wait_);
+                          "frame at %.6f went on without the odometry at its stamp on %s or %s "
+                          "(waited ~odometry_wait %.3f s): the latest readings before it are used",
+                          stamp, publicName("odom").c_str(), publicName("odometer_stamped").c_str(),
+                          odometry_wait_);
   }
   if (isStampRejection(d)) {
     NODELET_WARN_THROTTLE(2.0,
@@ -108,7 +114,7 @@ void LoopDetectorNodelet::cameraInfoCallback(const sensor_msgs::CameraInfoConstP
 
 void LoopDetectorNodelet::odometerCallback(const std_msgs::Float64ConstPtr& msg) {
   std::lock_guard<std::mutex> lock(gate_mutex_);
-  if (odometer_merge_.hasReadings()) {
+  if (odometry_merge_.hasReadings(OdometryReading::kOdometer)) {
     NODELET_INFO_ONCE("%s is ignored: stamped readings of the same odometer arrive on %s",
                       publicName("odometer").c_str(), publicName("odometer_stamped").c_str());
     return;
@@ -117,18 +123,22 @@ void LoopDetectorNodelet::odometerCallback(const std_msgs::Float64ConstPtr& msg)
 }
 
 void LoopDetectorNodelet::odometerStampedCallback(const OdometerStamped::ConstPtr& msg) {
-  const double stamp = msg->header.stamp.toSec();
   std::lock_guard<std::mutex> lock(gate_mutex_);
-  if (!odometer_merge_.addReading(stamp, msg->metres)) {
+  addStampedReading(msg->header.stamp.toSec(), OdometryReading::odometer(msg->metres),
+                    "odometer_stamped");
+}
+
+void LoopDetectorNodelet::addStampedReading(double stamp, const OdometryReading& r,
+                                            const char* topic) {
+  if (!odometry_merge_.addReading(stamp, r)) {
     // Far back with ~reset_on_time_jump: a replay that started over.
-    if (!isTimeJump(stamp, odometer_merge_.lastStamp(), gate_options_.time_jump_reset)) {
-      NODELET_WARN_THROTTLE(5.0,
-                            "odometer reading at %.6f on %s is older than the previous: ignored",
-                            stamp, publicName("odometer_stamped").c_str());
+    if (!isTimeJump(stamp, odometry_merge_.lastStamp(r.source), gate_options_.time_jump_reset)) {
+      NODELET_WARN_THROTTLE(5.0, "reading at %.6f on %s is older than the previous: ignored", stamp,
+                            publicName(topic).c_str());
       return;
     }
-    odometer_merge_.restartReadings();
-    odometer_merge_.addReading(stamp, msg->metres);
+    odometry_merge_.restartReadings(r.source);
+    odometry_merge_.addReading(stamp, r);
   }
   releaseMerged();
 }
@@ -148,8 +158,13 @@ void LoopDetectorNodelet::applyOdometerReading(double metres) {
 
 void LoopDetectorNodelet::odometryCallback(const nav_msgs::OdometryConstPtr& msg) {
   const geometry_msgs::Point& p = msg->pose.pose.position;
+  const OdometryReading r = OdometryReading::position(p.x, p.y, p.z);
   std::lock_guard<std::mutex> lock(gate_mutex_);
-  gate_.addPosition(p.x, p.y, p.z);
+  if (!msg->header.stamp.isZero()) return addStampedReading(msg->header.stamp.toSec(), r, "odom");
+  // Stamp 0 is ROS's "time unknown": such a position is taken on arrival.
+  NODELET_INFO_ONCE("%s carries no stamps (0): each position is taken when it arrives",
+                    publicName("odom").c_str());
+  applyReading(r);
 }
 
 }  // namespace bowg_ros

@@ -30,7 +30,7 @@ const char* const kNodeParameters[] = {
     "mission_name",
     "mission_id",
     "reference_maps",
-    "odometer_wait",
+    "odometry_wait",
 };
 
 bool isNodeParameter(const std::string& name) {
@@ -77,10 +77,10 @@ bool LoopDetectorNodelet::loadParameters(ros::NodeHandle& pnh) {
     return fatal("~diagnostics_window must be a finite number of seconds > 0 (got " +
                  std::to_string(diagnostics_window_) + ")");
   }
-  pnh.param("odometer_wait", odometer_wait_, 0.2);
-  if (!(odometer_wait_ >= 0.0) || !std::isfinite(odometer_wait_)) {
-    return fatal("~odometer_wait must be a finite number of seconds >= 0 (got " +
-                 std::to_string(odometer_wait_) + ")");
+  pnh.param("odometry_wait", odometry_wait_, 0.2);
+  if (!(odometry_wait_ >= 0.0) || !std::isfinite(odometry_wait_)) {
+    return fatal("~odometry_wait must be a finite number of seconds >= 0 (got " +
+                 std::to_string(odometry_wait_) + ")");
   }
   if (queue_size_ < 1) {
     return fatal("~queue_size must be >= 1 (got " + std::to_string(queue_size_) + ")");

@@ -44,6 +44,10 @@ const char* const kUsage =
     "                             the path of the readings before it in the bag; or\n"
     "                             bowg_ros/OdometerStamped (/odometer_stamped), the path of the\n"
     "                             readings stamped at or before the image\n"
+    "  --odom-topic T             with --bag: odometry positions (nav_msgs/Odometry, the\n"
+    "                             generator's /odom) as the nodelet takes them (instead of\n"
+    "                             --odometry and --odometry-poses): each image gets the\n"
+    "                             position stamped at or before it and the path length so far\n"
     "  --missions FILE            the frames where each mission starts (CSV lines\n"
     "                             first_frame,mission_id,name; the generator's missions.csv):\n"
     "                             each mission is started as the nodelet's ~mission_name starts\n"
@@ -159,6 +163,14 @@ void checkInput(const Args& a) {
   if (!a.odometer_topic.empty() && !a.odometry.empty()) {
     throw std::invalid_argument("give one of --odometer-topic and --odometry, not both");
   }
+  if (!a.odom_topic.empty() && a.bag.empty()) {
+    throw std::invalid_argument(
+        "--odom-topic is for --bag (an image folder takes --odometry-poses)");
+  }
+  if (!a.odom_topic.empty() && (!a.odometry.empty() || !a.odometry_poses.empty())) {
+    throw std::invalid_argument(
+        "give --odom-topic or --odometry/--odometry-poses, not both: they measure the same path");
+  }
 }
 
 // The missions, maps and frames left out.
@@ -253,6 +265,8 @@ Args parseArgs(int argc, char** argv) {
       a.mission_id = static_cast<long long>(id);
     } else if (flag == "--odometer-topic")
       a.odometer_topic = v;
+    else if (flag == "--odom-topic")
+      a.odom_topic = v;
     else if (flag == "--intrinsics")
       a.intrinsics = v;
     else if (flag == "--rows") {

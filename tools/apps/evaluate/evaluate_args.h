@@ -14,7 +14,8 @@ struct Args {
   std::string images, vocabulary, config, gt, output = "bowg_evaluation", sweep = "rerun";
   std::string odometry;
   std::string odometry_poses;
-  std::string odometer_topic;     ///< --odometer-topic: std_msgs/Float64 readings in the bag
+  std::string odometer_topic;     ///< --odometer-topic: metres driven in the bag
+  std::string odom_topic;         ///< --odom-topic: nav_msgs/Odometry positions in the bag
   std::string missions;           ///< --missions: the frames where each mission starts
   std::vector<std::string> maps;  ///< --map (repeatable): earlier missions to start from
   std::string save_map;           ///< --save-map: the last row's detector after the run

@@ -18,14 +18,12 @@
 #include <limits>
 #include <string>
 
+#include "bag_odometry.h"
 #include "bowg/core/errors.h"
 #include "bowg/features/image_decoding.h"
 #include "bowg_bag_reading/bag_images.h"
 #include "bowg_evaluation/intrinsics_file.h"
 #include "bowg_evaluation/odometry_file.h"
-#include "bowg_ros/OdometerStamped.h"
-#include "bowg_ros/keyframe_gate.h"
-#include "bowg_ros/odometer_merge.h"
 #include "bowg_ros/ros_conversions.h"
 #include "console_output.h"
 
@@ -127,73 +125,6 @@ std::vector<FrameInput> loadFolder(const Args& a, const FeatureExtractor& extrac
   return frames;
 }
 
-// The odometer readings of a bag as the nodelet takes them: std_msgs/Float64
-// in bag order (a frame gets the path of the readings before it),
-// bowg_ros/OdometerStamped by stamp (a frame gets the path of the readings
-// stamped at or before it: the nodelet's OdometerMerge, with no time limit).
-// The path sums |change| from the first reading, as the keyframe gate does.
-class BagOdometer {
- public:
-  BagOdometer(const std::string& bag, const std::string& topic, std::vector<FrameInput>* frames)
-      : bag_(bag), topic_(topic), frames_(frames) {}
-
-  /// The bag's readings on the topic are stamped: from the first frame on,
-  /// frames wait for them (as the nodelet's do while the topic has a
-  /// publisher).
-  void expectStamped(rosbag::View& view) {
-    for (const rosbag::ConnectionInfo* c : view.getConnections()) {
-      if (c->topic == topic_ && c->datatype == "bowg_ros/OdometerStamped") stamped_ = true;
-    }
-  }
-
-  void reading(const rosbag::MessageInstance& m) {
-    if (const std_msgs::Float64::ConstPtr r = m.instantiate<std_msgs::Float64>()) {
-      if (!stamped_) gate_.addOdometerReading(r->data);  // the stamped readings win, as live
-      return;
-    }
-    const bowg_ros::OdometerStamped::ConstPtr r = m.instantiate<bowg_ros::OdometerStamped>();
-    if (!r) {
-      throw FormatError(bag_ + ": " + topic_ +
-                        " is neither std_msgs/Float64 nor bowg_ros/OdometerStamped");
-    }
-    stamped_ = true;
-    if (merge_.addReading(r->header.stamp.toSec(), r->metres)) release(false);
-  }
-
-  /// frames_->back() was just added, stamped `stamp`.
-  void frameAdded(double stamp) {
-    if (!stamped_) {
-      frames_->back().odometer = gate_.odometer();
-      return;
-    }
-    merge_.addFrame(stamp, 0.0, frames_->size() - 1);
-    release(false);
-  }
-
-  /// Frames wait for a stamped reading at or after their stamp.
-  bool waiting() const { return merge_.waiting() > 0; }
-
-  /// The frames no reading reached: the path of every reading.
-  void finish() { release(true); }
-
- private:
-  // Every frame "arrives" at 0 and waits 1 s: no frame is late before the
-  // end, where all go on (now 1).
-  void release(bool all) {
-    merge_.release(
-        all ? 1.0 : 0.0, 1.0, [this](double metres) { gate_.addOdometerReading(metres); },
-        [this](std::size_t&& i, bool) { (*frames_)[i].odometer = gate_.odometer(); });
-  }
-
-  std::string bag_, topic_;
-  std::vector<FrameInput>* frames_;
-  bowg_ros::OdometerMerge<std::size_t> merge_{std::numeric_limits<std::size_t>::max()};
-  bool stamped_ = false;
-  /// The nodelet's sum of the readings (|change|; non-finite ones ignored);
-  /// only its odometer is used, frames are not gated here.
-  bowg_ros::KeyframeGate gate_;
-};
-
 std::vector<FrameInput> loadBag(const Args& a, const FeatureExtractor& extractor) {
   std::vector<FrameInput> frames;
   FrameCollector collect(extractor, &frames);
@@ -207,7 +138,8 @@ std::vector<FrameInput> loadBag(const Args& a, const FeatureExtractor& extractor
   std::vector<std::string> topics{a.image_topic};
   if (a.info_topic != "none") topics.push_back(a.info_topic);
   if (!a.odometer_topic.empty()) topics.push_back(a.odometer_topic);
-  BagOdometer odometer(a.bag, a.odometer_topic, &frames);
+  if (!a.odom_topic.empty()) topics.push_back(a.odom_topic);
+  BagOdometry odometer(a.bag, a.odometer_topic, a.odom_topic, &frames);
   rosbag::View view(bag, rosbag::TopicQuery(topics));
   odometer.expectStamped(view);
   rosbag::View images_only(bag, rosbag::TopicQuery(a.image_topic));
@@ -225,7 +157,7 @@ std::vector<FrameInput> loadBag(const Args& a, const FeatureExtractor& extractor
       if (info && !intrinsics.valid) intrinsics = bowg_ros::toIntrinsics(*info);
       continue;
     }
-    if (m.getTopic() == a.odometer_topic) {
+    if (odometer.reads(m.getTopic())) {
       odometer.reading(m);
       continue;
     }

@@ -143,7 +143,7 @@ void BagOutput::writeOdometry(const pipe_sim::FrameState& f, const pipe_sim::Cam
     for (int c = 0; c < 6; ++c) odometry.pose.covariance[6 * r + c] = covariance(r, c);
   }
   // The twist stays zero: the pose is what the pose-graph examples read.
-  bag_.write("/odom", odometry.header.stamp, odometry);
+  bag_.write("/odom", stampOf(f.stamp - kOdometerLead), odometry);
   const cv::Vec3d position(pose.position[0], pose.position[1], pose.position[2]);
   if (has_position_) odometer_ += cv::norm(position - last_position_);
   has_position_ = true;

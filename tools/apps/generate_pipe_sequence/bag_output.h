@@ -33,8 +33,8 @@ class BagOutput {
   /// /odometer (std_msgs/Float64) the path length of the odometry's
   /// positions so far, what a robot without positions counts (a cable
   /// counter), and the same on /odometer_stamped (bowg_ros/OdometerStamped,
-  /// its header stamped f.stamp); both recorded kOdometerLead before the
-  /// frame so that a player delivers them before the frame's image.
+  /// its header stamped f.stamp); all three recorded kOdometerLead before
+  /// the frame so that a player delivers them before the frame's image.
   void writeOdometry(const pipe_sim::FrameState& f, const pipe_sim::CameraPose& pose,
                      const cv::Vec4d& q, const cv::Matx<double, 6, 6>& covariance);
 
@@ -55,7 +55,7 @@ class BagOutput {
   double odometer_ = 0;
 };
 
-/// How long before its frame the /odometer reading is stamped (s).
+/// How long before its frame's image the odometry is recorded in the bag (s).
 constexpr double kOdometerLead = 0.02;
 
 }  // namespace generate_pipe_sequence_app

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 #include <rosbag/bag.h>
 #include <sensor_msgs/CompressedImage.h>
+#include <std_msgs/Float64.h>
 
 #include <cstdio>
 #include <fstream>
@@ -60,6 +61,18 @@ class EvaluateCli : public ::testing::Test {
                                     const std::string& out) {
     return kEvaluate + " --quiet --images " + dir + " --vocabulary " + BOWG_DEFAULT_VOCABULARY +
            " --config " + config + " --thresholds 0.7 --output " + out;
+  }
+
+  // The folder's frame i as a bag's PNG image, stamped 100 + i s.
+  static sensor_msgs::CompressedImage compressedFrame(int i) {
+    sensor_msgs::CompressedImage msg;
+    msg.header.stamp = ros::Time(100 + i, 0);
+    msg.format = "mono8; png compressed";
+    char name[64];
+    std::snprintf(name, sizeof name, "/frames/frame_%06d.png", i);
+    const std::string png = readAll(kDir + name);
+    msg.data.assign(png.begin(), png.end());
+    return msg;
   }
 
   static std::string evaluate(const std::string& extra, const std::string& out) {
@@ -255,13 +268,7 @@ TEST_F(EvaluateCli, BadCompressedBagImagesAreSkippedWithTheFolderReasons) {
   {
     rosbag::Bag bag(bag_path, rosbag::bagmode::Write);
     for (int i = 0; i < 20; ++i) {
-      sensor_msgs::CompressedImage msg;
-      msg.header.stamp = ros::Time(100 + i, 0);
-      msg.format = "mono8; png compressed";
-      char name[64];
-      std::snprintf(name, sizeof name, "/frames/frame_%06d.png", i);
-      const std::string png = readAll(kDir + name);
-      msg.data.assign(png.begin(), png.end());
+      sensor_msgs::CompressedImage msg = compressedFrame(i);
       if (i == 5) msg.data.clear();
       if (i == 9) msg.data = test::truncatedJpeg();
       if (i == 12) msg.data = test::pngDeclaring(30000, 30000);
@@ -334,6 +341,37 @@ TEST_F(EvaluateCli, BadOptionsAreRefusedWithAMessage) {
   writeFile(kDir + "/short_odometry.csv", "frame,x,y,z\n0,0,0,0\n1,0.1,0,0\n");
   EXPECT_NE(run(evaluate("--odometry-poses " + kDir + "/short_odometry.csv", "bad"), log), 0);
   EXPECT_NE(readAll(log).find(kDir + "/short_odometry.csv: odometry positions for 2 frames"),
+            std::string::npos)
+      << readAll(log);
+}
+
+// --odom-topic reads nav_msgs/Odometry from a bag: a folder, a second source
+// of the same path, or a topic of another type is refused, naming the cause.
+TEST_F(EvaluateCli, BadOdomTopicsAreRefusedNamingTheCause) {
+  const std::string log = kDir + "/bad_odom.log";
+  EXPECT_NE(run(evaluate("--odom-topic /odom", "bad_odom"), log), 0);
+  EXPECT_NE(readAll(log).find("--odom-topic is for --bag"), std::string::npos) << readAll(log);
+  const std::string bag_path = kDir + "/float_odom.bag";
+  {
+    rosbag::Bag bag(bag_path, rosbag::bagmode::Write);
+    for (int i = 0; i < 3; ++i) {
+      const sensor_msgs::CompressedImage msg = compressedFrame(i);
+      bag.write("/camera/image_raw/compressed", msg.header.stamp, msg);
+      std_msgs::Float64 metres;
+      metres.data = 0.1 * i;
+      bag.write("/odom", msg.header.stamp, metres);
+    }
+  }
+  const std::string cmd = kEvaluate + " --quiet --bag " + bag_path +
+                          " --image-topic /camera/image_raw/compressed --vocabulary " +
+                          BOWG_DEFAULT_VOCABULARY + " --config " + kDir + "/config.yaml --output " +
+                          kDir + "/bad_odom --odom-topic /odom";
+  EXPECT_NE(run("timeout 300 " + cmd, log), 0);
+  EXPECT_NE(readAll(log).find(bag_path + ": /odom is not nav_msgs/Odometry"), std::string::npos)
+      << readAll(log);
+  writeFile(kDir + "/odometers.csv", "frame,odometer\n0,0\n1,0.1\n2,0.2\n");
+  EXPECT_NE(run("timeout 300 " + cmd + " --odometry " + kDir + "/odometers.csv", log), 0);
+  EXPECT_NE(readAll(log).find("give --odom-topic or --odometry/--odometry-poses, not both"),
             std::string::npos)
       << readAll(log);
 }

@@ -1,0 +1,98 @@
+// A bag's odometry as the nodelet takes it (see bag_odometry.h).
+#include "bag_odometry.h"
+
+#include <nav_msgs/Odometry.h>
+#include <std_msgs/Float64.h>
+
+#include <limits>
+
+#include "bowg/core/errors.h"
+#include "bowg_ros/OdometerStamped.h"
+
+namespace bowg {
+namespace evaluate_app {
+
+using bowg_ros::OdometryReading;
+
+BagOdometry::BagOdometry(const std::string& bag, const std::string& odometer_topic,
+                         const std::string& odom_topic, std::vector<eval::FrameInput>* frames)
+    : bag_(bag),
+      odometer_topic_(odometer_topic),
+      odom_topic_(odom_topic),
+      frames_(frames),
+      merge_(std::numeric_limits<std::size_t>::max()) {}
+
+void BagOdometry::expectStamped(rosbag::View& view) {
+  for (const rosbag::ConnectionInfo* c : view.getConnections()) {
+    if (!odometer_topic_.empty() && c->topic == odometer_topic_ &&
+        c->datatype == "bowg_ros/OdometerStamped") {
+      stamped_odometer_ = true;
+    }
+  }
+}
+
+bool BagOdometry::reads(const std::string& topic) const {
+  return !topic.empty() && (topic == odometer_topic_ || topic == odom_topic_);
+}
+
+void BagOdometry::reading(const rosbag::MessageInstance& m) {
+  if (m.getTopic() == odom_topic_) return positionReading(m);
+  odometerReading(m);
+}
+
+void BagOdometry::odometerReading(const rosbag::MessageInstance& m) {
+  if (const std_msgs::Float64::ConstPtr r = m.instantiate<std_msgs::Float64>()) {
+    if (!stamped_odometer_) gate_.addOdometerReading(r->data);  // stamped ones win, as live
+    return;
+  }
+  const bowg_ros::OdometerStamped::ConstPtr r = m.instantiate<bowg_ros::OdometerStamped>();
+  if (!r) {
+    throw FormatError(bag_ + ": " + odometer_topic_ +
+                      " is neither std_msgs/Float64 nor bowg_ros/OdometerStamped");
+  }
+  stamped_odometer_ = true;
+  add(r->header.stamp.toSec(), OdometryReading::odometer(r->metres));
+}
+
+void BagOdometry::positionReading(const rosbag::MessageInstance& m) {
+  const nav_msgs::Odometry::ConstPtr o = m.instantiate<nav_msgs::Odometry>();
+  if (!o) throw FormatError(bag_ + ": " + odom_topic_ + " is not nav_msgs/Odometry");
+  const geometry_msgs::Point& p = o->pose.pose.position;
+  const OdometryReading r = OdometryReading::position(p.x, p.y, p.z);
+  // Stamp 0 ("time unknown"): taken in bag order, as the nodelet takes it on arrival.
+  if (o->header.stamp.isZero()) return (void)gate_.addPosition(r.x, r.y, r.z);
+  add(o->header.stamp.toSec(), r);
+}
+
+// A reading older than its source's previous is dropped, as the nodelet
+// drops it (a bag is not replayed within itself: no time jump here).
+void BagOdometry::add(double stamp, const OdometryReading& r) {
+  if (merge_.addReading(stamp, r)) release(false);
+}
+
+void BagOdometry::frameAdded(double stamp) {
+  const std::size_t i = frames_->size() - 1;
+  if (!stamped_odometer_ && !merge_.hasReadings()) return settle(i);
+  merge_.addFrame(stamp, 0.0, i);
+  release(false);
+}
+
+void BagOdometry::settle(std::size_t frame) {
+  (*frames_)[frame].odometer = gate_.odometer();
+  (*frames_)[frame].position = gate_.position();
+}
+
+// Every frame "arrives" at 0 and waits 1 s: no frame is late before the
+// end, where all go on (now 1).
+void BagOdometry::release(bool all) {
+  merge_.release(
+      all ? 1.0 : 0.0, 1.0,
+      [this](const OdometryReading& r) {
+        if (r.source == OdometryReading::kPosition) return gate_.addPosition(r.x, r.y, r.z);
+        gate_.addOdometerReading(r.metres);
+      },
+      [this](std::size_t&& i, bool) { settle(i); });
+}
+
+}  // namespace evaluate_app
+}  // namespace bowg
