@@ -4,6 +4,8 @@
 // word-group radius s_t^(i).
 #include "bowg/features/feature_extractor.h"
 
+#include <algorithm>
+#include <cmath>
 #include <opencv2/features2d.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
@@ -84,24 +86,67 @@ Keypoint toKeypoint(const cv::KeyPoint& kp, bool oriented) {
   return out;
 }
 
-// GFTT corners (Shi-Tomasi or Harris) as keypoints of the configured size,
-// with their corner quality as the response.
+// How many of `total` features each of `levels` levels gets: cv::ORB's
+// split (a geometric series of ratio 1 / scale_factor), the rest to the
+// last level.
+std::vector<int> featuresPerLevel(int total, double scale_factor, int levels) {
+  std::vector<int> n(static_cast<std::size_t>(levels));
+  const double factor = 1.0 / scale_factor;
+  double desired = total * (1.0 - factor) / (1.0 - std::pow(factor, levels));
+  int sum = 0;
+  for (int l = 0; l + 1 < levels; ++l) {
+    n[l] = cvRound(desired);
+    sum += n[l];
+    desired *= factor;
+  }
+  n[levels - 1] = std::max(total - sum, 0);
+  return n;
+}
+
+// GFTT corners (Shi-Tomasi or Harris) on each of gftt_levels pyramid levels
+// (level l the image shrunk by orb_scale_factor^l), with their corner
+// quality as the response. A corner keeps ORB's conventions: its position in
+// level-0 pixels, its size gftt_keypoint_size times the level's scale, its
+// level as the octave; with `orientation_radius` > 0 its intensity-centroid
+// angle measured on its level (corners closer than `border` level pixels to
+// the level's edge are left out: their patch would leave it).
 std::vector<cv::KeyPoint> detectGftt(const cv::Mat& image, const cv::Mat& mask,
-                                     const FeatureOptions& o) {
+                                     const FeatureOptions& o, int border, int orientation_radius) {
   GfttCornerOptions g;
-  g.max_corners = o.gftt_max_corners;
   g.quality_level = o.gftt_quality_level;
   g.min_distance = o.gftt_min_distance;
   g.block_size = o.gftt_block_size;
   g.use_harris = o.gftt_use_harris;
+  const std::vector<int> per_level =
+      featuresPerLevel(o.gftt_max_corners, o.orb_scale_factor, o.gftt_levels);
+  std::vector<cv::KeyPoint> detected;
+  cv::Mat level = image, level_mask = mask;
   std::vector<cv::Point2f> corners;
   std::vector<float> quality;
-  detectGfttCorners(image, mask, g, corners, quality);
-  std::vector<cv::KeyPoint> detected;
-  detected.reserve(corners.size());
-  for (std::size_t i = 0; i < corners.size(); ++i) {
-    detected.emplace_back(corners[i], static_cast<float>(o.gftt_keypoint_size), -1.f, quality[i],
-                          0);
+  for (int l = 0; l < o.gftt_levels; ++l) {
+    const double scale = std::pow(o.orb_scale_factor, l);
+    if (l > 0) {
+      const cv::Size size(cvRound(image.cols / scale), cvRound(image.rows / scale));
+      if (size.width <= 2 * border || size.height <= 2 * border) break;
+      cv::resize(image, level, size, 0, 0, cv::INTER_LINEAR);
+      if (!mask.empty()) cv::resize(mask, level_mask, size, 0, 0, cv::INTER_NEAREST);
+    }
+    if (per_level[l] == 0) continue;
+    g.max_corners = o.gftt_levels == 1 ? o.gftt_max_corners : per_level[l];
+    detectGfttCorners(level, level_mask, g, corners, quality);
+    for (std::size_t i = 0; i < corners.size(); ++i) {
+      const cv::Point2f c = corners[i];
+      if (o.gftt_levels > 1 && (c.x < border || c.y < border || c.x >= level.cols - border ||
+                                c.y >= level.rows - border)) {
+        continue;
+      }
+      float angle = -1.f;
+      if (orientation_radius > 0 && o.gftt_levels > 1) {
+        angle = intensityCentroidAngle(level, c, orientation_radius);
+      }
+      detected.emplace_back(c * static_cast<float>(scale),
+                            static_cast<float>(o.gftt_keypoint_size * scale), angle, quality[i], l);
+    }
   }
   return detected;
 }
@@ -152,10 +197,13 @@ ImageFeatures FeatureExtractor::extract(const cv::Mat& image) const {
   const bool gftt = options_.detector == FeatureOptions::Detector::kGftt;
   // ORB's keypoints are integer level coordinates times the level's scale.
   if (!gftt) features.pyramid_scale_factor = static_cast<float>(options_.orb_scale_factor);
-  // The pyramid the keypoints' octaves refer to (a single level for GFTT).
+  // The pyramid the keypoints' octaves refer to (gftt_levels for GFTT).
   OrbPyramid pyramid;
   pyramid.scale_factor = options_.orb_scale_factor;
-  pyramid.levels = gftt ? 1 : options_.orb_levels;
+  pyramid.levels = gftt ? options_.gftt_levels : options_.orb_levels;
+  if (gftt && pyramid.levels > 1) {
+    features.pyramid_scale_factor = static_cast<float>(options_.orb_scale_factor);
+  }
 
   // Border each keypoint must keep so that its whole descriptor patch (and
   // orientation disc) lies in the image; BRIEF always samples level 0.
@@ -169,7 +217,7 @@ ImageFeatures FeatureExtractor::extract(const cv::Mat& image) const {
   // 1. Detect.
   std::vector<cv::KeyPoint> detected;
   if (gftt) {
-    detected = detectGftt(image, mask_, options_);
+    detected = detectGftt(image, mask_, options_, radius, oriented ? orientation_radius : 0);
   } else {
     cv::Ptr<cv::ORB> orb = makeOrb(options_);
     if (oriented && !brief) {
@@ -201,7 +249,7 @@ ImageFeatures FeatureExtractor::extract(const cv::Mat& image) const {
   for (cv::KeyPoint& kp : kept) {
     if (!oriented) {
       kp.angle = 0.f;
-    } else if (gftt) {
+    } else if (gftt && pyramid.levels == 1) {
       kp.angle = intensityCentroidAngle(image, kp.pt, orientation_radius);
     }
   }

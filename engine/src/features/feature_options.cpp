@@ -32,6 +32,11 @@ void FeatureOptions::validate() const {
   requireFiniteAtLeast("features.gftt_min_distance", gftt_min_distance, 0.0);
   requireIntAtLeast("features.gftt_block_size", gftt_block_size, 1);
   requireFinitePositive("features.gftt_keypoint_size", gftt_keypoint_size);
+  requireIntInRange("features.gftt_levels", gftt_levels, 1, 32);
+  if (gftt_levels > 1 && descriptor == DescriptorType::kBrief) {
+    fail("features.gftt_levels", "must be 1 with the brief descriptor (it samples level 0 only)",
+         str(gftt_levels));
+  }
   requireIntAtLeast("features.orb_max_features", orb_max_features, 1);
   // cv::ORB needs scale_factor > 1 to build a shrinking pyramid.
   if (!std::isfinite(orb_scale_factor) || !(orb_scale_factor > 1.0)) {
@@ -41,8 +46,8 @@ void FeatureOptions::validate() const {
   requireIntInRange("features.orb_fast_threshold", orb_fast_threshold, 1, kMaxFastThreshold);
   requireIntAtLeast("features.max_image_pixels", max_image_pixels, 1);
   if (descriptor == DescriptorType::kBrief && brief_pattern_path.empty()) {
-    fail("features.brief_pattern_path", "must name a pattern file when features.descriptor is brief",
-         "an empty path");
+    fail("features.brief_pattern_path",
+         "must name a pattern file when features.descriptor is brief", "an empty path");
   }
 }
 

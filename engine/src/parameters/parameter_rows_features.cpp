@@ -53,6 +53,10 @@ void addFeatureRows(std::vector<Row>* rows) {
                             BOWG_FIELD(double, features.gftt_keypoint_size),
                             "Size given to GFTT corners (px): word-group radius and descriptor "
                             "patch"));
+  rows->push_back(intRow("gftt_levels", fea, "gftt_levels", 1, 32, false,
+                         BOWG_FIELD(int, features.gftt_levels),
+                         "GFTT: pyramid levels the corners are found on (scale "
+                         "orb_scale_factor; 1 = the image alone; ORB descriptor only)"));
   rows->push_back(intRow("max_image_pixels", fea, "max_image_pixels", 1, 1 << 30, false,
                          BOWG_FIELD(int, features.max_image_pixels),
                          "Largest image accepted (width x height); larger frames are dropped "

@@ -14,11 +14,11 @@
 #include <string>
 
 #include "bowg/core/errors.h"
-#include "core/special_files.h"
 #include "bowg/features/brief_descriptor.h"
 #include "bowg/features/brief_pattern.h"
 #include "bowg/features/descriptor_conversion.h"
 #include "bowg/features/orb_descriptor.h"
+#include "core/special_files.h"
 #include "encoded_test_images.h"
 #include "feature_test_images.h"
 
@@ -70,6 +70,15 @@ TEST(FeatureOptions, EachInvalidValueNamesItsField) {
   expectInvalid([](FeatureOptions& o) { o.gftt_block_size = 0; }, "gftt_block_size");
   expectInvalid([](FeatureOptions& o) { o.gftt_keypoint_size = 0.0; }, "gftt_keypoint_size");
   expectInvalid([](FeatureOptions& o) { o.gftt_keypoint_size = INFINITY; }, "gftt_keypoint_size");
+  expectInvalid([](FeatureOptions& o) { o.gftt_levels = 0; }, "gftt_levels");
+  expectInvalid([](FeatureOptions& o) { o.gftt_levels = 33; }, "gftt_levels");
+  expectInvalid(
+      [](FeatureOptions& o) {
+        o.gftt_levels = 2;
+        o.descriptor = FeatureOptions::DescriptorType::kBrief;
+        o.brief_pattern_path = "pattern.yml";
+      },
+      "gftt_levels");
   expectInvalid([](FeatureOptions& o) { o.orb_max_features = 0; }, "orb_max_features");
   expectInvalid([](FeatureOptions& o) { o.orb_scale_factor = 1.0; }, "orb_scale_factor");
   expectInvalid([&](FeatureOptions& o) { o.orb_scale_factor = nan; }, "orb_scale_factor");
@@ -185,6 +194,53 @@ TEST(FeatureExtractor, GfttOnACheckerboard) {
     EXPECT_EQ(k.size, 25.f);
     EXPECT_EQ(k.octave, 0);
     EXPECT_GT(k.response, 0.f);
+  }
+}
+
+// gftt_levels 3: corners on three levels of the 1.2 pyramid, each level at
+// most ORB's share of the 1,000 corners (by hand: 1000 (1 - 1/1.2) /
+// (1 - 1.2^-3) = 395.6 -> 396, then 396 / 1.2 = 329.7 -> 330, the rest 274),
+// each reported as ORB reports its keypoints: level-0 position, size 25 x
+// 1.2^level, the level as the octave.
+TEST(FeatureExtractor, GfttOnPyramidLevels) {
+  const cv::Mat img = test::checkerboard(320, 240, 20);
+  FeatureOptions o;
+  o.gftt_keypoint_size = 25.0;
+  o.gftt_max_corners = 1000;
+  o.gftt_levels = 3;
+  const ImageFeatures f = FeatureExtractor(o).extract(img);
+  checkFeatures(f, img, kOrbSteeredRadius, true);
+  EXPECT_FLOAT_EQ(f.pyramid_scale_factor, 1.2f);
+  int per_octave[3] = {0, 0, 0};
+  for (const Keypoint& k : f.keypoints) {
+    ASSERT_GE(k.octave, 0);
+    ASSERT_LT(k.octave, 3);
+    ++per_octave[k.octave];
+    EXPECT_FLOAT_EQ(k.size, static_cast<float>(25.0 * std::pow(1.2, k.octave)));
+    // A corner of the board wherever it was found: within 2.5 level pixels
+    // of a multiple of 20 px in the image (GFTT gives whole level pixels; a
+    // board corner of level 2 lies between them, 240 / 1.44 = 166.7, and
+    // the shrunk board's blur moves the strongest response by a pixel).
+    const double dx = std::remainder(k.x, 20.0), dy = std::remainder(k.y, 20.0);
+    EXPECT_LE(std::hypot(dx, dy), 2.5 * std::pow(1.2, k.octave)) << k.x << ", " << k.y;
+  }
+  EXPECT_GE(per_octave[0], 100);
+  EXPECT_LE(per_octave[0], 396);
+  EXPECT_GT(per_octave[1], 50);
+  EXPECT_LE(per_octave[1], 330);
+  EXPECT_GT(per_octave[2], 30);
+  EXPECT_LE(per_octave[2], 274);
+  // One level is the single-scale extraction.
+  o.gftt_levels = 1;
+  const ImageFeatures single = FeatureExtractor(o).extract(img);
+  FeatureOptions before;
+  before.gftt_keypoint_size = 25.0;
+  before.gftt_max_corners = 1000;
+  const ImageFeatures want = FeatureExtractor(before).extract(img);
+  ASSERT_EQ(single.size(), want.size());
+  for (std::size_t i = 0; i < want.size(); ++i) {
+    EXPECT_EQ(single.keypoints[i].x, want.keypoints[i].x);
+    EXPECT_EQ(single.descriptors[i], want.descriptors[i]);
   }
 }
 

@@ -24,6 +24,12 @@ struct FeatureOptions {
   /// the word-group radius. (Descriptor patches are fixed: ORB's 31x31,
   /// BRIEF's pattern extent.)
   double gftt_keypoint_size = 31.0;
+  /// Pyramid levels GFTT corners are found on (scale orb_scale_factor, as
+  /// ORB's): 1 = the image alone. A revisit a few cm off the earlier pass
+  /// sees the near wall at another scale; corners of a coarser level keep
+  /// their descriptors there. Needs the ORB descriptor (BRIEF samples level
+  /// 0 only).
+  int gftt_levels = 1;
 
   // Multi-scale ORB/FAST.
   int orb_max_features = 500;
