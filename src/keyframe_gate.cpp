@@ -105,6 +105,12 @@ bool KeyframeGate::addOdometerReading(double metres) {
   return true;
 }
 
+bool KeyframeGate::addReading(const OdometryReading& r) {
+  if (r.source == OdometryReading::kOdometer) return addOdometerReading(r.metres);
+  addPosition(r.x, r.y, r.z);
+  return true;
+}
+
 void KeyframeGate::setStampFloor(double stamp) {
   has_floor_ = true;
   floor_ = stamp;

@@ -175,6 +175,21 @@ TEST(KeyframeGate, OdometerReadingsGiveThePathWithoutAPosition) {
   EXPECT_DOUBLE_EQ(gate.odometer(), 0.0);
 }
 
+TEST(KeyframeGate, AReadingOfEitherSourceGoesWhereItsSourceGoes) {
+  KeyframeGate gate;
+  EXPECT_TRUE(gate.addReading(OdometryReading::odometer(4.0)));
+  EXPECT_TRUE(gate.addReading(OdometryReading::odometer(4.5)));  // 0.5 m driven
+  EXPECT_FALSE(gate.hasPositions());
+  EXPECT_DOUBLE_EQ(gate.odometer(), 0.5);
+  EXPECT_TRUE(gate.addReading(OdometryReading::position(1.0, 2.0, 2.0)));
+  EXPECT_TRUE(gate.addReading(OdometryReading::position(1.0, 5.0, 6.0)));  // 3-4-5: 5 m
+  EXPECT_DOUBLE_EQ(gate.odometer(), 5.5);
+  EXPECT_DOUBLE_EQ(gate.position().x, 1.0);
+  EXPECT_DOUBLE_EQ(gate.position().z, 6.0);
+  EXPECT_FALSE(gate.addReading(OdometryReading::odometer(9.0)));  // positions won
+  EXPECT_DOUBLE_EQ(gate.odometer(), 5.5);
+}
+
 TEST(KeyframeGate, StampFloorRejectsFramesUpToALoadedDatabasesLastKeyframe) {
   KeyframeGate gate;
   gate.setStampFloor(100.0);

@@ -17,6 +17,7 @@
 #include <string>
 
 #include "bowg/core/types.h"
+#include "bowg_ros/odometry_reading.h"
 
 namespace bowg_ros {
 
@@ -84,6 +85,10 @@ class KeyframeGate {
   /// reeled in, is driving too): adds |change| to the travelled path. Ignored
   /// (false) once odometry positions arrived: they measure the same path.
   bool addOdometerReading(double metres);
+
+  /// One reading of either source: addPosition or addOdometerReading. False
+  /// when an odometer reading is ignored (as addOdometerReading).
+  bool addReading(const OdometryReading& r);
 
   double travelledSinceKeyframe() const { return travelled_; }
   /// Path length of every odometry position (or odometer reading) so far

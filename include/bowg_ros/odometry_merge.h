@@ -16,31 +16,9 @@
 #include <iterator>
 #include <utility>
 
+#include "bowg_ros/odometry_reading.h"
+
 namespace bowg_ros {
-
-/// One stamped reading of the robot's odometry: metres driven (an
-/// odometer, a cable counter) or a position (nav_msgs/Odometry).
-struct OdometryReading {
-  enum Source { kOdometer = 0, kPosition = 1 };
-  static constexpr std::size_t kSources = 2;
-  Source source = kOdometer;
-  double metres = 0.0;         ///< kOdometer
-  double x = 0, y = 0, z = 0;  ///< kPosition (m, the odometry frame)
-
-  static OdometryReading odometer(double metres) {
-    OdometryReading r;
-    r.metres = metres;
-    return r;
-  }
-  static OdometryReading position(double x, double y, double z) {
-    OdometryReading r;
-    r.source = kPosition;
-    r.x = x;
-    r.y = y;
-    r.z = z;
-    return r;
-  }
-};
 
 template <typename Frame>
 class OdometryMerge {

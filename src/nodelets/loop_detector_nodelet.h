@@ -168,9 +168,8 @@ class LoopDetectorNodelet : public nodelet::Nodelet {
   void odometryCallback(const nav_msgs::OdometryConstPtr& msg);
   void odometerCallback(const std_msgs::Float64ConstPtr& msg);
   void odometerStampedCallback(const OdometerStamped::ConstPtr& msg);
-  /// One odometer reading into the gate (either topic); gate_mutex_ held.
-  void applyOdometerReading(double metres);
-  /// One odometry reading (a position or metres driven) into the gate;
+  /// One odometry reading (a position or metres driven, from any of the
+  /// three topics) into the gate; an ignored odometer reading is logged.
   /// gate_mutex_ held.
   void applyReading(const OdometryReading& r);
   /// A stamped reading from `topic` (odom, odometer_stamped) into the

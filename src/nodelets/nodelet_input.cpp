@@ -34,11 +34,6 @@ void LoopDetectorNodelet::releaseMerged() {
       [this](Frame&& frame, bool late) { admit(std::move(frame), late); });
 }
 
-void LoopDetectorNodelet::applyReading(const OdometryReading& r) {
-  if (r.source == OdometryReading::kPosition) return gate_.addPosition(r.x, r.y, r.z);
-  applyOdometerReading(r.metres);
-}
-
 void LoopDetectorNodelet::admit(Frame frame, bool odometry_late) {
   const double stamp = frame.header.stamp.toSec();
   const GateDecision d = gate_.check(stamp);
@@ -119,7 +114,7 @@ void LoopDetectorNodelet::odometerCallback(const std_msgs::Float64ConstPtr& msg)
                       publicName("odometer").c_str(), publicName("odometer_stamped").c_str());
     return;
   }
-  applyOdometerReading(msg->data);
+  applyReading(OdometryReading::odometer(msg->data));
 }
 
 void LoopDetectorNodelet::odometerStampedCallback(const OdometerStamped::ConstPtr& msg) {
@@ -143,16 +138,17 @@ void LoopDetectorNodelet::addStampedReading(double stamp, const OdometryReading&
   releaseMerged();
 }
 
-void LoopDetectorNodelet::applyOdometerReading(double metres) {
-  if (gate_.addOdometerReading(metres)) return;
-  if (std::isfinite(metres)) {
+// Only odometer readings are ignored by the gate (a position is always taken).
+void LoopDetectorNodelet::applyReading(const OdometryReading& r) {
+  if (gate_.addReading(r)) return;
+  if (std::isfinite(r.metres)) {
     NODELET_INFO_ONCE(
         "odometer readings (%s, %s) are ignored: odometry positions arrive on %s and measure "
         "the same path",
         publicName("odometer").c_str(), publicName("odometer_stamped").c_str(),
         publicName("odom").c_str());
   } else {
-    NODELET_WARN_THROTTLE(5.0, "odometer reading %f is not finite: ignored", metres);
+    NODELET_WARN_THROTTLE(5.0, "odometer reading %f is not finite: ignored", r.metres);
   }
 }
 

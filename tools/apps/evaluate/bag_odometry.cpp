@@ -60,7 +60,7 @@ void BagOdometry::positionReading(const rosbag::MessageInstance& m) {
   const geometry_msgs::Point& p = o->pose.pose.position;
   const OdometryReading r = OdometryReading::position(p.x, p.y, p.z);
   // Stamp 0 ("time unknown"): taken in bag order, as the nodelet takes it on arrival.
-  if (o->header.stamp.isZero()) return (void)gate_.addPosition(r.x, r.y, r.z);
+  if (o->header.stamp.isZero()) return (void)gate_.addReading(r);
   add(o->header.stamp.toSec(), r);
 }
 
@@ -86,11 +86,7 @@ void BagOdometry::settle(std::size_t frame) {
 // end, where all go on (now 1).
 void BagOdometry::release(bool all) {
   merge_.release(
-      all ? 1.0 : 0.0, 1.0,
-      [this](const OdometryReading& r) {
-        if (r.source == OdometryReading::kPosition) return gate_.addPosition(r.x, r.y, r.z);
-        gate_.addOdometerReading(r.metres);
-      },
+      all ? 1.0 : 0.0, 1.0, [this](const OdometryReading& r) { gate_.addReading(r); },
       [this](std::size_t&& i, bool) { settle(i); });
 }
 
