@@ -54,6 +54,32 @@ void BM_OrbMultiScaleUpright(benchmark::State& state) {
   run(state, o);
 }
 
+// config/pipe.yaml's features: multi-scale ORB-500 at FAST threshold 10.
+void BM_OrbPipePreset(benchmark::State& state) {
+  bowg::FeatureOptions o;
+  o.detector = bowg::FeatureOptions::Detector::kOrb;
+  o.orb_fast_threshold = 10;
+  run(state, o);
+}
+
+// config/pipe_gftt.yaml's corners: 1,000 at least 7 px apart, one level.
+void BM_GfttPipePreset(benchmark::State& state) {
+  bowg::FeatureOptions o;
+  o.gftt_max_corners = 1000;
+  o.gftt_min_distance = 7;
+  run(state, o);
+}
+
+// GFTT corners on pyramid levels (gftt_levels): 2,000 at 7 px on 4 levels of
+// the 1.2 pyramid, 2.5x the pixels of one level.
+void BM_GfttFourLevels(benchmark::State& state) {
+  bowg::FeatureOptions o;
+  o.gftt_max_corners = 2000;
+  o.gftt_min_distance = 7;
+  o.gftt_levels = 4;
+  run(state, o);
+}
+
 void BM_GfttVinsBrief(benchmark::State& state) {
   const std::string pattern = bowg::bench::sharedDataDir() + "/vocabularies/brief_pattern.yml";
   if (!std::ifstream(pattern).good()) {
@@ -73,6 +99,9 @@ BENCHMARK(BM_GfttOrientedOrb)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_GfttUprightOrb)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_OrbMultiScaleOriented)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_OrbMultiScaleUpright)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_OrbPipePreset)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_GfttPipePreset)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_GfttFourLevels)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_GfttVinsBrief)->Unit(benchmark::kMillisecond);
 
 BENCHMARK_MAIN();

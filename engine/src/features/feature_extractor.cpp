@@ -108,8 +108,9 @@ std::vector<int> featuresPerLevel(int total, double scale_factor, int levels) {
 // quality as the response. A corner keeps ORB's conventions: its position in
 // level-0 pixels, its size gftt_keypoint_size times the level's scale, its
 // level as the octave; with `orientation_radius` > 0 its intensity-centroid
-// angle measured on its level (corners closer than `border` level pixels to
-// the level's edge are left out: their patch would leave it).
+// angle measured on its level, on the unsmoothed image as ORB measures it.
+// Corners whose `border` level pixels leave the level (insideOrbLevel's
+// rule) are left out: their descriptor patch would leave it.
 std::vector<cv::KeyPoint> detectGftt(const cv::Mat& image, const cv::Mat& mask,
                                      const FeatureOptions& o, int border, int orientation_radius) {
   GfttCornerOptions g;
@@ -120,30 +121,37 @@ std::vector<cv::KeyPoint> detectGftt(const cv::Mat& image, const cv::Mat& mask,
   const std::vector<int> per_level =
       featuresPerLevel(o.gftt_max_corners, o.orb_scale_factor, o.gftt_levels);
   std::vector<cv::KeyPoint> detected;
-  cv::Mat level = image, level_mask = mask;
+  // The shrunk levels, kept per thread like the corner buffers: each keeps
+  // its size from frame to frame.
+  thread_local std::vector<cv::Mat> shrunk, shrunk_mask;
+  shrunk.resize(std::max<std::size_t>(shrunk.size(), o.gftt_levels));
+  shrunk_mask.resize(shrunk.size());
   std::vector<cv::Point2f> corners;
   std::vector<float> quality;
   for (int l = 0; l < o.gftt_levels; ++l) {
     const double scale = std::pow(o.orb_scale_factor, l);
+    cv::Mat level = image, level_mask = mask;
     if (l > 0) {
       const cv::Size size(cvRound(image.cols / scale), cvRound(image.rows / scale));
       if (size.width <= 2 * border || size.height <= 2 * border) break;
-      cv::resize(image, level, size, 0, 0, cv::INTER_LINEAR);
-      if (!mask.empty()) cv::resize(mask, level_mask, size, 0, 0, cv::INTER_NEAREST);
+      cv::resize(image, shrunk[l], size, 0, 0, cv::INTER_LINEAR);
+      level = shrunk[l];
+      if (!mask.empty()) {
+        cv::resize(mask, shrunk_mask[l], size, 0, 0, cv::INTER_NEAREST);
+        level_mask = shrunk_mask[l];
+      }
     }
     if (per_level[l] == 0) continue;
-    g.max_corners = o.gftt_levels == 1 ? o.gftt_max_corners : per_level[l];
-    detectGfttCorners(level, level_mask, g, corners, quality);
+    g.max_corners = per_level[l];
+    detectGfttCorners(level, level_mask, g, corners, quality, static_cast<std::size_t>(l));
     for (std::size_t i = 0; i < corners.size(); ++i) {
       const cv::Point2f c = corners[i];
-      if (o.gftt_levels > 1 && (c.x < border || c.y < border || c.x >= level.cols - border ||
-                                c.y >= level.rows - border)) {
+      if (c.x < border || c.y < border || c.x > level.cols - 1 - border ||
+          c.y > level.rows - 1 - border) {
         continue;
       }
-      float angle = -1.f;
-      if (orientation_radius > 0 && o.gftt_levels > 1) {
-        angle = intensityCentroidAngle(level, c, orientation_radius);
-      }
+      const float angle =
+          orientation_radius > 0 ? intensityCentroidAngle(level, c, orientation_radius) : -1.f;
       detected.emplace_back(c * static_cast<float>(scale),
                             static_cast<float>(o.gftt_keypoint_size * scale), angle, quality[i], l);
     }
@@ -239,19 +247,14 @@ ImageFeatures FeatureExtractor::extract(const cv::Mat& image) const {
   }
 
   // 2. Drop keypoints whose descriptor patch leaves the image (BRIEF always
-  // samples level 0).
+  // samples level 0; GFTT's corners were checked as they were found).
   std::vector<cv::KeyPoint> kept =
       keepInside(detected, image.size(), brief ? OrbPyramid{1.0, 1} : pyramid, radius);
 
-  // 3. Orientation: ORB's detector already measured it (intensity centroid at
-  // the keypoint's level); GFTT corners get it here on the unsmoothed image,
-  // as ORB does. Upright descriptors use angle 0.
-  for (cv::KeyPoint& kp : kept) {
-    if (!oriented) {
-      kp.angle = 0.f;
-    } else if (gftt && pyramid.levels == 1) {
-      kp.angle = intensityCentroidAngle(image, kp.pt, orientation_radius);
-    }
+  // 3. Orientation: both detectors already measured it (intensity centroid
+  // at the keypoint's level). Upright descriptors use angle 0.
+  if (!oriented) {
+    for (cv::KeyPoint& kp : kept) kp.angle = 0.f;
   }
 
   // 4. Describe.

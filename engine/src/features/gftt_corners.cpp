@@ -15,9 +15,12 @@ struct GfttBuffers {
   std::vector<std::vector<cv::Point2f>> grid;
 };
 
-GfttBuffers& threadBuffers() {
-  thread_local GfttBuffers buffers;
-  return buffers;
+// One set per pyramid level: a level's buffers keep their size from frame
+// to frame instead of being reallocated for the next level's.
+GfttBuffers& threadBuffers(std::size_t level) {
+  thread_local std::vector<GfttBuffers> buffers;
+  if (buffers.size() <= level) buffers.resize(level + 1);
+  return buffers[level];
 }
 
 // Strongest first; equal responses by address, the later pixel first: the
@@ -88,11 +91,12 @@ class SpacingGrid {
 }  // namespace
 
 void detectGfttCorners(const cv::Mat& image, const cv::Mat& mask, const GfttCornerOptions& o,
-                       std::vector<cv::Point2f>& corners, std::vector<float>& quality) {
+                       std::vector<cv::Point2f>& corners, std::vector<float>& quality,
+                       std::size_t level) {
   corners.clear();
   quality.clear();
   if (image.empty()) return;
-  GfttBuffers& b = threadBuffers();
+  GfttBuffers& b = threadBuffers(level);
   if (o.use_harris) {
     cv::cornerHarris(image, b.response, o.block_size, o.gradient_size, o.harris_k);
   } else {

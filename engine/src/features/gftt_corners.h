@@ -12,6 +12,7 @@
 #ifndef BOWG_FEATURES_GFTT_CORNERS_H
 #define BOWG_FEATURES_GFTT_CORNERS_H
 
+#include <cstddef>
 #include <opencv2/core.hpp>
 #include <vector>
 
@@ -32,9 +33,11 @@ struct GfttCornerOptions {
 
 /// The corners of 8-bit `image` (where `mask`, if not empty, is non-zero)
 /// and their responses, strongest first: what cv::goodFeaturesToTrack returns
-/// for the same arguments, element for element.
+/// for the same arguments, element for element. `level` picks the thread's
+/// buffer set (one per pyramid level, so that each keeps its size).
 void detectGfttCorners(const cv::Mat& image, const cv::Mat& mask, const GfttCornerOptions& o,
-                       std::vector<cv::Point2f>& corners, std::vector<float>& quality);
+                       std::vector<cv::Point2f>& corners, std::vector<float>& quality,
+                       std::size_t level = 0);
 
 }  // namespace bowg
 
