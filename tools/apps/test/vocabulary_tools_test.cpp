@@ -2,19 +2,18 @@
 // bowg_convert_vocabulary: exit codes, determinism, that what they write
 // loads back as the vocabulary asked for, and that the trainer reads rosbags
 // (--bag, --image-topic, --every) exactly as it reads image folders.
+#include <gtest/gtest.h>
+#include <rosbag/bag.h>
+#include <sensor_msgs/CompressedImage.h>
+#include <sensor_msgs/Image.h>
+#include <std_msgs/String.h>
 #include <sys/wait.h>
 
 #include <cstdlib>
 #include <fstream>
 #include <iterator>
-#include <string>
-
-#include <gtest/gtest.h>
 #include <opencv2/imgcodecs.hpp>
-#include <rosbag/bag.h>
-#include <sensor_msgs/CompressedImage.h>
-#include <sensor_msgs/Image.h>
-#include <std_msgs/String.h>
+#include <string>
 
 #include "bowg/vocabulary/vocabulary.h"
 #include "bowg/vocabulary/vocabulary_io.h"
@@ -33,8 +32,7 @@ using tool_test::run;
 class VocabularyTools : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    ASSERT_EQ(run("rm -rf " + kDir + " && mkdir -p " + kDir + "/images/sub " + kDir + "/even"),
-              0);
+    ASSERT_EQ(run("rm -rf " + kDir + " && mkdir -p " + kDir + "/images/sub " + kDir + "/even"), 0);
     // Six textured images, two in a subfolder (the trainer recurses). Sorted
     // by path they are img0 .. img5 ("images/img3" < "images/sub/img4").
     // "even" holds img0, img2, img4: what --every 2 must pick from the bag.
@@ -81,8 +79,8 @@ TEST_F(VocabularyTools, TrainWritesTheRequestedTreeDeterministically) {
   const Vocabulary voc = loadVocabulary(a);
   EXPECT_EQ(voc.branching(), 4);
   EXPECT_EQ(voc.depth(), 3);
-  EXPECT_GT(voc.wordCount(), 16u);   // more than two full levels
-  EXPECT_LE(voc.wordCount(), 64u);   // at most k^L
+  EXPECT_GT(voc.wordCount(), 16u);  // more than two full levels
+  EXPECT_LE(voc.wordCount(), 64u);  // at most k^L
   EXPECT_EQ(readAll(a), readAll(b)) << "same images + seed must give the same file";
 }
 
@@ -97,16 +95,45 @@ TEST_F(VocabularyTools, ConvertRoundTripKeepsTheVocabulary) {
 
 TEST_F(VocabularyTools, BadArgumentsAndMissingInputsFailWithDistinctCodes) {
   // Usage errors exit 2, I/O and format errors exit 1; nothing is written.
-  EXPECT_EQ(run(std::string(BOWG_TRAIN_VOCABULARY_BIN) + " --k 1 --output " + kDir +
-                "/x.bowgvoc " + kDir + "/images"), 2);
+  EXPECT_EQ(run(std::string(BOWG_TRAIN_VOCABULARY_BIN) + " --k 1 --output " + kDir + "/x.bowgvoc " +
+                kDir + "/images"),
+            2);
   EXPECT_EQ(run(std::string(BOWG_TRAIN_VOCABULARY_BIN) + " " + kDir + "/images"), 2);
-  EXPECT_EQ(run(std::string(BOWG_CONVERT_VOCABULARY_BIN) + " " + kDir + "/missing.bowgvoc " +
-                kDir + "/y.bowgvoc"), 1);
+  EXPECT_EQ(run(std::string(BOWG_CONVERT_VOCABULARY_BIN) + " " + kDir + "/missing.bowgvoc " + kDir +
+                "/y.bowgvoc"),
+            1);
   std::ofstream(kDir + "/garbage.bowgvoc") << "not a vocabulary";
-  EXPECT_EQ(run(std::string(BOWG_CONVERT_VOCABULARY_BIN) + " " + kDir + "/garbage.bowgvoc " +
-                kDir + "/z.bowgvoc"), 1);
+  EXPECT_EQ(run(std::string(BOWG_CONVERT_VOCABULARY_BIN) + " " + kDir + "/garbage.bowgvoc " + kDir +
+                "/z.bowgvoc"),
+            1);
   EXPECT_NE(run("test -e " + kDir + "/x.bowgvoc"), 0);
   EXPECT_NE(run("test -e " + kDir + "/z.bowgvoc"), 0);
+}
+
+TEST_F(VocabularyTools, ConfigTrainsOnAParameterFilesFeatures) {
+  std::ofstream(kDir + "/orb50.yaml") << "feature_detector: orb\norb_max_features: 50\n"
+                                      << "min_score: 0.9\n";  // a detector key: not read here
+  std::ofstream(kDir + "/levels.yaml") << "gftt_levels: 3\n";
+  const std::string flags = kDir + "/flags.bowgvoc", config = kDir + "/config.bowgvoc";
+  ASSERT_EQ(run(train(flags, "--detector orb --orb-max-features 50")), 0);
+  ASSERT_EQ(run(train(config, "--config " + kDir + "/orb50.yaml")), 0);
+  EXPECT_EQ(readAll(flags), readAll(config));
+  // A key the trainer has no flag for reaches the extractor: corners on
+  // three pyramid levels give another tree than the single level.
+  const std::string single = kDir + "/single.bowgvoc", levels = kDir + "/levels.bowgvoc";
+  ASSERT_EQ(run(train(single)), 0);
+  ASSERT_EQ(run(train(levels, "--config " + kDir + "/levels.yaml")), 0);
+  EXPECT_NE(readAll(single), readAll(levels));
+  // The features come from one place; a bad file is named; nothing is written.
+  const std::string out = kDir + "/refused.bowgvoc", err = kDir + "/config_err.txt";
+  EXPECT_EQ(run(train(out, "--config " + kDir + "/orb50.yaml --upright"), err), 2);
+  EXPECT_NE(readAll(err).find("--upright cannot be given with it"), std::string::npos);
+  std::ofstream(kDir + "/typo.yaml") << "gftt_levls: 3\n";
+  EXPECT_NE(run(train(out, "--config " + kDir + "/typo.yaml"), err), 0);
+  EXPECT_NE(readAll(err).find("typo.yaml"), std::string::npos) << readAll(err);
+  EXPECT_EQ(run(train(out, "--config " + kDir + "/missing.yaml"), err), 1);  // I/O, not usage
+  EXPECT_NE(readAll(err).find("missing.yaml"), std::string::npos) << readAll(err);
+  EXPECT_NE(run("test -e " + out), 0);
 }
 
 TEST_F(VocabularyTools, TrainingFromABagEqualsTrainingFromTheSameImagesInAFolder) {
@@ -124,7 +151,8 @@ TEST_F(VocabularyTools, TrainingFromABagEqualsTrainingFromTheSameImagesInAFolder
   const std::string compressed = kDir + "/compressed.bowgvoc";
   ASSERT_EQ(run(std::string(BOWG_TRAIN_VOCABULARY_BIN) + " --output " + compressed +
                 " --k 4 --L 3 --seed 7 --threads 1 --image-topic /camera/image_raw/compressed"
-                " --bag " + kDir + "/images.bag"),
+                " --bag " +
+                kDir + "/images.bag"),
             0);
   EXPECT_EQ(loadVocabulary(folder).fingerprint(), loadVocabulary(compressed).fingerprint());
 }
@@ -169,7 +197,8 @@ TEST_F(VocabularyTools, BadBagImagesAreSkippedAndCountedByReason) {
   const std::string log = kDir + "/damaged.log";
   ASSERT_EQ(run(std::string(BOWG_TRAIN_VOCABULARY_BIN) + " --output " + out +
                     " --k 4 --L 3 --seed 7 --threads 1 --image-topic /camera/image_raw/compressed"
-                    " --bag " + bag_path,
+                    " --bag " +
+                    bag_path,
                 log),
             0)
       << readAll(log);

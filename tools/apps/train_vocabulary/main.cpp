@@ -38,8 +38,8 @@ int train(const Args& a) {
   images = pickEvenly(std::move(images), a.max_images);
   const TrainingDescriptors d = extractDescriptors(images, a);
   std::fprintf(stderr, "\n%zu images (%zu skipped%s%s), %zu descriptors\n", d.per_image.size(),
-               d.skipped.total(), d.skipped.total() > 0 ? ": " : "",
-               d.skipped.summary().c_str(), d.total);
+               d.skipped.total(), d.skipped.total() > 0 ? ": " : "", d.skipped.summary().c_str(),
+               d.total);
   const Vocabulary v = trainVocabulary(
       d.per_image, a.training,
       [](double f, const std::string& stage) { progressBar(0.2 + 0.8 * f, stage); });
@@ -62,6 +62,9 @@ int main(int argc, char** argv) {
   } catch (const std::invalid_argument& e) {  // UsageError, InvalidParameter, bad enum names
     std::cerr << "error: " << e.what() << "\n\n" << kUsage;
     return 2;
+  } catch (const std::exception& e) {  // --config: the file cannot be read
+    std::cerr << "error: " << e.what() << "\n";
+    return 1;
   }
   try {
     return train(args);

@@ -7,6 +7,7 @@
 #include <iostream>
 #include <string>
 
+#include "bowg/parameters/parameter_table.h"
 #include "bowg/vocabulary/bow_vector.h"
 
 namespace bowg {
@@ -45,7 +46,10 @@ const char* const kUsage =
     "brief\n"
     "  --mask FILE                 8-bit mask image, non-zero = usable\n"
     "  --upright                   do not steer descriptors by orientation\n"
-    "  --gftt-max-corners N        --orb-max-features N\n";
+    "  --gftt-max-corners N        --orb-max-features N\n"
+    "  --config FILE               the features of a parameter file (a preset such as\n"
+    "                              config/pipe_gftt.yaml: every feature key, gftt_levels\n"
+    "                              too); not with the feature options above\n";
 
 namespace {
 
@@ -139,8 +143,8 @@ bool setFeatureOption(const std::string& arg, ArgReader* r, Args* a) {
     const std::string v = r->value(arg);
     if (v != "orb" && v != "brief")
       throw UsageError("--descriptor: '" + v + "' is not orb or brief");
-    features.descriptor = v == "orb" ? FeatureOptions::DescriptorType::kOrb
-                                     : FeatureOptions::DescriptorType::kBrief;
+    features.descriptor =
+        v == "orb" ? FeatureOptions::DescriptorType::kOrb : FeatureOptions::DescriptorType::kBrief;
   } else if (arg == "--brief-pattern") {
     features.brief_pattern_path = r->value(arg);
   } else if (arg == "--mask") {
@@ -161,20 +165,36 @@ bool setFeatureOption(const std::string& arg, ArgReader* r, Args* a) {
 
 bool parseArgs(int argc, char** argv, Args* a) {
   ArgReader r{argc, argv, 1};
+  std::string config, feature_option;
   for (; r.i < argc; ++r.i) {
     const std::string arg = argv[r.i];
     if (arg == "-h" || arg == "--help") {
       std::cout << kUsage;
       return false;
     }
-    if (setTreeOption(arg, &r, a) || setInputOption(arg, &r, a) || setFeatureOption(arg, &r, a)) {
+    if (arg == "--config") {
+      config = r.value(arg);
       continue;
     }
+    if (setFeatureOption(arg, &r, a)) {
+      feature_option = arg;
+      continue;
+    }
+    if (setTreeOption(arg, &r, a) || setInputOption(arg, &r, a)) continue;
     if (!arg.empty() && arg[0] == '-') throw UsageError("unknown option '" + arg + "'");
     a->folders.push_back(arg);
   }
   if (a->output.empty()) throw UsageError("--output is required");
   if (a->folders.empty() && a->bags.empty()) throw UsageError("no image folder or --bag given");
+  if (!config.empty()) {
+    // One source for the features: a preset and flags on top of it would
+    // leave the reader to guess which value won.
+    if (!feature_option.empty()) {
+      throw UsageError("--config " + config + " sets the features: " + feature_option +
+                       " cannot be given with it");
+    }
+    a->features = loadParameterFile(config).features;
+  }
   a->training.validate();
   a->features.validate();
   return true;
