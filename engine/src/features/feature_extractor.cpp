@@ -11,6 +11,7 @@
 #include <opencv2/imgproc.hpp>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "bowg/core/bounded_file.h"
 #include "bowg/core/errors.h"
@@ -120,6 +121,7 @@ std::vector<cv::KeyPoint> detectGftt(const cv::Mat& image, const cv::Mat& mask,
   g.use_harris = o.gftt_use_harris;
   const std::vector<int> per_level =
       featuresPerLevel(o.gftt_max_corners, o.orb_scale_factor, o.gftt_levels);
+  const OrbPyramid pyramid{o.orb_scale_factor, o.gftt_levels};
   std::vector<cv::KeyPoint> detected;
   // The shrunk levels, kept per thread like the corner buffers: each keeps
   // its size from frame to frame.
@@ -146,14 +148,11 @@ std::vector<cv::KeyPoint> detectGftt(const cv::Mat& image, const cv::Mat& mask,
     detectGfttCorners(level, level_mask, g, corners, quality, static_cast<std::size_t>(l));
     for (std::size_t i = 0; i < corners.size(); ++i) {
       const cv::Point2f c = corners[i];
-      if (c.x < border || c.y < border || c.x > level.cols - 1 - border ||
-          c.y > level.rows - 1 - border) {
-        continue;
-      }
-      const float angle =
-          orientation_radius > 0 ? intensityCentroidAngle(level, c, orientation_radius) : -1.f;
-      detected.emplace_back(c * static_cast<float>(scale),
-                            static_cast<float>(o.gftt_keypoint_size * scale), angle, quality[i], l);
+      cv::KeyPoint kp(c * static_cast<float>(scale),
+                      static_cast<float>(o.gftt_keypoint_size * scale), -1.f, quality[i], l);
+      if (!insideOrbLevel(kp, image.size(), pyramid, border)) continue;
+      if (orientation_radius > 0) kp.angle = intensityCentroidAngle(level, c, orientation_radius);
+      detected.push_back(kp);
     }
   }
   return detected;
@@ -247,9 +246,11 @@ ImageFeatures FeatureExtractor::extract(const cv::Mat& image) const {
   }
 
   // 2. Drop keypoints whose descriptor patch leaves the image (BRIEF always
-  // samples level 0; GFTT's corners were checked as they were found).
+  // samples level 0). GFTT's corners were checked on their level as they were
+  // found, which is the stricter check for BRIEF too.
   std::vector<cv::KeyPoint> kept =
-      keepInside(detected, image.size(), brief ? OrbPyramid{1.0, 1} : pyramid, radius);
+      gftt ? std::move(detected)
+           : keepInside(detected, image.size(), brief ? OrbPyramid{1.0, 1} : pyramid, radius);
 
   // 3. Orientation: both detectors already measured it (intensity centroid
   // at the keypoint's level). Upright descriptors use angle 0.
