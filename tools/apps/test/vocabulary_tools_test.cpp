@@ -2,18 +2,19 @@
 // bowg_convert_vocabulary: exit codes, determinism, that what they write
 // loads back as the vocabulary asked for, and that the trainer reads rosbags
 // (--bag, --image-topic, --every) exactly as it reads image folders.
-#include <gtest/gtest.h>
-#include <rosbag/bag.h>
-#include <sensor_msgs/CompressedImage.h>
-#include <sensor_msgs/Image.h>
-#include <std_msgs/String.h>
 #include <sys/wait.h>
 
 #include <cstdlib>
 #include <fstream>
 #include <iterator>
-#include <opencv2/imgcodecs.hpp>
 #include <string>
+
+#include <gtest/gtest.h>
+#include <opencv2/imgcodecs.hpp>
+#include <rosbag/bag.h>
+#include <sensor_msgs/CompressedImage.h>
+#include <sensor_msgs/Image.h>
+#include <std_msgs/String.h>
 
 #include "bowg/vocabulary/vocabulary.h"
 #include "bowg/vocabulary/vocabulary_io.h"
@@ -32,7 +33,8 @@ using tool_test::run;
 class VocabularyTools : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    ASSERT_EQ(run("rm -rf " + kDir + " && mkdir -p " + kDir + "/images/sub " + kDir + "/even"), 0);
+    ASSERT_EQ(run("rm -rf " + kDir + " && mkdir -p " + kDir + "/images/sub " + kDir + "/even"),
+              0);
     // Six textured images, two in a subfolder (the trainer recurses). Sorted
     // by path they are img0 .. img5 ("images/img3" < "images/sub/img4").
     // "even" holds img0, img2, img4: what --every 2 must pick from the bag.
@@ -79,8 +81,8 @@ TEST_F(VocabularyTools, TrainWritesTheRequestedTreeDeterministically) {
   const Vocabulary voc = loadVocabulary(a);
   EXPECT_EQ(voc.branching(), 4);
   EXPECT_EQ(voc.depth(), 3);
-  EXPECT_GT(voc.wordCount(), 16u);  // more than two full levels
-  EXPECT_LE(voc.wordCount(), 64u);  // at most k^L
+  EXPECT_GT(voc.wordCount(), 16u);   // more than two full levels
+  EXPECT_LE(voc.wordCount(), 64u);   // at most k^L
   EXPECT_EQ(readAll(a), readAll(b)) << "same images + seed must give the same file";
 }
 
@@ -95,17 +97,14 @@ TEST_F(VocabularyTools, ConvertRoundTripKeepsTheVocabulary) {
 
 TEST_F(VocabularyTools, BadArgumentsAndMissingInputsFailWithDistinctCodes) {
   // Usage errors exit 2, I/O and format errors exit 1; nothing is written.
-  EXPECT_EQ(run(std::string(BOWG_TRAIN_VOCABULARY_BIN) + " --k 1 --output " + kDir + "/x.bowgvoc " +
-                kDir + "/images"),
-            2);
+  EXPECT_EQ(run(std::string(BOWG_TRAIN_VOCABULARY_BIN) + " --k 1 --output " + kDir +
+                "/x.bowgvoc " + kDir + "/images"), 2);
   EXPECT_EQ(run(std::string(BOWG_TRAIN_VOCABULARY_BIN) + " " + kDir + "/images"), 2);
-  EXPECT_EQ(run(std::string(BOWG_CONVERT_VOCABULARY_BIN) + " " + kDir + "/missing.bowgvoc " + kDir +
-                "/y.bowgvoc"),
-            1);
+  EXPECT_EQ(run(std::string(BOWG_CONVERT_VOCABULARY_BIN) + " " + kDir + "/missing.bowgvoc " +
+                kDir + "/y.bowgvoc"), 1);
   std::ofstream(kDir + "/garbage.bowgvoc") << "not a vocabulary";
-  EXPECT_EQ(run(std::string(BOWG_CONVERT_VOCABULARY_BIN) + " " + kDir + "/garbage.bowgvoc " + kDir +
-                "/z.bowgvoc"),
-            1);
+  EXPECT_EQ(run(std::string(BOWG_CONVERT_VOCABULARY_BIN) + " " + kDir + "/garbage.bowgvoc " +
+                kDir + "/z.bowgvoc"), 1);
   EXPECT_NE(run("test -e " + kDir + "/x.bowgvoc"), 0);
   EXPECT_NE(run("test -e " + kDir + "/z.bowgvoc"), 0);
 }
@@ -151,8 +150,7 @@ TEST_F(VocabularyTools, TrainingFromABagEqualsTrainingFromTheSameImagesInAFolder
   const std::string compressed = kDir + "/compressed.bowgvoc";
   ASSERT_EQ(run(std::string(BOWG_TRAIN_VOCABULARY_BIN) + " --output " + compressed +
                 " --k 4 --L 3 --seed 7 --threads 1 --image-topic /camera/image_raw/compressed"
-                " --bag " +
-                kDir + "/images.bag"),
+                " --bag " + kDir + "/images.bag"),
             0);
   EXPECT_EQ(loadVocabulary(folder).fingerprint(), loadVocabulary(compressed).fingerprint());
 }
@@ -197,8 +195,7 @@ TEST_F(VocabularyTools, BadBagImagesAreSkippedAndCountedByReason) {
   const std::string log = kDir + "/damaged.log";
   ASSERT_EQ(run(std::string(BOWG_TRAIN_VOCABULARY_BIN) + " --output " + out +
                     " --k 4 --L 3 --seed 7 --threads 1 --image-topic /camera/image_raw/compressed"
-                    " --bag " +
-                    bag_path,
+                    " --bag " + bag_path,
                 log),
             0)
       << readAll(log);
