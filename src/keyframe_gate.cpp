@@ -108,6 +108,9 @@ bool KeyframeGate::addOdometerReading(double metres) {
 bool KeyframeGate::addReading(const OdometryReading& r) {
   if (r.source == OdometryReading::kOdometer) return addOdometerReading(r.metres);
   addPosition(r.x, r.y, r.z);
+  // The heading belongs to the position: a position addPosition ignored
+  // (not finite) leaves the last one's.
+  if (std::isfinite(r.x) && std::isfinite(r.y) && std::isfinite(r.z)) heading_ = r.heading;
   return true;
 }
 
@@ -118,6 +121,7 @@ void KeyframeGate::setStampFloor(double stamp) {
 
 void KeyframeGate::reset() {
   has_frame_ = has_keyframe_ = has_position_ = has_floor_ = has_reading_ = false;
+  heading_ = bowg::OdometryHeading();
   last_reading_ = 0.0;
   floor_ = 0.0;
   last_frame_stamp_ = last_keyframe_stamp_ = 0.0;

@@ -8,10 +8,17 @@
 #include <stdexcept>
 #include <string>
 
+#include "bowg/core/odometry_heading.h"
 #include "bowg/features/descriptor_conversion.h"
 #include "bowg/features/feature_arrays.h"
 
 namespace bowg_ros {
+
+OdometryReading toReading(const nav_msgs::Odometry& msg) {
+  const geometry_msgs::Point& p = msg.pose.pose.position;
+  const geometry_msgs::Quaternion& q = msg.pose.pose.orientation;
+  return OdometryReading::position(p.x, p.y, p.z, bowg::headingFromQuaternion(q.x, q.y, q.z, q.w));
+}
 
 bowg::CameraIntrinsics toIntrinsics(const sensor_msgs::CameraInfo& info) {
   bowg::CameraIntrinsics k;

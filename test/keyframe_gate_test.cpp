@@ -190,6 +190,26 @@ TEST(KeyframeGate, AReadingOfEitherSourceGoesWhereItsSourceGoes) {
   EXPECT_DOUBLE_EQ(gate.odometer(), 5.5);
 }
 
+TEST(KeyframeGate, APositionsHeadingIsTheKeyframesUntilTheNextPosition) {
+  KeyframeGate gate;
+  EXPECT_TRUE(gate.heading().unknown());
+  bowg::OdometryHeading east;
+  east.x = 1.f, east.y = 0.f, east.z = 0.f;
+  gate.addReading(OdometryReading::position(1.0, 2.0, 3.0, east));
+  EXPECT_EQ(gate.heading().x, 1.f);
+  // A non-finite position is ignored with its heading; a position without a
+  // heading makes it unknown; odometer readings leave it.
+  gate.addReading(OdometryReading::position(std::nan(""), 0.0, 0.0));
+  EXPECT_EQ(gate.heading().x, 1.f);
+  gate.addReading(OdometryReading::odometer(3.0));
+  EXPECT_EQ(gate.heading().x, 1.f);
+  gate.addReading(OdometryReading::position(1.0, 2.0, 4.0));
+  EXPECT_TRUE(gate.heading().unknown());
+  gate.addReading(OdometryReading::position(1.0, 2.0, 5.0, east));
+  gate.reset();
+  EXPECT_TRUE(gate.heading().unknown());
+}
+
 TEST(KeyframeGate, StampFloorRejectsFramesUpToALoadedDatabasesLastKeyframe) {
   KeyframeGate gate;
   gate.setStampFloor(100.0);

@@ -11,6 +11,28 @@
 namespace bowg_ros {
 namespace {
 
+TEST(RosConversions, AnOdometryMessageIsAPositionWithItsHeading) {
+  nav_msgs::Odometry msg;
+  msg.pose.pose.position.x = 1.5;
+  msg.pose.pose.position.y = -2.0;
+  msg.pose.pose.position.z = 0.25;
+  // Yaw +90 deg about z: the robot faces +y.
+  msg.pose.pose.orientation.z = std::sqrt(0.5);
+  msg.pose.pose.orientation.w = std::sqrt(0.5);
+  const OdometryReading r = toReading(msg);
+  EXPECT_EQ(r.source, OdometryReading::kPosition);
+  EXPECT_EQ(r.x, 1.5);
+  EXPECT_EQ(r.y, -2.0);
+  EXPECT_EQ(r.z, 0.25);
+  EXPECT_NEAR(r.heading.x, 0.0, 1e-6);
+  EXPECT_NEAR(r.heading.y, 1.0, 1e-6);
+  EXPECT_NEAR(r.heading.z, 0.0, 1e-6);
+  // A driver without orientation leaves it all zero: no heading.
+  msg.pose.pose.orientation = geometry_msgs::Quaternion();
+  EXPECT_TRUE(toReading(msg).heading.unknown());
+  EXPECT_EQ(toReading(msg).x, 1.5);
+}
+
 TEST(RosConversions, IntrinsicsFromCameraInfo) {
   sensor_msgs::CameraInfo info;
   EXPECT_FALSE(toIntrinsics(info).valid);  // all-zero K: uncalibrated

@@ -86,8 +86,9 @@ class KeyframeGate {
   /// (false) once odometry positions arrived: they measure the same path.
   bool addOdometerReading(double metres);
 
-  /// One reading of either source: addPosition or addOdometerReading. False
-  /// when an odometer reading is ignored (as addOdometerReading).
+  /// One reading of either source: addPosition (which also takes a
+  /// position's heading) or addOdometerReading. False when an odometer
+  /// reading is ignored (as addOdometerReading).
   bool addReading(const OdometryReading& r);
 
   double travelledSinceKeyframe() const { return travelled_; }
@@ -104,6 +105,9 @@ class KeyframeGate {
   /// The last odometry position (the keyframes' position for the odometry
   /// gate, bowg::KeyframeInput::position); unknown before the first one.
   bowg::OdometryPosition position() const;
+  /// The heading of the last odometry position (bowg::KeyframeInput::
+  /// heading); unknown before the first one or when it came without one.
+  bowg::OdometryHeading heading() const { return heading_; }
   const KeyframeGateOptions& options() const { return options_; }
   void setOptions(const KeyframeGateOptions& options);
 
@@ -120,6 +124,7 @@ class KeyframeGate {
   unsigned epoch_ = 0;
   double last_frame_stamp_ = 0, last_keyframe_stamp_ = 0;
   double last_x_ = 0, last_y_ = 0, last_z_ = 0;
+  bowg::OdometryHeading heading_;
   double travelled_ = 0;
   double odometer_ = 0;  ///< path length since reset() / setOdometer()
 };

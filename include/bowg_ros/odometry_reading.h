@@ -4,6 +4,8 @@
 
 #include <cstddef>
 
+#include "bowg/core/types.h"
+
 namespace bowg_ros {
 
 /// One stamped reading of the robot's odometry: metres driven (an
@@ -14,18 +16,23 @@ struct OdometryReading {
   Source source = kOdometer;
   double metres = 0.0;         ///< kOdometer
   double x = 0, y = 0, z = 0;  ///< kPosition (m, the odometry frame)
+  /// kPosition: the heading in that frame (bowg::headingFromQuaternion of
+  /// the orientation); unknown when the odometry gives none.
+  bowg::OdometryHeading heading;
 
   static OdometryReading odometer(double metres) {
     OdometryReading r;
     r.metres = metres;
     return r;
   }
-  static OdometryReading position(double x, double y, double z) {
+  static OdometryReading position(double x, double y, double z,
+                                  const bowg::OdometryHeading& heading = bowg::OdometryHeading()) {
     OdometryReading r;
     r.source = kPosition;
     r.x = x;
     r.y = y;
     r.z = z;
+    r.heading = heading;
     return r;
   }
 };

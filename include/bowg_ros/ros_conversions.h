@@ -3,17 +3,25 @@
 // unit-tested without a master.
 #pragma once
 
+#include <nav_msgs/Odometry.h>
 #include <sensor_msgs/CameraInfo.h>
 #include <std_msgs/Header.h>
 
 #include "bowg/core/types.h"
-#include "bowg/features/feature_options.h"
 #include "bowg/detection/loop_detector.h"
+#include "bowg/features/feature_options.h"
 #include "bowg_ros/KeyframeFeatures.h"
 #include "bowg_ros/KeyframeStatus.h"
 #include "bowg_ros/LoopClosure.h"
+#include "bowg_ros/odometry_reading.h"
 
 namespace bowg_ros {
+
+/// The position reading of an odometry message: its position, and its
+/// heading (bowg::headingFromQuaternion of the orientation; unknown when
+/// the orientation is not a unit quaternion, as the all-zero one of a
+/// driver without orientation).
+OdometryReading toReading(const nav_msgs::Odometry& msg);
 
 /// fx, fy, cx, cy from K; invalid (valid == false) when K is all zero or
 /// fx/fy are not positive, as for an uncalibrated camera_info.

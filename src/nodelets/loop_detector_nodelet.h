@@ -123,6 +123,8 @@ struct Frame {
   double odometer = std::numeric_limits<double>::quiet_NaN();
   /// The odometry position then (the odometry gate; unknown without odometry).
   bowg::OdometryPosition position;
+  /// The odometry's heading then (the heading gate; unknown without one).
+  bowg::OdometryHeading heading;
   /// The gate's run (KeyframeGate::epoch()): a frame of a newer run than the
   /// worker's starts a new database (time jumped back, ~reset_on_time_jump).
   unsigned epoch = 0;

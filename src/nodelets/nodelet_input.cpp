@@ -39,6 +39,7 @@ void LoopDetectorNodelet::admit(Frame frame, bool odometry_late) {
   const GateDecision d = gate_.check(stamp);
   frame.odometer = gate_.odometer();
   frame.position = gate_.position();
+  frame.heading = gate_.heading();
   frame.epoch = gate_.epoch();
   diagnostics_.frameReceived(stamp, d);
   if (odometry_late) {
@@ -153,8 +154,14 @@ void LoopDetectorNodelet::applyReading(const OdometryReading& r) {
 }
 
 void LoopDetectorNodelet::odometryCallback(const nav_msgs::OdometryConstPtr& msg) {
-  const geometry_msgs::Point& p = msg->pose.pose.position;
-  const OdometryReading r = OdometryReading::position(p.x, p.y, p.z);
+  const OdometryReading r = toReading(*msg);
+  if (!r.heading.known()) {
+    const geometry_msgs::Quaternion& q = msg->pose.pose.orientation;
+    NODELET_WARN_ONCE(
+        "%s orientation (%g, %g, %g, %g) is not a unit quaternion: its positions carry no "
+        "heading, and the heading gate (heading_gate_deg) does not apply to their keyframes",
+        publicName("odom").c_str(), q.x, q.y, q.z, q.w);
+  }
   std::lock_guard<std::mutex> lock(gate_mutex_);
   if (!msg->header.stamp.isZero()) return addStampedReading(msg->header.stamp.toSec(), r, "odom");
   // Stamp 0 is ROS's "time unknown": such a position is taken on arrival.

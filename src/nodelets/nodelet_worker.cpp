@@ -69,6 +69,7 @@ void LoopDetectorNodelet::processFrame(const Frame& frame) {
   input.stamp = frame.header.stamp.toSec();
   input.odometer = frame.odometer;
   input.position = frame.position;
+  input.heading = frame.heading;
   input.intrinsics = currentIntrinsics();
 
   std::lock_guard<std::mutex> lock(detector_mutex_);

@@ -26,7 +26,7 @@ void applyOdometryGates(const QueryContext& ctx, const DatabaseEntry& query_entr
   // counted as gated.
   const IslandOptions& io = ctx.islands;
   const bool anchored = !anchors.empty();
-  if (!(io.odometry_gate_m > 0.0) && !anchored) return;
+  if (!(io.odometry_gate_m > 0.0) && !(io.heading_gate_deg > 0.0) && !anchored) return;
   const auto outside = [&](const std::pair<EntryId, double>& c) {
     if (c.second < io.min_score) return false;
     const DatabaseEntry& e = ctx.database.entry(c.first);
@@ -34,7 +34,7 @@ void applyOdometryGates(const QueryContext& ctx, const DatabaseEntry& query_entr
       ++r->candidates_gated_cross_run;
       return true;
     }
-    return !withinOdometryGate(query_entry, e, io) ||
+    return !withinOdometryGate(query_entry, e, io) || !withinHeadingGate(query_entry, e, io) ||
            (anchored && !withinLoopAnchors(query_entry, e, anchors, io));
   };
   const auto end = std::remove_if(etas->begin(), etas->end(), outside);

@@ -19,6 +19,11 @@ void IslandOptions::validate() const {
   requireFiniteAtLeast("islands.odometry_gate_m", odometry_gate_m, 0.0);
   requireFiniteAtLeast("islands.odometry_gate_drift", odometry_gate_drift, 0.0);
   requireFiniteAtLeast("islands.odometry_anchor_m", odometry_anchor_m, 0.0);
+  requireFiniteAtLeast("islands.heading_gate_deg", heading_gate_deg, 0.0);
+  requireFiniteAtLeast("islands.heading_gate_drift_deg", heading_gate_drift_deg, 0.0);
+  if (heading_gate_deg > 180.0) {
+    fail("islands.heading_gate_deg", "must be at most 180 (degrees)", str(heading_gate_deg));
+  }
   requireIntAtLeast("islands.indexed_per_place", indexed_per_place, 0);
 }
 

@@ -145,6 +145,12 @@ void writeBody(Writer* wp, const Database& database, const DetectorState& state)
   w.u32(static_cast<std::uint32_t>(database.size()));
   for (const DatabaseEntry& e : database.entries()) w.u8(e.searchable ? 1 : 0);
   writeMissions(&w, database, state);
+  w.u32(static_cast<std::uint32_t>(database.size()));
+  for (const DatabaseEntry& e : database.entries()) {
+    w.f32(e.heading.x);
+    w.f32(e.heading.y);
+    w.f32(e.heading.z);
+  }
 }
 
 }  // namespace

@@ -47,10 +47,13 @@ constexpr char kMagic[8] = {'B', 'O', 'W', 'G', 'D', 'B', 0, 0};
 // entries belong to (u32), the missions (u32 count, then u32 id, u32 name
 // length and the name's bytes each) and each entry's mission (u32 count =
 // entries, u32 id each); older files load as the unnamed mission 0 holding
-// every entry. A keypoint's size, angle, response and
+// every entry. Version 10 appends each entry's odometry heading (u32 count =
+// entries, then f32 x, y, z each: a unit vector, or NaN = unknown); older
+// files load with unknown headings, which the heading gate lets through. A
+// keypoint's size, angle, response and
 // octave are read and checked but not kept (the database keeps positions
 // only); they are written as 0, -1, 0, 0.
-constexpr std::uint32_t kVersion = 9;
+constexpr std::uint32_t kVersion = 10;
 constexpr std::uint32_t kOldestVersion = 1;
 // magic + version + fingerprint + payload size | ... | checksum
 constexpr std::size_t kHeaderBytes = 8 + 4 + 8 + 8;

@@ -371,6 +371,23 @@ void readOdometryPositions(Reader* p, std::vector<DatabaseEntry>* entries, Detec
   }
 }
 
+// Version 10: each entry's odometry heading (a unit vector or all NaN).
+void readHeadings(Reader* p, std::vector<DatabaseEntry>* entries) {
+  if (p->count(3 * 4, "odometry headings") != entries->size()) {
+    p->fail("odometry heading count differs from the entry count");
+  }
+  for (std::size_t i = 0; i < entries->size(); ++i) {
+    OdometryHeading& h = (*entries)[i].heading;
+    h.x = p->f32("odometry heading");
+    h.y = p->f32("odometry heading");
+    h.z = p->f32("odometry heading");
+    if (!h.valid()) {
+      p->fail("entry " + std::to_string(i) +
+              " has an odometry heading that is neither a unit vector nor all NaN");
+    }
+  }
+}
+
 void readSearchable(Reader* p, std::vector<DatabaseEntry>* entries) {
   if (p->count(1, "searchable flags") != entries->size()) {
     p->fail("searchable flag count differs from the entry count");
@@ -444,6 +461,7 @@ std::unique_ptr<Database> decodePayload(Reader& p, std::uint32_t version,
       readMissions(&p, &entries, state, &missions);
       db->restoreMissions(missions);
     }
+    if (version >= 10) readHeadings(&p, &entries);
     for (std::size_t i = 0; i < n; ++i) {
       db->add(std::move(entries[i]), db->addToGroupTable(std::move(raw_groups[i])));
     }

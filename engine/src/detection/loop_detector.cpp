@@ -91,6 +91,12 @@ void checkKeyframe(const KeyframeInput& keyframe, const Database& database) {
                                 ", " + std::to_string(p.y) + ", " + std::to_string(p.z) +
                                 ") must be all finite or all NaN (unknown)");
   }
+  const OdometryHeading& h = keyframe.heading;
+  if (!h.valid()) {
+    throw std::invalid_argument("LoopDetector::process: keyframe.heading (" + std::to_string(h.x) +
+                                ", " + std::to_string(h.y) + ", " + std::to_string(h.z) +
+                                ") must be a unit vector or all NaN (unknown)");
+  }
   if (!database.empty() && !(keyframe.stamp > database.entries().back().stamp)) {
     throw std::invalid_argument("LoopDetector::process: keyframe.stamp " +
                                 std::to_string(keyframe.stamp) + " does not increase (last stamp " +
@@ -282,6 +288,7 @@ LoopResult LoopDetector::process(const KeyframeInput& keyframe) {
   entry.intrinsics = keyframe.intrinsics;
   entry.odometer = keyframe.odometer;
   entry.position = keyframe.position;
+  entry.heading = keyframe.heading;
   entry.odometry_run = state_->odometry_run;
   entry.mission = state_->mission;
   fanCentre(keyframe, &entry.centre_x, &entry.centre_y);

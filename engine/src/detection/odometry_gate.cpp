@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "bowg/core/odometry_heading.h"
+
 namespace bowg {
 namespace {
 
@@ -110,6 +112,21 @@ bool withinOdometryGate(const DatabaseEntry& query, const DatabaseEntry& entry,
   if (!placed(query, query.odometry_run) || !placed(entry, query.odometry_run)) return true;
   const double radius = odometryGateRadius(options, query.odometer - entry.odometer);
   return positionDistanceSquared(query, entry) <= radius * radius;
+}
+
+double headingGateBound(const IslandOptions& options, double driven_m) {
+  return options.heading_gate_deg + options.heading_gate_drift_deg * std::sqrt(std::fabs(driven_m));
+}
+
+bool withinHeadingGate(const DatabaseEntry& query, const DatabaseEntry& entry,
+                       const IslandOptions& options) {
+  if (!(options.heading_gate_deg > 0.0)) return true;
+  const auto headed = [&](const DatabaseEntry& e) {
+    return e.heading.known() && std::isfinite(e.odometer) && e.odometry_run == query.odometry_run;
+  };
+  if (!headed(query) || !headed(entry)) return true;
+  return headingAngleDeg(query.heading, entry.heading) <=
+         headingGateBound(options, query.odometer - entry.odometer);
 }
 
 double loopAnchorRadius(const IslandOptions& options, double query_driven_m,

@@ -49,6 +49,17 @@ void addDetectionRows(std::vector<Row>* rows) {
                             false, BOWG_FIELD(double, detector.islands.odometry_gate_drift),
                             "Odometry gate: metres of dead-reckoning error allowed per metre "
                             "driven"));
+  rows->push_back(doubleRow("heading_gate_deg", det, "islands.heading_gate_deg", 0.0, 180.0, false,
+                            BOWG_FIELD(double, detector.islands.heading_gate_deg),
+                            "Heading gate: with odometry orientations, entries the robot faced "
+                            "more than this many degrees (plus heading_gate_drift_deg times the "
+                            "root of the metres driven between them) away from the query's "
+                            "heading are no candidates (0 = no gate)"));
+  rows->push_back(doubleRow("heading_gate_drift_deg", det, "islands.heading_gate_drift_deg", 0.0,
+                            90.0, false,
+                            BOWG_FIELD(double, detector.islands.heading_gate_drift_deg),
+                            "Heading gate: degrees of heading error allowed per square root of a "
+                            "metre driven"));
   rows->push_back(doubleRow("odometry_anchor_m", det, "islands.odometry_anchor_m", 0.0, 1e6, false,
                             BOWG_FIELD(double, detector.islands.odometry_anchor_m),
                             "Loop-anchored gate: after a loop, entries whose odometry "

@@ -8,6 +8,7 @@
 // feature 0: x, y, size, angle, response (f32), ...
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -35,8 +36,8 @@ constexpr std::size_t kEntries = 52;      // keyframes in the good file
 constexpr std::size_t kNormalisers = 50;  // the normaliser history's length
 
 /// Where the sections of the good file start, from the end: checksum 8, the
-/// missions (one unnamed: current u32, count u32, id u32, name length u32,
-/// entry count u32, u32 per entry; detector_missions_test.cpp forges them),
+/// headings (u32 count, 3 f32 per entry), the missions (one unnamed: current u32, count u32, id
+/// u32, name length u32, entry count u32, u32 per entry; detector_missions_test.cpp forges them),
 /// the searchable flags (u32 count, a u8 per entry), the odometry positions (the
 /// current run u32, u32 count, per entry u32 run and 3 f64), the place links
 /// (u32 count, u32 per entry), the scale factors (u32 count, f32 per entry),
@@ -49,7 +50,8 @@ struct TailLayout {
     const std::size_t searchable = 4 + kEntries, positions = 4 + 4 + kEntries * (4 + 3 * 8);
     const std::size_t place_links = 4 + kEntries * 4, scale_factors = 4 + kEntries * 4;
     const std::size_t missions = 4 + 4 + 4 + 4 + 4 + kEntries * 4;
-    flags = file_size - 8 - missions - searchable;
+    headings = file_size - 8 - (4 + kEntries * 12);
+    flags = headings - missions - searchable;
     run = flags - positions;
     links = run - place_links;
     scales = links - scale_factors;
@@ -60,8 +62,8 @@ struct TailLayout {
     chain = normalisers - 4 - 4;
     island = chain - 32;
   }
-  std::size_t flags, run, links, scales, query_odometers, odometers, missed, normalisers, chain,
-      island;
+  std::size_t headings, flags, run, links, scales, query_odometers, odometers, missed, normalisers,
+      chain, island;
 };
 
 class ForgedDetectorFile : public ::testing::Test {
@@ -165,6 +167,14 @@ TEST_F(ForgedDetectorFile, WeightsAreRefusedByName) {
 
 TEST_F(ForgedDetectorFile, PerEntrySectionsAreRefusedByName) {
   const TailLayout at(good_.size());
+  forge("heading_count.bowgdb", at.headings, std::uint32_t{51},
+        "odometry heading count differs from the entry count");
+  // Entry 2's heading (unknown in the good file): x alone, then a known
+  // vector of length 2.
+  forge("heading_partial.bowgdb", at.headings + 4 + 12 * 2, 1.0f,
+        "entry 2 has an odometry heading that is neither a unit vector nor all NaN");
+  forge("heading_length.bowgdb", at.headings + 4 + 12 * 2, std::array<float, 3>{{2.f, 0.f, 0.f}},
+        "entry 2 has an odometry heading that is neither a unit vector nor all NaN");
   forge("searchable_count.bowgdb", at.flags, std::uint32_t{51},
         "searchable flag count differs from the entry count");
   forge("searchable_flag.bowgdb", at.flags + 4 + 5, std::uint8_t{2},

@@ -285,6 +285,48 @@ TEST(DatabaseIo, OdometryPositionsRoundTrip) {
   std::remove(again.c_str());
 }
 
+// Odometry headings come back bit for bit (version 10), unknown ones
+// unknown, and a version-9 file loads with every heading unknown.
+TEST(DatabaseIo, OdometryHeadingsRoundTrip) {
+  const auto voc = vocabulary();
+  auto kfs = keyframes();
+  // No heading for the first five keyframes, then turning a degree a
+  // keyframe about z.
+  for (std::size_t i = 0; i < kfs.size(); ++i) {
+    kfs[i].odometer = static_cast<double>(i);
+    if (i < 5) continue;
+    kfs[i].heading.x = static_cast<float>(std::cos(i * M_PI / 180.0));
+    kfs[i].heading.y = static_cast<float>(std::sin(i * M_PI / 180.0));
+    kfs[i].heading.z = 0.f;
+  }
+  LoopDetectorOptions o = options();
+  o.islands.heading_gate_deg = 30.0;
+  LoopDetector a(voc, o);
+  for (int i = 0; i < 50; ++i) a.process(kfs[i]);
+  const std::string path = outPath("headings.bowgdb");
+  a.save(path);
+  const std::string bytes = readBytes(path);
+  LoopDetector b(voc, o);
+  b.load(path);
+  ASSERT_EQ(b.database().size(), 50u);
+  for (EntryId i = 0; i < 50; ++i) {
+    const OdometryHeading& h = b.database().entry(i).heading;
+    if (i < 5) {
+      EXPECT_TRUE(h.unknown()) << i;
+    } else {
+      EXPECT_EQ(h.x, kfs[i].heading.x) << i;
+      EXPECT_EQ(h.y, kfs[i].heading.y) << i;
+      EXPECT_EQ(h.z, 0.f) << i;
+    }
+  }
+  // Version 9: no headings.
+  writeBytes(path, asVersion(bytes, testing::headingBytes(50), 9));
+  LoopDetector c(voc, o);
+  c.load(path);
+  for (const DatabaseEntry& e : c.database().entries()) EXPECT_TRUE(e.heading.unknown());
+  std::remove(path.c_str());
+}
+
 TEST(DatabaseIo, TemporalHypothesesRoundTrip) {
   const auto voc = vocabulary();
   const auto kfs = keyframes();

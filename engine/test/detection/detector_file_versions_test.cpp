@@ -110,7 +110,8 @@ TEST(DatabaseIo, VersionOneFilesLoadWithAnEmptyHistory) {
   // temporal hypotheses (u32 count, 0 with one hypothesis), version 5 the
   // entries' scale factors (u32 count + 45 f32), version 6 the place links
   // (u32 count + 45 u32), version 7 the odometry positions, version 8 the
-  // searchable flags, version 9 the missions, then the u64
+  // searchable flags, version 9 the missions, version 10 the headings, then
+  // the u64
   // checksum. 44 keyframes had a previous one; the window is 50.
   const std::size_t history = 4 + 44 * 24 + 2 * 4 + 4 + 45 * 8 + 2 * 8 + 4 + 4 + 45 * 4 + 4 +
                               45 * 4 + fromVersion7Bytes(45);
@@ -124,12 +125,12 @@ TEST(DatabaseIo, VersionOneFilesLoadWithAnEmptyHistory) {
     expectSameCandidates(a, b);
   }
   // Versions beyond the current one are refused by number.
-  writeBytes(v1, asVersion(bytes, history, 10));
+  writeBytes(v1, asVersion(bytes, history, 11));
   try {
     b.load(v1);
-    ADD_FAILURE() << "version 10 accepted";
+    ADD_FAILURE() << "version 11 accepted";
   } catch (const FormatError& e) {
-    EXPECT_NE(std::string(e.what()).find("unsupported version 10"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("unsupported version 11"), std::string::npos) << e.what();
   }
   std::remove(v1.c_str());
   std::remove(v2.c_str());

@@ -187,7 +187,7 @@ TEST(Missions, AFileWithoutMissionsIsTheUnnamedMissionZero) {
   for (int i = 0; i < 30; ++i) a.process(kfs[i]);
   const std::string path = outPath("missions_v8.bowgdb");
   a.save(path);
-  writeBytes(path, asVersion(readBytes(path), testing::unnamedMissionBytes(30), 8));
+  writeBytes(path, asVersion(readBytes(path), testing::fromVersion9Bytes(30), 8));
   LoopDetector b(testing::vocabulary(), options());
   b.load(path);
   ASSERT_EQ(b.database().missions().size(), 1u);
@@ -210,7 +210,8 @@ void expectForgedRefused(const std::string& name, long offset, std::uint32_t val
   a.save(path);
   std::string bytes = readBytes(path);
   const std::size_t n = a.database().size();
-  const std::size_t entry_missions = bytes.size() - 8 - 4 * n;
+  // The entry missions close the version-9 section; the headings follow.
+  const std::size_t entry_missions = bytes.size() - 8 - testing::headingBytes(n) - 4 * n;
   putLe(&bytes, static_cast<std::size_t>(static_cast<long>(entry_missions) + offset), value, 4);
   testing::resealChecksum(&bytes);
   writeBytes(path, bytes);

@@ -179,6 +179,44 @@ TEST(LoopDetector, AMetricTranslationTheOdometryCannotAllowIsNotPublished) {
   }
 }
 
+// The heading gate on the corridor's out-and-back: with the robot facing
+// the same way on both passes (backing up) the return finds its loops; with
+// the return pass facing 90 degrees away (as a robot turned into a cross
+// pipe) every candidate of the first pass is gated and no loop is published.
+TEST(LoopDetector, TheHeadingGateRefusesPlacesTheRobotFacedAnotherWayAt) {
+  for (const bool turned : {false, true}) {
+    LoopDetectorOptions o = defaultOptions();
+    o.islands.heading_gate_deg = 30.0;
+    o.islands.heading_gate_drift_deg = 1.5;
+    LoopDetector det(vocabulary(), o);
+    const testing::Corridor c = testing::makeCorridor(70, 50, 3);
+    std::mt19937_64 rng(103);
+    const std::vector<double> x = outAndBack();
+    double odometer = 0;
+    int loops = 0;
+    std::size_t gated = 0;
+    for (std::size_t t = 0; t < x.size(); ++t) {
+      if (t > 0) odometer += std::fabs(x[t] - x[t - 1]);
+      KeyframeInput in = testing::observeCorridor(c, x[t], 1.0 + t, rng, 2, 0.5);
+      in.odometer = odometer;
+      const bool back = t >= 60;
+      in.heading.x = back && turned ? 0.f : 1.f;
+      in.heading.y = back && turned ? 1.f : 0.f;
+      in.heading.z = 0.f;
+      const LoopResult r = det.process(in);
+      gated += r.candidates_gated;
+      if (r.status == LoopStatus::kLoopDetected) ++loops;
+    }
+    if (turned) {
+      EXPECT_EQ(loops, 0);
+      EXPECT_GE(gated, 30u);
+    } else {
+      EXPECT_GE(loops, 20);
+      EXPECT_EQ(gated, 0u);
+    }
+  }
+}
+
 TEST(LoopDetector, FindsNoLoopWithoutRevisit) {
   LoopDetector det(vocabulary(), defaultOptions());
   const CorridorRun run = runCorridor(&det, false, 100);
@@ -230,6 +268,13 @@ TEST(LoopDetector, BadInputThrowsAndIsNotAdded) {
     KeyframeInput implausible = testing::observeCorridor(c, 2.0, stamp, rng);
     EXPECT_THROW(det.process(implausible), std::invalid_argument) << stamp;
   }
+  // A heading must be a direction (unit length) or unknown as a whole.
+  KeyframeInput long_heading = testing::observeCorridor(c, 2.0, 11.0, rng);
+  long_heading.heading.x = 2.f, long_heading.heading.y = 0.f, long_heading.heading.z = 0.f;
+  EXPECT_THROW(det.process(long_heading), std::invalid_argument);
+  KeyframeInput partial_heading = testing::observeCorridor(c, 2.0, 11.0, rng);
+  partial_heading.heading.x = 1.f;
+  EXPECT_THROW(det.process(partial_heading), std::invalid_argument);
   LoopDetector fresh(vocabulary(), defaultOptions());
   EXPECT_THROW(fresh.process(testing::observeCorridor(c, 1.0, -1.0, rng)), std::invalid_argument);
   EXPECT_EQ(fresh.process(testing::observeCorridor(c, 1.0, 0.0, rng)).query_id, 0u);

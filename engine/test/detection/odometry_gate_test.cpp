@@ -27,6 +27,66 @@ IslandOptions gate(double base_m, double drift) {
   return o;
 }
 
+// An entry facing `degrees` from the x axis (about z), `odometer` metres
+// along, in run `run`.
+DatabaseEntry facing(double degrees, double odometer, std::uint32_t run = 0) {
+  DatabaseEntry e;
+  e.heading.x = static_cast<float>(std::cos(degrees * M_PI / 180.0));
+  e.heading.y = static_cast<float>(std::sin(degrees * M_PI / 180.0));
+  e.heading.z = 0.f;
+  e.odometer = odometer;
+  e.odometry_run = run;
+  return e;
+}
+
+IslandOptions headingGate(double base_deg, double drift_deg) {
+  IslandOptions o;
+  o.heading_gate_deg = base_deg;
+  o.heading_gate_drift_deg = drift_deg;
+  return o;
+}
+
+TEST(HeadingGate, BoundGrowsWithTheRootOfTheMetresDriven) {
+  // 30 + 1.5 * sqrt(16) = 36 degrees, either order; 30 at the same odometer.
+  EXPECT_DOUBLE_EQ(headingGateBound(headingGate(30, 1.5), 16.0), 36.0);
+  EXPECT_DOUBLE_EQ(headingGateBound(headingGate(30, 1.5), -16.0), 36.0);
+  EXPECT_DOUBLE_EQ(headingGateBound(headingGate(30, 1.5), 0.0), 30.0);
+  EXPECT_DOUBLE_EQ(headingGateBound(headingGate(20, 0.0), 400.0), 20.0);
+}
+
+TEST(HeadingGate, EntriesTheRobotFacedAnotherWayAtAreRefused) {
+  const IslandOptions o = headingGate(30, 1.5);
+  const DatabaseEntry query = facing(0, 30.0);
+  // 16 m driven apart: 36 degrees. 35 passes, 37 does not, either side.
+  EXPECT_TRUE(withinHeadingGate(query, facing(35, 14.0), o));
+  EXPECT_TRUE(withinHeadingGate(query, facing(-35, 14.0), o));
+  EXPECT_FALSE(withinHeadingGate(query, facing(37, 14.0), o));
+  // The robot turning into a junction's cross pipe a step after the
+  // straight pass: 0.25 m driven, bound 30 + 1.5 * 0.5 = 30.75; the cross
+  // pipe is 80 degrees away.
+  EXPECT_FALSE(withinHeadingGate(query, facing(80, 29.75), o));
+  EXPECT_TRUE(withinHeadingGate(query, facing(30.5, 29.75), o));
+  // Driving the pipe the other way: 180 degrees.
+  EXPECT_FALSE(withinHeadingGate(query, facing(180, 14.0), o));
+}
+
+TEST(HeadingGate, WithoutComparableHeadingsEverythingPasses) {
+  const DatabaseEntry query = facing(0, 30.0);
+  const DatabaseEntry across = facing(90, 29.0);
+  EXPECT_FALSE(withinHeadingGate(query, across, headingGate(30, 1.5)));
+  EXPECT_TRUE(withinHeadingGate(query, across, headingGate(0, 1.5)));  // gate off
+  DatabaseEntry unknown = across;
+  unknown.heading = OdometryHeading();
+  EXPECT_TRUE(withinHeadingGate(query, unknown, headingGate(30, 1.5)));
+  EXPECT_TRUE(withinHeadingGate(unknown, query, headingGate(30, 1.5)));
+  // Another odometry run: another frame, headings not comparable.
+  EXPECT_TRUE(withinHeadingGate(query, facing(90, 29.0, 1), headingGate(30, 1.5)));
+  // Headings without odometers: no metres driven to scale the drift.
+  DatabaseEntry no_odometer = across;
+  no_odometer.odometer = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_TRUE(withinHeadingGate(query, no_odometer, headingGate(30, 1.5)));
+}
+
 TEST(OdometryGate, RadiusGrowsWithTheMetresDriven) {
   EXPECT_DOUBLE_EQ(odometryGateRadius(gate(0.5, 0.1), 0.0), 0.5);
   EXPECT_DOUBLE_EQ(odometryGateRadius(gate(0.5, 0.1), 20.0), 2.5);

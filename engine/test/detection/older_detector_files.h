@@ -26,9 +26,15 @@ inline std::size_t searchableBytes(std::size_t n) { return 4 + n; }
 // the current mission, a count, id 0 and an empty name, then a count and
 // each entry's u32 mission.
 inline std::size_t unnamedMissionBytes(std::size_t n) { return 4 + 4 + 4 + 4 + 4 + 4 * n; }
-// Everything from the version-8 / version-7 section on (one unnamed mission).
+// The version-10 section: a u32 count and each entry's three f32 heading.
+inline std::size_t headingBytes(std::size_t n) { return 4 + n * 3 * 4; }
+// Everything from the version-9 / version-8 / version-7 section on (one
+// unnamed mission).
+inline std::size_t fromVersion9Bytes(std::size_t n) {
+  return unnamedMissionBytes(n) + headingBytes(n);
+}
 inline std::size_t fromVersion8Bytes(std::size_t n) {
-  return searchableBytes(n) + unnamedMissionBytes(n);
+  return searchableBytes(n) + fromVersion9Bytes(n);
 }
 inline std::size_t fromVersion7Bytes(std::size_t n) {
   return odometryPositionBytes(n) + fromVersion8Bytes(n);

@@ -170,6 +170,17 @@ TEST(Options, Islands) {
     o.islands.recent_exclusion = 0;
     o.islands.max_intra_island_gap = 0;
   });
+  // The heading gate: an angle of at most 180 degrees, a drift >= 0.
+  expectRejected([](LoopDetectorOptions& o) { o.islands.heading_gate_deg = 180.5; },
+                 "islands.heading_gate_deg");
+  expectRejected([](LoopDetectorOptions& o) { o.islands.heading_gate_deg = -1; },
+                 "islands.heading_gate_deg");
+  expectRejected([](LoopDetectorOptions& o) { o.islands.heading_gate_drift_deg = kNan; },
+                 "islands.heading_gate_drift_deg");
+  expectAccepted([](LoopDetectorOptions& o) {
+    o.islands.heading_gate_deg = 180;
+    o.islands.heading_gate_drift_deg = 0;
+  });
 }
 
 TEST(Options, TemporalVerification) {

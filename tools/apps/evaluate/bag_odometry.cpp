@@ -8,11 +8,13 @@
 
 #include "bowg/core/errors.h"
 #include "bowg_ros/OdometerStamped.h"
+#include "bowg_ros/ros_conversions.h"
 
 namespace bowg {
 namespace evaluate_app {
 
 using bowg_ros::OdometryReading;
+using bowg_ros::toReading;
 
 BagOdometry::BagOdometry(const std::string& bag, const std::string& odometer_topic,
                          const std::string& odom_topic, std::vector<eval::FrameInput>* frames)
@@ -57,8 +59,7 @@ void BagOdometry::odometerReading(const rosbag::MessageInstance& m) {
 void BagOdometry::positionReading(const rosbag::MessageInstance& m) {
   const nav_msgs::Odometry::ConstPtr o = m.instantiate<nav_msgs::Odometry>();
   if (!o) throw FormatError(bag_ + ": " + odom_topic_ + " is not nav_msgs/Odometry");
-  const geometry_msgs::Point& p = o->pose.pose.position;
-  const OdometryReading r = OdometryReading::position(p.x, p.y, p.z);
+  const OdometryReading r = toReading(*o);
   // Stamp 0 ("time unknown"): taken in bag order, as the nodelet takes it on arrival.
   if (o->header.stamp.isZero()) return (void)gate_.addReading(r);
   add(o->header.stamp.toSec(), r);
@@ -80,6 +81,7 @@ void BagOdometry::frameAdded(double stamp) {
 void BagOdometry::settle(std::size_t frame) {
   (*frames_)[frame].odometer = gate_.odometer();
   (*frames_)[frame].position = gate_.position();
+  (*frames_)[frame].heading = gate_.heading();
 }
 
 // Every frame "arrives" at 0 and waits 1 s: no frame is late before the

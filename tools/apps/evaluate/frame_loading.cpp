@@ -208,8 +208,11 @@ void attachOdometry(const std::string& path, std::vector<FrameInput>* frames) {
 }
 
 void attachOdometryPositions(const std::string& path, std::vector<FrameInput>* frames) {
-  attachPerFrame(path, readOdometryPositions(path), "odometry positions", frames,
-                 [](FrameInput* f, const OdometryPosition& p) { f->position = p; });
+  attachPerFrame(path, readOdometryPoses(path), "odometry positions", frames,
+                 [](FrameInput* f, const OdometryPose& p) {
+                   f->position = p.position;
+                   f->heading = p.heading;
+                 });
 }
 
 OdometryInput odometryInputOf(const std::vector<eval::FrameInput>& frames) {

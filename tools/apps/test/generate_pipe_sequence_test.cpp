@@ -275,7 +275,7 @@ TEST_F(GeneratePipeSequence, AgainContinuesFramesStampsAndTheOdometer) {
   // odometer, frames in order).
   EXPECT_EQ(eval::readOdometry(kDir + "/again/poses.csv").size(), 120u);
   EXPECT_EQ(eval::readOdometry(kDir + "/again/odometry.csv").size(), 120u);
-  EXPECT_EQ(eval::readOdometryPositions(kDir + "/again/odometry.csv").size(), 120u);
+  EXPECT_EQ(eval::readOdometryPoses(kDir + "/again/odometry.csv").size(), 120u);
 }
 
 TEST_F(GeneratePipeSequence, AgainLeavesTheFirstMissionAsWithoutIt) {

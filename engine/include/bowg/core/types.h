@@ -104,4 +104,23 @@ struct OdometryPosition {
   bool valid() const { return known() || unknown(); }
 };
 
+/// The direction the robot faces in its odometry's fixed frame: the x axis
+/// of its body frame (REP-103: x forward) as a unit vector, from the
+/// odometry's orientation (odometry_heading.h). Roll about that axis leaves
+/// it unchanged, so a crawler rolling in the pipe keeps its heading. All
+/// three NaN when unknown. Floats: a direction to a fraction of a degree is
+/// all the heading gate needs, in half the memory of a database's entries.
+struct OdometryHeading {
+  float x = std::numeric_limits<float>::quiet_NaN();
+  float y = std::numeric_limits<float>::quiet_NaN();
+  float z = std::numeric_limits<float>::quiet_NaN();
+  bool known() const { return std::isfinite(x) && std::isfinite(y) && std::isfinite(z); }
+  bool unknown() const { return std::isnan(x) && std::isnan(y) && std::isnan(z); }
+  /// Unknown, or known with unit length (within 1e-3): what a keyframe and a
+  /// detector file may hold.
+  bool valid() const {
+    return unknown() || (known() && std::abs(x * x + y * y + z * z - 1.f) <= 1e-3f);
+  }
+};
+
 }  // namespace bowg

@@ -84,6 +84,8 @@ struct DatabaseEntry {
   /// loaded from a file starts a new run, DetectorState::odometry_run).
   OdometryPosition position;
   std::uint32_t odometry_run = 0;
+  /// KeyframeInput::heading, in the frame of `odometry_run` as the position.
+  OdometryHeading heading;
   /// The mission (survey) the keyframe was taken in: an id of the
   /// database's missions(). A mission's odometry runs are its own.
   std::uint32_t mission = 0;

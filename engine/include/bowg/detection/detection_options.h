@@ -51,6 +51,18 @@ struct IslandOptions {
   /// 0 = no gate. >= 0, both.
   double odometry_gate_m = 0.0;
   double odometry_gate_drift = 0.1;
+  /// Heading gate: where the query and an entry have odometry headings
+  /// (KeyframeInput::heading) and odometers of one run, the entry is a
+  /// candidate only when the robot faced the same way at both, within
+  ///   heading_gate_deg + heading_gate_drift_deg * sqrt(|metres driven between them|)
+  /// degrees: a heading's error is a random walk in the metres driven. A
+  /// camera looking along the pipe sees one section from both sides of a
+  /// junction, and the robot turning into the cross pipe there sees the
+  /// straight pass a few centimetres away with the same marks in view: the
+  /// positions agree, the headings are 65-90 degrees apart. 0 = no gate.
+  /// In [0, 180] and >= 0.
+  double heading_gate_deg = 0.0;
+  double heading_gate_drift_deg = 1.5;
   /// Loop-anchored gate (odometry_gate.h, LoopAnchor): after an accepted
   /// loop (q0, m0) of the same odometry run, an entry e is a candidate of
   /// query q only when q's odometry displacement since q0 and e's since m0

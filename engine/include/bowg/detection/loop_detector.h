@@ -83,6 +83,12 @@ struct KeyframeInput {
   /// odometry's drift allows are not candidates (IslandOptions::
   /// odometry_gate_m). All three finite, or all NaN (unknown).
   OdometryPosition position;
+  /// Optional: the direction the robot faces in the same frame (the body's
+  /// forward axis, headingFromQuaternion of the odometry's orientation).
+  /// With it and the odometer, candidates the robot faced another way at
+  /// are not candidates (IslandOptions::heading_gate_deg). All three finite
+  /// with unit length, or all NaN (unknown).
+  OdometryHeading heading;
 };
 
 struct LoopResult {
@@ -138,9 +144,9 @@ struct LoopResult {
   double word_divisor = 0, group_divisor = 0, distribution_divisor = 0;
   std::size_t candidates_scored = 0;
   /// Of those, the candidates above min_score the odometry gates removed
-  /// (IslandOptions::odometry_gate_m, odometry_anchor_m), and of these the
-  /// ones of another odometry run (an earlier mission) that the cross-run
-  /// anchors refused (withinCrossRunAnchors).
+  /// (IslandOptions::odometry_gate_m, heading_gate_deg, odometry_anchor_m),
+  /// and of these the ones of another odometry run (an earlier mission)
+  /// that the cross-run anchors refused (withinCrossRunAnchors).
   std::size_t candidates_gated = 0;
   std::size_t candidates_gated_cross_run = 0;
   StageTimings timings;

@@ -43,6 +43,20 @@ double odometryGateRadius(const IslandOptions& options, double driven_m);
 bool withinOdometryGate(const DatabaseEntry& query, const DatabaseEntry& entry,
                         const IslandOptions& options);
 
+/// The largest angle (degrees) between the headings of two entries
+/// `driven_m` metres of driving apart that the heading gate lets through:
+/// heading_gate_deg + heading_gate_drift_deg * sqrt(|driven_m|).
+double headingGateBound(const IslandOptions& options, double driven_m);
+
+/// Whether `entry` may be a candidate of `query` by the heading gate: true
+/// when the gate is off (heading_gate_deg 0), when either lacks a heading or
+/// an odometer, or when they belong to different odometry runs (another
+/// run's headings are in another frame); otherwise whether the angle
+/// between their headings is within headingGateBound of the metres driven
+/// between them.
+bool withinHeadingGate(const DatabaseEntry& query, const DatabaseEntry& entry,
+                       const IslandOptions& options);
+
 /// The loop-anchored gate's radius (m) when the query drove `query_driven_m`
 /// since the anchor's query and the entry lies `entry_driven_m` along the
 /// earlier passes from the anchor's match: odometry_anchor_m +

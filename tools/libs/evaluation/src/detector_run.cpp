@@ -22,6 +22,7 @@ KeyframeInput toKeyframeInput(const FrameInput& frame) {
   input.intrinsics = frame.intrinsics;
   input.odometer = frame.odometer;
   input.position = frame.position;
+  input.heading = frame.heading;
   return input;
 }
 

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "bowg/core/errors.h"
+#include "bowg/core/odometry_heading.h"
 #include "bowg_evaluation/csv_cells.h"
 #include "bowg_evaluation/text_file.h"
 
@@ -15,7 +16,12 @@ namespace {
 // Column indexes of a header (-1 where absent).
 struct Columns {
   int frame = -1, odometer = -1, distance = -1, xyz[3] = {-1, -1, -1};
+  int quaternion[4] = {-1, -1, -1, -1};  ///< qx, qy, qz, qw
   bool hasPositions() const { return xyz[0] >= 0 && xyz[1] >= 0 && xyz[2] >= 0; }
+  int quaternionColumns() const {
+    return static_cast<int>(
+        std::count_if(quaternion, quaternion + 4, [](int c) { return c >= 0; }));
+  }
 };
 
 Columns readHeader(CsvLines* csv) {
@@ -29,6 +35,10 @@ Columns readHeader(CsvLines* csv) {
     if (header[i] == "distance") c.distance = col;
     for (int a = 0; a < 3; ++a) {
       if (header[i] == std::string(1, static_cast<char>('x' + a))) c.xyz[a] = col;
+    }
+    const char* const q[4] = {"qx", "qy", "qz", "qw"};
+    for (int a = 0; a < 4; ++a) {
+      if (header[i] == q[a]) c.quaternion[a] = col;
     }
   }
   return c;
@@ -54,6 +64,25 @@ void readPosition(const CsvLines& csv, const std::vector<std::string>& cells, co
       csv.fail("position '" + cells[c.xyz[a]] + "' is not a finite number");
     }
   }
+}
+
+// The row's heading: the forward axis of its orientation quaternion, which
+// must be a unit quaternion (headingFromQuaternion's tolerance).
+OdometryHeading readHeading(const CsvLines& csv, const std::vector<std::string>& cells,
+                            const Columns& c) {
+  double q[4];
+  for (int a = 0; a < 4; ++a) {
+    if (!toDouble(cells[c.quaternion[a]], &q[a])) {
+      csv.fail("orientation '" + cells[c.quaternion[a]] + "' is not a number");
+    }
+  }
+  const OdometryHeading h = headingFromQuaternion(q[0], q[1], q[2], q[3]);
+  if (!h.known()) {
+    csv.fail("orientation (" + cells[c.quaternion[0]] + ", " + cells[c.quaternion[1]] + ", " +
+             cells[c.quaternion[2]] + ", " + cells[c.quaternion[3]] +
+             ") is not a unit quaternion (qx, qy, qz, qw)");
+  }
+  return h;
 }
 
 }  // namespace
@@ -105,31 +134,37 @@ std::vector<double> readOdometry(const std::string& path) {
   return parseOdometry(readTextFile(path, "odometry"), path);
 }
 
-std::vector<OdometryPosition> parseOdometryPositions(const std::string& text,
-                                                     const std::string& source) {
+std::vector<OdometryPose> parseOdometryPoses(const std::string& text, const std::string& source) {
   CsvLines csv(text, source);
   const Columns c = readHeader(&csv);
   if (c.frame < 0 || !c.hasPositions()) {
     csv.fail("the header needs 'frame', 'x', 'y' and 'z' columns");
   }
-  const int last_col = std::max(c.frame, std::max(c.xyz[0], std::max(c.xyz[1], c.xyz[2])));
-  std::vector<OdometryPosition> positions;
+  const int orientation = c.quaternionColumns();
+  if (orientation != 0 && orientation != 4) {
+    csv.fail("the header has some of 'qx', 'qy', 'qz', 'qw': an orientation needs all four");
+  }
+  int last_col = std::max(c.frame, *std::max_element(c.xyz, c.xyz + 3));
+  if (orientation == 4)
+    last_col = std::max(last_col, *std::max_element(c.quaternion, c.quaternion + 4));
+  std::vector<OdometryPose> poses;
   std::vector<std::string> cells;
   while (csv.next(&cells)) {
     if (static_cast<int>(cells.size()) <= last_col) csv.fail("too few columns");
-    const std::size_t f = readFrame(csv, cells[c.frame], positions.size());
+    const std::size_t f = readFrame(csv, cells[c.frame], poses.size());
     double p[3];
     readPosition(csv, cells, c, p);
-    positions.resize(f + 1);
-    positions[f].x = p[0];
-    positions[f].y = p[1];
-    positions[f].z = p[2];
+    poses.resize(f + 1);
+    poses[f].position.x = p[0];
+    poses[f].position.y = p[1];
+    poses[f].position.z = p[2];
+    if (orientation == 4) poses[f].heading = readHeading(csv, cells, c);
   }
-  return positions;
+  return poses;
 }
 
-std::vector<OdometryPosition> readOdometryPositions(const std::string& path) {
-  return parseOdometryPositions(readTextFile(path, "odometry positions"), path);
+std::vector<OdometryPose> readOdometryPoses(const std::string& path) {
+  return parseOdometryPoses(readTextFile(path, "odometry positions"), path);
 }
 
 }  // namespace eval

@@ -27,7 +27,7 @@ std::string errorOf(const std::string& text) {
 }
 
 std::string positionErrorOf(const std::string& text) {
-  return messageOf([](const std::string& t) { parseOdometryPositions(t, "odometry.csv"); }, text);
+  return messageOf([](const std::string& t) { parseOdometryPoses(t, "odometry.csv"); }, text);
 }
 
 TEST(OdometryFile, ReadsTheOdometerColumnOfTheGeneratorsPoses) {
@@ -96,15 +96,20 @@ TEST(OdometryFile, PositionsOfAPoseFileAndUnknownFramesBetween) {
       "frame,stamp,x,y,z,qx,qy,qz,qw\n"
       "0,0.0,1.0,2.0,0.0,0,0,0,1\n"
       "2,1.0,1.08,-2.24,0.5,0,0,0,1\n";
-  const std::vector<OdometryPosition> p = parseOdometryPositions(text, "odometry.csv");
-  ASSERT_EQ(p.size(), 3u);
-  EXPECT_EQ(p[0].x, 1.0);
-  EXPECT_EQ(p[0].y, 2.0);
-  EXPECT_EQ(p[0].z, 0.0);
-  EXPECT_TRUE(p[1].unknown());
-  EXPECT_EQ(p[2].x, 1.08);
-  EXPECT_EQ(p[2].y, -2.24);
-  EXPECT_EQ(p[2].z, 0.5);
+  const std::vector<OdometryPose> poses = parseOdometryPoses(text, "odometry.csv");
+  ASSERT_EQ(poses.size(), 3u);
+  EXPECT_EQ(poses[0].position.x, 1.0);
+  EXPECT_EQ(poses[0].position.y, 2.0);
+  EXPECT_EQ(poses[0].position.z, 0.0);
+  EXPECT_TRUE(poses[1].position.unknown());
+  EXPECT_TRUE(poses[1].heading.unknown());
+  EXPECT_EQ(poses[2].position.x, 1.08);
+  EXPECT_EQ(poses[2].position.y, -2.24);
+  EXPECT_EQ(poses[2].position.z, 0.5);
+  // The identity orientation faces +x.
+  EXPECT_EQ(poses[2].heading.x, 1.f);
+  EXPECT_EQ(poses[2].heading.y, 0.f);
+  EXPECT_EQ(poses[2].heading.z, 0.f);
   EXPECT_EQ(positionErrorOf("frame,x,y\n0,1,2\n"),
             "odometry.csv:1: the header needs 'frame', 'x', 'y' and 'z' columns");
   EXPECT_EQ(positionErrorOf("frame,x,y,z\n0,1,nan,0\n"),
@@ -114,6 +119,29 @@ TEST(OdometryFile, PositionsOfAPoseFileAndUnknownFramesBetween) {
   EXPECT_EQ(positionErrorOf("frame,x,y,z\n-1,1,1,0\n"),
             "odometry.csv:2: frame '-1' is not a non-negative integer");
   EXPECT_EQ(positionErrorOf("frame,x,y,z\n0,1,1\n"), "odometry.csv:2: too few columns");
+}
+
+TEST(OdometryFile, HeadingsOfAPoseFilesOrientations) {
+  // Yaw +90 deg about z: q = (0, 0, sin 45, cos 45) faces +y.
+  const std::string text =
+      "frame,x,y,z,qx,qy,qz,qw\n"
+      "0,0,0,0,0,0,0.7071068,0.7071068\n";
+  const std::vector<OdometryPose> poses = parseOdometryPoses(text, "odometry.csv");
+  ASSERT_EQ(poses.size(), 1u);
+  EXPECT_NEAR(poses[0].heading.x, 0.0, 1e-6);
+  EXPECT_NEAR(poses[0].heading.y, 1.0, 1e-6);
+  EXPECT_NEAR(poses[0].heading.z, 0.0, 1e-6);
+  // Without a quaternion, positions and no heading.
+  EXPECT_TRUE(parseOdometryPoses("frame,x,y,z\n0,1,2,3\n", "o.csv")[0].heading.unknown());
+  EXPECT_EQ(positionErrorOf("frame,x,y,z,qz,qw\n0,0,0,0,0,1\n"),
+            "odometry.csv:1: the header has some of 'qx', 'qy', 'qz', 'qw': an orientation needs "
+            "all four");
+  EXPECT_EQ(positionErrorOf("frame,x,y,z,qx,qy,qz,qw\n0,0,0,0,0,0,0,0\n"),
+            "odometry.csv:2: orientation (0, 0, 0, 0) is not a unit quaternion (qx, qy, qz, qw)");
+  EXPECT_EQ(positionErrorOf("frame,x,y,z,qx,qy,qz,qw\n0,0,0,0,0,0,0,w\n"),
+            "odometry.csv:2: orientation 'w' is not a number");
+  EXPECT_EQ(positionErrorOf("frame,x,y,z,qx,qy,qz,qw\n0,0,0,0,0,0,0\n"),
+            "odometry.csv:2: too few columns");
 }
 
 }  // namespace

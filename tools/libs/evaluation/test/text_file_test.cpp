@@ -29,7 +29,7 @@ TEST(TextFile, SpecialFilesAreRefusedByEveryReader) {
       {"loop", [](const std::string& p) { readTextFile(p, "loop"); }},
       {"ground-truth", [](const std::string& p) { readGroundTruth(p); }},
       {"odometry", [](const std::string& p) { readOdometry(p); }},
-      {"odometry positions", [](const std::string& p) { readOdometryPositions(p); }},
+      {"odometry positions", [](const std::string& p) { readOdometryPoses(p); }},
       {"intrinsics", [](const std::string& p) { readIntrinsics(p); }},
   };
   const auto files = testing::makeSpecialFiles(std::string(BOWG_TEST_OUTPUT_DIR) + "/text_file",

@@ -39,6 +39,9 @@ struct FrameInput {
   double odometer = std::numeric_limits<double>::quiet_NaN();
   /// Position in the odometry's frame (odometry_file.h); unknown = NaN.
   OdometryPosition position;
+  /// Heading in the same frame (odometry_file.h, KeyframeInput::heading);
+  /// unknown = NaN.
+  OdometryHeading heading;
   /// The frame starts a mission (mission_file.h): the detector starts it
   /// (LoopDetector::startMission) before processing the frame.
   bool starts_mission = false;

@@ -34,14 +34,23 @@ std::vector<double> readOdometry(const std::string& path);
 /// Same, from text (`source` names it in messages).
 std::vector<double> parseOdometry(const std::string& text, const std::string& source);
 
-/// position[frame]; frames the file does not list are unknown (NaN).
+/// One frame's odometry pose as the evaluator uses it: the position, and
+/// the heading (the body's forward axis) where the file has an orientation.
+struct OdometryPose {
+  OdometryPosition position;
+  OdometryHeading heading;
+};
+
+/// pose[frame] from columns frame, x, y, z and, optionally, qx, qy, qz, qw
+/// (a unit quaternion: the heading); frames the file does not list are
+/// unknown (NaN), and so are the headings of a file without the quaternion.
 /// Throws bowg::IoError when the file cannot be read, bowg::FormatError
-/// ("<path>:<line>: <why>") on a missing column, a non-finite coordinate or
-/// frames out of order.
-std::vector<OdometryPosition> readOdometryPositions(const std::string& path);
+/// ("<path>:<line>: <why>") on a missing column, some but not all four
+/// quaternion columns, a non-finite coordinate, a quaternion that is not of
+/// unit length (within 0.01) or frames out of order.
+std::vector<OdometryPose> readOdometryPoses(const std::string& path);
 /// Same, from text (`source` names it in messages).
-std::vector<OdometryPosition> parseOdometryPositions(const std::string& text,
-                                                     const std::string& source);
+std::vector<OdometryPose> parseOdometryPoses(const std::string& text, const std::string& source);
 
 }  // namespace eval
 }  // namespace bowg
