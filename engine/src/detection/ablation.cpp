@@ -21,7 +21,7 @@ LoopDetectorOptions LoopDetectorOptions::ablation(const std::string& row,
     // with pure bag-of-words scores (DBoW2 + DLoopDetector's islands and
     // checks): every extension of this implementation off (normaliser floor,
     // aligned temporal score, missed-query tolerance, geometric re-ranking,
-    // the odometry gates, the verified chain, the place index, RANSAC's
+    // the odometry and heading gates, the verified chain, the place index, RANSAC's
     // sample bound;
     // docs/method.md). The configuration's
     // thresholds and its recent-exclusion window (the "immediate past", in
@@ -45,6 +45,7 @@ LoopDetectorOptions LoopDetectorOptions::ablation(const std::string& row,
     o.geometric.candidates = 1;
     o.islands.odometry_gate_m = 0.0;
     o.islands.odometry_anchor_m = 0.0;
+    o.islands.heading_gate_deg = 0.0;
     o.chain.length = 0;
     o.islands.indexed_per_place = 0;
     o.geometric.ransac_bound_confidence = 0.0;
@@ -83,10 +84,15 @@ LoopDetectorOptions LoopDetectorOptions::ablation(const std::string& row,
     o.temporal_verification.linked_places = false;
     return o;
   }
-  if (row == "without_odometry_gate") {  // no use of the odometry's positions at all
+  if (row == "without_odometry_gate") {  // no use of the odometry's poses at all
     o.islands.odometry_gate_m = 0.0;
     o.islands.odometry_anchor_m = 0.0;
+    o.islands.heading_gate_deg = 0.0;
     o.temporal_verification.anchored_chain = false;
+    return o;
+  }
+  if (row == "without_heading_gate") {
+    o.islands.heading_gate_deg = 0.0;
     return o;
   }
   if (row == "without_loop_anchor") {  // the anchored chain needs the anchor
@@ -140,7 +146,8 @@ LoopDetectorOptions LoopDetectorOptions::ablation(const std::string& row,
                            "paper_bow, paper, configured, without_floor, "
                            "without_normaliser_distance, without_alignment, "
                            "without_missed_queries, without_hypotheses, without_min_step, "
-                           "without_linked_places, without_odometry_gate, without_loop_anchor, "
+                           "without_linked_places, without_odometry_gate, without_heading_gate, "
+                           "without_loop_anchor, "
                            "without_anchored_chain, without_place_index, without_ransac_bound, "
                            "without_native_ransac, without_reranking, without_verified_chain");
   }

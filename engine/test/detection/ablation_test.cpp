@@ -123,6 +123,7 @@ TEST(Ablation, WithoutRowsSwitchOffOneExtensionEach) {
   base.temporal_verification.anchored_chain = true;
   base.geometric.candidates = 10;
   base.islands.indexed_per_place = 2;
+  base.islands.heading_gate_deg = 30;
   // Which extensions are on, in the order of the rows below.
   auto on = [](const LoopDetectorOptions& o) {
     return std::vector<bool>{
@@ -140,24 +141,24 @@ TEST(Ablation, WithoutRowsSwitchOffOneExtensionEach) {
         o.islands.indexed_per_place > 0,
         o.geometric.ransac_bound_confidence > 0,
         o.geometric.native_ransac,
-        o.geometric.candidates > 1};
+        o.geometric.candidates > 1,
+        o.islands.heading_gate_deg > 0};
   };
-  const char* rows[] = {"without_floor",         "without_normaliser_distance",
-                        "without_alignment",     "without_missed_queries",
-                        "without_hypotheses",    "without_min_step",
-                        "without_linked_places", "without_odometry_gate",
-                        "without_loop_anchor",   "without_anchored_chain",
-                        "without_place_index",   "without_ransac_bound",
-                        "without_native_ransac", "without_reranking"};
-  const int n = 14;
+  const char* rows[] = {
+      "without_floor",          "without_normaliser_distance", "without_alignment",
+      "without_missed_queries", "without_hypotheses",          "without_min_step",
+      "without_linked_places",  "without_odometry_gate",       "without_loop_anchor",
+      "without_anchored_chain", "without_place_index",         "without_ransac_bound",
+      "without_native_ransac",  "without_reranking",           "without_heading_gate"};
+  const int n = 15;
   ASSERT_EQ(on(base), std::vector<bool>(n, true));
   for (int r = 0; r < n; ++r) {
     std::vector<bool> expected(n, true);
     expected[r] = false;
-    // Without the odometry's positions neither gate nor the anchored chain
-    // can run; without the anchor, not the anchored chain.
+    // Without the odometry's poses no gate nor the anchored chain can run;
+    // without the anchor, not the anchored chain.
     const std::string row = rows[r];
-    if (row == "without_odometry_gate") expected[r + 1] = expected[r + 2] = false;
+    if (row == "without_odometry_gate") expected[r + 1] = expected[r + 2] = expected[14] = false;
     if (row == "without_loop_anchor") expected[r + 1] = false;
     const LoopDetectorOptions o = LoopDetectorOptions::ablation(rows[r], base);
     EXPECT_EQ(on(o), expected) << rows[r];
