@@ -24,8 +24,9 @@ const char* toString(OdometryInput input) {
 const char* describeAcceptance(OdometryInput input) {
   switch (input) {
     case OdometryInput::kPositions:
-      return "positions and odometer: windows in metres, the odometry gates; a loop no recent "
-             "loop places needs the verified chain";
+      return "positions and odometer: windows in metres, the odometry gates (and the heading "
+             "gate where the odometry has an orientation); a loop no recent loop places needs "
+             "the verified chain";
     case OdometryInput::kOdometer:
       return "odometer only: windows in metres (recent_exclusion_odometer_m), every loop needs "
              "the verified chain, followed in metres driven";
