@@ -79,8 +79,8 @@ GateDecision KeyframeGate::check(double stamp) {
   return GateDecision::kAccept;
 }
 
-void KeyframeGate::addPosition(double x, double y, double z) {
-  if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z)) return;
+bool KeyframeGate::addPosition(double x, double y, double z) {
+  if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z)) return false;
   if (has_position_) {
     const double step = std::sqrt((x - last_x_) * (x - last_x_) + (y - last_y_) * (y - last_y_) +
                                   (z - last_z_) * (z - last_z_));
@@ -91,6 +91,7 @@ void KeyframeGate::addPosition(double x, double y, double z) {
   last_x_ = x;
   last_y_ = y;
   last_z_ = z;
+  return true;
 }
 
 bool KeyframeGate::addOdometerReading(double metres) {
@@ -107,10 +108,9 @@ bool KeyframeGate::addOdometerReading(double metres) {
 
 bool KeyframeGate::addReading(const OdometryReading& r) {
   if (r.source == OdometryReading::kOdometer) return addOdometerReading(r.metres);
-  addPosition(r.x, r.y, r.z);
-  // The heading belongs to the position: a position addPosition ignored
-  // (not finite) leaves the last one's.
-  if (std::isfinite(r.x) && std::isfinite(r.y) && std::isfinite(r.z)) heading_ = r.heading;
+  // The heading belongs to the position: one addPosition ignored leaves the
+  // last one's.
+  if (addPosition(r.x, r.y, r.z)) heading_ = r.heading;
   return true;
 }
 

@@ -78,8 +78,9 @@ class KeyframeGate {
   unsigned epoch() const { return epoch_; }
 
   /// One odometry position (m, any fixed frame); adds the distance from the
-  /// previous position to the travelled path.
-  void addPosition(double x, double y, double z);
+  /// previous position to the travelled path. A position with a non-finite
+  /// coordinate is ignored (false).
+  bool addPosition(double x, double y, double z);
 
   /// One odometer reading (m driven, any origin; a decrease, the tether
   /// reeled in, is driving too): adds |change| to the travelled path. Ignored
