@@ -4,6 +4,7 @@
 #include <nav_msgs/Odometry.h>
 #include <std_msgs/Float64.h>
 
+#include <cstdio>
 #include <limits>
 
 #include "bowg/core/errors.h"
@@ -60,6 +61,13 @@ void BagOdometry::positionReading(const rosbag::MessageInstance& m) {
   const nav_msgs::Odometry::ConstPtr o = m.instantiate<nav_msgs::Odometry>();
   if (!o) throw FormatError(bag_ + ": " + odom_topic_ + " is not nav_msgs/Odometry");
   const OdometryReading r = toReading(*o);
+  ++positions_;
+  if (!r.heading.known() && without_heading_++ == 0) {
+    const geometry_msgs::Quaternion& q = o->pose.pose.orientation;
+    char text[128];
+    std::snprintf(text, sizeof text, "(%g, %g, %g, %g)", q.x, q.y, q.z, q.w);
+    first_orientation_ = text;
+  }
   // Stamp 0 ("time unknown"): taken in bag order, as the nodelet takes it on arrival.
   if (o->header.stamp.isZero()) return (void)gate_.addReading(r);
   add(o->header.stamp.toSec(), r);
@@ -82,6 +90,16 @@ void BagOdometry::settle(std::size_t frame) {
   (*frames_)[frame].odometer = gate_.odometer();
   (*frames_)[frame].position = gate_.position();
   (*frames_)[frame].heading = gate_.heading();
+}
+
+void BagOdometry::finish() {
+  release(true);
+  if (without_heading_ == 0) return;
+  std::fprintf(stderr,
+               "warning: %zu of %zu positions on %s have an orientation that is not a unit "
+               "quaternion (the first: %s): their keyframes carry no heading, and the heading "
+               "gate (heading_gate_deg) does not apply to them\n",
+               without_heading_, positions_, odom_topic_.c_str(), first_orientation_.c_str());
 }
 
 // Every frame "arrives" at 0 and waits 1 s: no frame is late before the

@@ -41,8 +41,10 @@ class BagOdometry {
   void frameAdded(double stamp);
   /// Frames wait for stamped readings at or after their stamp.
   bool waiting() const { return merge_.waiting() > 0; }
-  /// The frames no reading reached: the odometry of every reading.
-  void finish() { release(true); }
+  /// The frames no reading reached: the odometry of every reading. Warns on
+  /// stderr, with their count, of positions whose orientation gave no
+  /// heading (as the nodelet warns of them).
+  void finish();
 
  private:
   void odometerReading(const rosbag::MessageInstance& m);
@@ -55,6 +57,9 @@ class BagOdometry {
   std::vector<eval::FrameInput>* frames_;
   bowg_ros::OdometryMerge<std::size_t> merge_;
   bool stamped_odometer_ = false;
+  /// Positions read, those without a heading, and the first one's orientation.
+  std::size_t positions_ = 0, without_heading_ = 0;
+  std::string first_orientation_;
   /// The nodelet's sum and last position of the readings; frames are not
   /// gated here.
   bowg_ros::KeyframeGate gate_;

@@ -225,5 +225,10 @@ OdometryInput odometryInputOf(const std::vector<eval::FrameInput>& frames) {
   return input;
 }
 
+std::size_t framesWithHeading(const std::vector<eval::FrameInput>& frames) {
+  return static_cast<std::size_t>(std::count_if(
+      frames.begin(), frames.end(), [](const eval::FrameInput& f) { return f.heading.known(); }));
+}
+
 }  // namespace evaluate_app
 }  // namespace bowg

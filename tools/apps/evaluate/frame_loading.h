@@ -3,6 +3,7 @@
 // them), with intrinsics and optional odometers.
 #pragma once
 
+#include <cstddef>
 #include <vector>
 
 #include "bowg/detection/odometry_input.h"
@@ -25,6 +26,8 @@ void attachOdometryPositions(const std::string& path, std::vector<eval::FrameInp
 /// (odometry_input.h): positions when any frame has a position and an
 /// odometer, else an odometer when any has one, else none.
 OdometryInput odometryInputOf(const std::vector<eval::FrameInput>& frames);
+/// How many frames carry a heading (the heading gate applies to them only).
+std::size_t framesWithHeading(const std::vector<eval::FrameInput>& frames);
 
 }  // namespace evaluate_app
 }  // namespace bowg

@@ -143,7 +143,14 @@ int run(int argc, char** argv) {
   const double stamp_shift = stampsAfterMaps(maps, 1.0 / a.rate, &frames);
   inputs.maps = describeMaps(a, maps, stamp_shift, odometersAfterMaps(maps, &frames));
   // Which acceptance applies: what the robot of this run has.
-  inputs.odometry = std::string("odometry: ") + describeAcceptance(odometryInputOf(frames));
+  const OdometryInput input = odometryInputOf(frames);
+  inputs.odometry = std::string("odometry: ") + describeAcceptance(input);
+  // Says whether the heading gate had anything to read (an orientation
+  // that is not a unit quaternion gives none).
+  if (input == OdometryInput::kPositions) {
+    inputs.odometry += "; a heading on " + std::to_string(framesWithHeading(frames)) + " of " +
+                       std::to_string(frames.size()) + " frames";
+  }
   if (!a.quiet) std::printf("%s\n", inputs.odometry.c_str());
   if (!a.dump_candidates.empty()) {
     if (!has_gt) throw std::invalid_argument("--dump-candidates needs --gt FILE");

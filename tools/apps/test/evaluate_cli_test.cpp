@@ -4,6 +4,7 @@
 // message and a non-zero exit code; bad images in a folder or a bag are
 // skipped and counted by reason without ending the run.
 #include <gtest/gtest.h>
+#include <nav_msgs/Odometry.h>
 #include <rosbag/bag.h>
 #include <sensor_msgs/CompressedImage.h>
 #include <std_msgs/Float64.h>
@@ -374,6 +375,40 @@ TEST_F(EvaluateCli, BadOdomTopicsAreRefusedNamingTheCause) {
   EXPECT_NE(readAll(log).find("give --odom-topic or --odometry/--odometry-poses, not both"),
             std::string::npos)
       << readAll(log);
+}
+
+// A bag's position whose orientation is not a unit quaternion (a driver's
+// all-zero one) gives its keyframe no heading: said on stderr with the count
+// and the first orientation, and the summary says how many frames have one.
+TEST_F(EvaluateCli, BagPositionsWithoutAUnitOrientationAreCountedAndCarryNoHeading) {
+  const std::string bag_path = kDir + "/zero_orientation.bag";
+  {
+    rosbag::Bag bag(bag_path, rosbag::bagmode::Write);
+    for (int i = 0; i < 3; ++i) {
+      const sensor_msgs::CompressedImage msg = compressedFrame(i);
+      nav_msgs::Odometry odom;
+      odom.header.stamp = msg.header.stamp;
+      odom.pose.pose.position.x = 0.1 * i;
+      odom.pose.pose.orientation.w = i == 2 ? 1.0 : 0.0;  // frames 0, 1: all zero
+      bag.write("/odom", msg.header.stamp, odom);
+      bag.write("/camera/image_raw/compressed", msg.header.stamp, msg);
+    }
+  }
+  const std::string log = kDir + "/zero_orientation.log";
+  ASSERT_EQ(run("timeout 300 " + kEvaluate + " --quiet --bag " + bag_path +
+                    " --image-topic /camera/image_raw/compressed --vocabulary " +
+                    BOWG_DEFAULT_VOCABULARY + " --config " + kDir + "/config.yaml --output " +
+                    kDir + "/zero_orientation --odom-topic /odom",
+                log),
+            0)
+      << readAll(log);
+  EXPECT_NE(readAll(log).find("warning: 2 of 3 positions on /odom have an orientation that is "
+                              "not a unit quaternion (the first: (0, 0, 0, 0))"),
+            std::string::npos)
+      << readAll(log);
+  const std::string summary = readAll(kDir + "/zero_orientation/summary.txt");
+  EXPECT_NE(summary.find("odometry: positions and odometer"), std::string::npos) << summary;
+  EXPECT_NE(summary.find("a heading on 1 of 3 frames"), std::string::npos) << summary;
 }
 
 // Odometry positions reach the odometry gate: with the generator's drifting
