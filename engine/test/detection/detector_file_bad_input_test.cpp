@@ -1,7 +1,8 @@
 // LoopDetector::load of bad files: clean FormatError/IoError on truncation,
 // byte flips, another vocabulary, a missing file or a special one (FIFO,
 // directory, device, huge sparse file), and the strong guarantee (a failed
-// load keeps the old state). Forged content: detector_file_forged_test.cpp.
+// load keeps the old state); a flipped byte past the frame is reported as
+// corruption. Forged content: detector_file_forged_test.cpp.
 #include <gtest/gtest.h>
 
 #include <string>
@@ -71,6 +72,44 @@ TEST(DatabaseIo, CorruptFilesGiveCleanErrorsAndKeepTheOldState) {
     expectSameResult(victim.process(kfs[i]), twin.process(kfs[i]));
     expectSameCandidates(victim, twin);
   }
+  std::remove(good.c_str());
+  std::remove(bad.c_str());
+}
+
+// A flip in the fingerprint, the payload or the stored sum is reported as
+// what it is, the file's corruption, naming the file: not as another
+// vocabulary or a content error, and not loaded (a flip in a descriptor
+// would still decode). The victim keeps its state. Offsets: the
+// fingerprint (12-19), then ~150 over the payload and the stored sum.
+TEST(DatabaseIo, FlippedBytesPastTheFrameAreReportedAsCorruption) {
+  const auto voc = vocabulary();
+  const auto kfs = keyframes();
+  LoopDetector saved(voc, options());
+  for (int i = 0; i < 20; ++i) saved.process(kfs[i]);
+  const std::string good = outPath("flips.bowgdb");
+  saved.save(good);
+  const std::string bytes = readBytes(good);
+  LoopDetector victim(voc, options());
+  for (int i = 0; i < 10; ++i) victim.process(kfs[i]);
+  std::vector<std::size_t> offsets{12, 19, bytes.size() - 1};
+  for (std::size_t at = 28; at < bytes.size(); at += bytes.size() / 150 + 1) offsets.push_back(at);
+  const std::string bad = outPath("flipped.bowgdb");
+  for (std::size_t at : offsets) {
+    std::string flipped = bytes;
+    flipped[at] = static_cast<char>(flipped[at] ^ 0x01);
+    writeBytes(bad, flipped);
+    try {
+      victim.load(bad);
+      ADD_FAILURE() << "loaded a file flipped at " << at;
+    } catch (const FormatError& e) {
+      EXPECT_NE(std::string(e.what()).find(bad + "': checksum mismatch (the file is corrupt)"),
+                std::string::npos)
+          << "flip at " << at << ": " << e.what();
+    }
+  }
+  EXPECT_EQ(victim.database().size(), 10u);
+  victim.load(good);  // the same bytes unflipped
+  EXPECT_EQ(victim.database().size(), 20u);
   std::remove(good.c_str());
   std::remove(bad.c_str());
 }
