@@ -165,6 +165,7 @@ KeyframeStatus toKeyframeStatus(const bowg::LoopResult& r, const std_msgs::Heade
   s.candidates_scored = static_cast<std::uint32_t>(r.candidates_scored);
   s.candidates_gated = static_cast<std::uint32_t>(r.candidates_gated);
   s.candidates_gated_cross_run = static_cast<std::uint32_t>(r.candidates_gated_cross_run);
+  s.candidates_gated_heading = static_cast<std::uint32_t>(r.candidates_gated_heading);
   s.query_mission = r.mission;
   s.has_candidate = r.has_candidate;
   if (r.has_candidate) {

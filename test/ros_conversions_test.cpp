@@ -294,6 +294,7 @@ TEST(RosConversions, KeyframeStatusEchoesResultAndOptions) {
   r.timings.query_ms = 1.5;
   r.candidates_gated = 6;
   r.candidates_gated_cross_run = 2;
+  r.candidates_gated_heading = 3;
   r.mission = 5;
   r.best_mission = 3;
   r.best_mission_name = "2025-05-12";
@@ -313,6 +314,7 @@ TEST(RosConversions, KeyframeStatusEchoesResultAndOptions) {
   EXPECT_EQ(s.database_size, 43u);
   EXPECT_EQ(s.candidates_gated, 6u);
   EXPECT_EQ(s.candidates_gated_cross_run, 2u);
+  EXPECT_EQ(s.candidates_gated_heading, 3u);
   EXPECT_EQ(s.query_mission, 5u);
   EXPECT_EQ(s.best_id, 7u);
   EXPECT_EQ(s.best_mission, 3u);

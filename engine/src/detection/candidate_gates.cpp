@@ -34,8 +34,12 @@ void applyOdometryGates(const QueryContext& ctx, const DatabaseEntry& query_entr
       ++r->candidates_gated_cross_run;
       return true;
     }
-    return !withinOdometryGate(query_entry, e, io) || !withinHeadingGate(query_entry, e, io) ||
-           (anchored && !withinLoopAnchors(query_entry, e, anchors, io));
+    if (!withinOdometryGate(query_entry, e, io)) return true;
+    if (!withinHeadingGate(query_entry, e, io)) {
+      ++r->candidates_gated_heading;
+      return true;
+    }
+    return anchored && !withinLoopAnchors(query_entry, e, anchors, io);
   };
   const auto end = std::remove_if(etas->begin(), etas->end(), outside);
   r->candidates_gated = static_cast<std::size_t>(etas->end() - end);

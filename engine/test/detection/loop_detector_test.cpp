@@ -182,38 +182,51 @@ TEST(LoopDetector, AMetricTranslationTheOdometryCannotAllowIsNotPublished) {
 // The heading gate on the corridor's out-and-back: with the robot facing
 // the same way on both passes (backing up) the return finds its loops; with
 // the return pass facing 90 degrees away (as a robot turned into a cross
-// pipe) every candidate of the first pass is gated and no loop is published.
+// pipe) every candidate of the first pass is gated, counted as the heading
+// gate's, and no loop is published. With positions that place the return
+// pass 1 km away too, the position gate refuses them first: gated, but not
+// by the heading.
 TEST(LoopDetector, TheHeadingGateRefusesPlacesTheRobotFacedAnotherWayAt) {
-  for (const bool turned : {false, true}) {
+  enum Return { kSameWay, kTurned, kTurnedAndFar };
+  for (const Return how : {kSameWay, kTurned, kTurnedAndFar}) {
+    SCOPED_TRACE(how);
     LoopDetectorOptions o = defaultOptions();
     o.islands.heading_gate_deg = 30.0;
     o.islands.heading_gate_drift_deg = 1.5;
+    o.islands.odometry_gate_m = 1.0;
     LoopDetector det(vocabulary(), o);
     const testing::Corridor c = testing::makeCorridor(70, 50, 3);
     std::mt19937_64 rng(103);
     const std::vector<double> x = outAndBack();
     double odometer = 0;
     int loops = 0;
-    std::size_t gated = 0;
+    std::size_t gated = 0, gated_heading = 0;
     for (std::size_t t = 0; t < x.size(); ++t) {
       if (t > 0) odometer += std::fabs(x[t] - x[t - 1]);
       KeyframeInput in = testing::observeCorridor(c, x[t], 1.0 + t, rng, 2, 0.5);
       in.odometer = odometer;
       const bool back = t >= 60;
-      in.heading.x = back && turned ? 0.f : 1.f;
-      in.heading.y = back && turned ? 1.f : 0.f;
+      const bool turned = back && how != kSameWay;
+      in.heading.x = turned ? 0.f : 1.f;
+      in.heading.y = turned ? 1.f : 0.f;
       in.heading.z = 0.f;
+      if (how == kTurnedAndFar) {
+        in.position.x = x[t] + (back ? 1000.0 : 0.0);
+        in.position.y = in.position.z = 0.0;
+      }
       const LoopResult r = det.process(in);
       gated += r.candidates_gated;
+      gated_heading += r.candidates_gated_heading;
       if (r.status == LoopStatus::kLoopDetected) ++loops;
     }
-    if (turned) {
-      EXPECT_EQ(loops, 0);
-      EXPECT_GE(gated, 30u);
-    } else {
+    if (how == kSameWay) {
       EXPECT_GE(loops, 20);
       EXPECT_EQ(gated, 0u);
+      continue;
     }
+    EXPECT_EQ(loops, 0);
+    EXPECT_GE(gated, 30u);
+    EXPECT_EQ(gated_heading, how == kTurned ? gated : 0u);
   }
 }
 

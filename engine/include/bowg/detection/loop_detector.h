@@ -146,9 +146,12 @@ struct LoopResult {
   /// Of those, the candidates above min_score the odometry gates removed
   /// (IslandOptions::odometry_gate_m, heading_gate_deg, odometry_anchor_m),
   /// and of these the ones of another odometry run (an earlier mission)
-  /// that the cross-run anchors refused (withinCrossRunAnchors).
+  /// that the cross-run anchors refused (withinCrossRunAnchors), and the
+  /// ones the heading gate refused where the position gate let them through
+  /// (withinHeadingGate: the robot faced another way there).
   std::size_t candidates_gated = 0;
   std::size_t candidates_gated_cross_run = 0;
+  std::size_t candidates_gated_heading = 0;
   StageTimings timings;
 };
 
