@@ -9,10 +9,12 @@
 #include <sensor_msgs/CompressedImage.h>
 #include <std_msgs/Float64.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "encoded_test_images.h"
 #include "shell_command.h"
@@ -74,6 +76,29 @@ class EvaluateCli : public ::testing::Test {
     const std::string png = readAll(kDir + name);
     msg.data.assign(png.begin(), png.end());
     return msg;
+  }
+
+  // The sum of the integer column `name` of a CSV with a header.
+  static long columnSum(const std::string& csv, const std::string& name) {
+    std::istringstream in(readAll(csv));
+    std::string line;
+    std::getline(in, line);
+    const auto cells = [](const std::string& l) {
+      std::vector<std::string> out;
+      std::istringstream row(l);
+      std::string cell;
+      while (std::getline(row, cell, ',')) out.push_back(cell);
+      return out;
+    };
+    const std::vector<std::string> header = cells(line);
+    const auto column = std::find(header.begin(), header.end(), name) - header.begin();
+    EXPECT_LT(static_cast<std::size_t>(column), header.size()) << name << " not in " << csv;
+    long sum = 0;
+    while (std::getline(in, line)) {
+      const std::vector<std::string> row = cells(line);
+      if (static_cast<std::size_t>(column) < row.size()) sum += std::stol(row[column]);
+    }
+    return sum;
   }
 
   static std::string evaluate(const std::string& extra, const std::string& out) {
@@ -437,6 +462,43 @@ TEST_F(EvaluateCli, OdometryPositionsFeedTheOdometryGate) {
   };
   EXPECT_GT(loops(kDir + "/near/detections_bowg.csv"), 0);
   EXPECT_EQ(loops(kDir + "/far/detections_bowg.csv"), 0);
+  // The keyframes CSV counts what the gates removed: the far positions
+  // gate candidates, none of them by heading (this file has none).
+  EXPECT_GT(columnSum(kDir + "/far/keyframes_bowg.csv", "candidates_gated"), 0);
+  EXPECT_EQ(columnSum(kDir + "/far/keyframes_bowg.csv", "candidates_gated_heading"), 0);
+}
+
+// Headings reach the heading gate and its count: the odometry's positions
+// with every odd frame facing the other way (yaw 180 deg), so a candidate
+// of the other parity is refused by the heading gate alone.
+TEST_F(EvaluateCli, OdometryHeadingsFeedTheHeadingGateAndItsCount) {
+  writeFile(kDir + "/heading.yaml",
+            "feature_detector: gftt\nmin_score: 0.7\nrecent_exclusion: 30\n"
+            "direct_index_level: 2\nodometry_gate_m: 0.5\nodometry_gate_drift: 0.05\n"
+            "heading_gate_deg: 30\n");
+  std::istringstream in(readAll(kDir + "/frames/odometry.csv"));
+  std::string line, flipped;
+  std::getline(in, line);
+  ASSERT_EQ(line, "frame,stamp,x,y,z,qx,qy,qz,qw");
+  flipped = line + "\n";
+  for (int frame = 0; std::getline(in, line); ++frame) {
+    std::size_t at = 0;
+    for (int commas = 0; commas < 5; ++commas) at = line.find(',', at) + 1;
+    flipped += line.substr(0, at) + (frame % 2 == 0 ? "0,0,0,1" : "0,0,1,0") + "\n";
+  }
+  writeFile(kDir + "/flipped.csv", flipped);
+  ASSERT_EQ(run(kEvaluate + " --quiet --images " + kDir + "/frames --gt " + kDir +
+                "/frames/ground_truth.txt --vocabulary " + BOWG_DEFAULT_VOCABULARY + " --config " +
+                kDir + "/heading.yaml --thresholds 0.7 --odometry " + kDir +
+                "/frames/odometry.csv --odometry-poses " + kDir + "/flipped.csv --output " + kDir +
+                "/flipped"),
+            0);
+  const long gated = columnSum(kDir + "/flipped/keyframes_bowg.csv", "candidates_gated");
+  const long heading = columnSum(kDir + "/flipped/keyframes_bowg.csv", "candidates_gated_heading");
+  EXPECT_GT(heading, 0);
+  EXPECT_LE(heading, gated);
+  EXPECT_NE(readAll(kDir + "/flipped/summary.txt").find("a heading on 300 of 300 frames"),
+            std::string::npos);
 }
 
 // The shipped pipe presets, ORB (config/pipe.yaml) and GFTT

@@ -98,6 +98,8 @@ DetectorRun runDetector(std::shared_ptr<const Vocabulary> vocabulary,
     }
     if (r.status == LoopStatus::kLoopDetected) k.match = static_cast<int>(r.match_id);
     k.correspondences = r.correspondences;
+    k.candidates_gated = r.candidates_gated;
+    k.candidates_gated_heading = r.candidates_gated_heading;
     k.inliers = r.inliers;
     k.timings = r.timings;
     if (r.status == LoopStatus::kLoopDetected && r.has_relative_pose) {
@@ -165,8 +167,8 @@ PrPoint operatingPoint(const DetectorRun& run, const GroundTruth& gt) {
 std::string keyframesCsv(const DetectorRun& run, const GroundTruth* gt) {
   std::ostringstream out;
   out << "frame,stamp,status,candidate,candidate_score,match,correspondences,inliers,features,"
-         "database_size,feature_ms,transform_ms,word_groups_ms,query_ms,islands_ms,"
-         "verification_ms,total_ms"
+         "database_size,candidates_gated,candidates_gated_heading,feature_ms,transform_ms,"
+         "word_groups_ms,query_ms,islands_ms,verification_ms,total_ms"
       << (gt ? ",correct" : "") << "\n";
   for (const KeyframeRecord& k : run.keyframes) {
     out << k.frame << "," << std::fixed << std::setprecision(6) << k.stamp << ","
@@ -176,10 +178,11 @@ std::string keyframesCsv(const DetectorRun& run, const GroundTruth* gt) {
     else
       out << ",";
     out << "," << (k.match >= 0 ? std::to_string(k.match) : "") << "," << k.correspondences << ","
-        << k.inliers << "," << k.features << "," << k.database_size << std::setprecision(3) << ","
-        << k.feature_ms << "," << k.timings.transform_ms << "," << k.timings.word_groups_ms << ","
-        << k.timings.query_ms << "," << k.timings.islands_ms << "," << k.timings.verification_ms
-        << "," << k.timings.total_ms;
+        << k.inliers << "," << k.features << "," << k.database_size << "," << k.candidates_gated
+        << "," << k.candidates_gated_heading << std::setprecision(3) << "," << k.feature_ms << ","
+        << k.timings.transform_ms << "," << k.timings.word_groups_ms << "," << k.timings.query_ms
+        << "," << k.timings.islands_ms << "," << k.timings.verification_ms << ","
+        << k.timings.total_ms;
     if (gt) {
       out << ",";
       if (k.match >= 0) out << (gt->contains(k.frame, k.match) ? 1 : 0);

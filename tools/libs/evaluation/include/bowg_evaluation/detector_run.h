@@ -68,6 +68,9 @@ struct KeyframeRecord {
   int correspondences = 0, inliers = 0;
   std::size_t features = 0;
   std::size_t database_size = 0;  ///< entries before this keyframe was added
+  /// LoopResult::candidates_gated and candidates_gated_heading: what the
+  /// odometry gates removed, and of it the heading gate's.
+  std::size_t candidates_gated = 0, candidates_gated_heading = 0;
   StageTimings timings;
   double feature_ms = 0, feature_cpu_ms = 0;
   /// The loop's relative pose, when it has one (match >= 0 and intrinsics).
