@@ -80,24 +80,17 @@ class EvaluateCli : public ::testing::Test {
 
   // The sum of the integer column `name` of a CSV with a header.
   static long columnSum(const std::string& csv, const std::string& name) {
-    std::istringstream in(readAll(csv));
-    std::string line;
-    std::getline(in, line);
-    const auto cells = [](const std::string& l) {
-      std::vector<std::string> out;
-      std::istringstream row(l);
-      std::string cell;
-      while (std::getline(row, cell, ',')) out.push_back(cell);
-      return out;
-    };
-    const std::vector<std::string> header = cells(line);
+    const tool_test::Table rows = tool_test::readCsv(csv);
+    if (rows.empty()) {
+      ADD_FAILURE() << csv << " is missing or empty";
+      return 0;
+    }
+    const std::vector<std::string>& header = rows.front();
     const auto column = std::find(header.begin(), header.end(), name) - header.begin();
     EXPECT_LT(static_cast<std::size_t>(column), header.size()) << name << " not in " << csv;
     long sum = 0;
-    while (std::getline(in, line)) {
-      const std::vector<std::string> row = cells(line);
-      if (static_cast<std::size_t>(column) < row.size()) sum += std::stol(row[column]);
-    }
+    for (std::size_t r = 1; r < rows.size(); ++r)
+      if (static_cast<std::size_t>(column) < rows[r].size()) sum += std::stol(rows[r][column]);
     return sum;
   }
 

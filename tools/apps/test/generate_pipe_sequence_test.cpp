@@ -10,7 +10,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -28,7 +27,9 @@ namespace bowg {
 namespace {
 
 using tool_test::readAll;
+using tool_test::readCsv;
 using tool_test::run;
+using tool_test::Table;
 
 const std::string kDir = std::string(BOWG_TEST_OUTPUT_DIR) + "/generate_pipe_sequence_test";
 const std::string kGenerator = BOWG_GENERATOR_BIN;
@@ -37,23 +38,6 @@ const std::string kSequence = " --frames 60 --speed 1.0 --width 64 --height 48";
 const std::string kNoOdometryNoise =
     " --odometry-slip 0 --odometry-slip-noise 0 --odometry-heading-drift 0"
     " --odometry-roll-drift 0";
-
-using Table = std::vector<std::vector<std::string>>;
-
-/// The rows of a CSV file (header included), each split at the commas.
-Table readCsv(const std::string& path) {
-  Table rows;
-  std::istringstream lines(readAll(path));
-  std::string line;
-  while (std::getline(lines, line)) {
-    std::vector<std::string> fields;
-    std::istringstream cells(line);
-    std::string cell;
-    while (std::getline(cells, cell, ',')) fields.push_back(cell);
-    rows.push_back(fields);
-  }
-  return rows;
-}
 
 /// x y z qx qy qz qw of a data row (columns 2-8 of both files).
 std::vector<double> poseOf(const std::vector<std::string>& row) {

@@ -1,5 +1,6 @@
 // Helpers of the tests that drive the command-line tools: run a shell
-// command with its output in a log file, read and write a whole file.
+// command with its output in a log file, read and write a whole file, read
+// a CSV file's cells.
 #pragma once
 
 #include <netinet/in.h>
@@ -10,7 +11,9 @@
 #include <cstdlib>
 #include <fstream>
 #include <iterator>
+#include <sstream>
 #include <string>
+#include <vector>
 
 namespace bowg {
 namespace tool_test {
@@ -26,6 +29,24 @@ inline int run(const std::string& command, const std::string& log = "/dev/null")
 inline std::string readAll(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+using Table = std::vector<std::vector<std::string>>;
+
+/// The rows of a CSV file (header included), each split at the commas; empty
+/// when it cannot be read.
+inline Table readCsv(const std::string& path) {
+  Table rows;
+  std::istringstream lines(readAll(path));
+  std::string line;
+  while (std::getline(lines, line)) {
+    std::vector<std::string> fields;
+    std::istringstream cells(line);
+    std::string cell;
+    while (std::getline(cells, cell, ',')) fields.push_back(cell);
+    rows.push_back(fields);
+  }
+  return rows;
 }
 
 /// Writes `text` as the whole of `path`.
