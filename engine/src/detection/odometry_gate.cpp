@@ -106,10 +106,15 @@ double odometryGateRadius(const IslandOptions& options, double driven_m) {
   return options.odometry_gate_m + options.odometry_gate_drift * std::fabs(driven_m);
 }
 
+bool odometryGateApplies(const DatabaseEntry& query, const DatabaseEntry& entry,
+                         const IslandOptions& options) {
+  return options.odometry_gate_m > 0.0 && placed(query, query.odometry_run) &&
+         placed(entry, query.odometry_run);
+}
+
 bool withinOdometryGate(const DatabaseEntry& query, const DatabaseEntry& entry,
                         const IslandOptions& options) {
-  if (!(options.odometry_gate_m > 0.0)) return true;
-  if (!placed(query, query.odometry_run) || !placed(entry, query.odometry_run)) return true;
+  if (!odometryGateApplies(query, entry, options)) return true;
   const double radius = odometryGateRadius(options, query.odometer - entry.odometer);
   return positionDistanceSquared(query, entry) <= radius * radius;
 }

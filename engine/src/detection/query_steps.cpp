@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "bowg/detection/islands.h"
+#include "bowg/detection/odometry_gate.h"
 #include "detection/candidate_gates.h"
 #include "detection/candidate_scoring.h"
 #include "detection/chain_query.h"
@@ -62,10 +63,14 @@ void recordIsland(const QueryContext& ctx, const Island& island, LoopResult* r) 
 // not place: it judges a match it verified itself; a choice the re-ranking
 // verified with too few inliers passes here (verifyMatch refuses it).
 enum class ChainVerdict { kNotAsked, kPasses, kFails };
-ChainVerdict chainVerdict(const QueryContext& ctx, const ChainQuery& query, const Island& island,
+ChainVerdict chainVerdict(const QueryContext& ctx, const DatabaseEntry& query_entry,
+                          const ChainQuery& query, const Island& island,
                           const IslandChoice& choice) {
   if (query.matches > 0 && query.match[0].entry == island.best_entry) {
-    return ctx.state.verified_chain.passes(query, ctx.options.chain, chainContext(ctx))
+    ChainContext context = chainContext(ctx);
+    context.position_gated =
+        odometryGateApplies(query_entry, ctx.database.entry(query.match[0].entry), ctx.islands);
+    return ctx.state.verified_chain.passes(query, ctx.options.chain, context)
                ? ChainVerdict::kPasses
                : ChainVerdict::kFails;
   }
@@ -138,8 +143,9 @@ void runQuery(const QueryContext& ctx, const DatabaseQuery& q, const DatabaseEnt
   const auto t_verify = Clock::now();
   r->timings.islands_ms = msBetween(t_islands, t_verify) - choice.rerank_ms;
   r->timings.verification_ms = choice.rerank_ms;
-  const ChainVerdict verdict = chain_on && !placed ? chainVerdict(ctx, record.query, island, choice)
-                                                   : ChainVerdict::kNotAsked;
+  const ChainVerdict verdict = chain_on && !placed
+                                   ? chainVerdict(ctx, query_entry, record.query, island, choice)
+                                   : ChainVerdict::kNotAsked;
   if (verdict == ChainVerdict::kFails) {
     r->status = LoopStatus::kNoVerifiedChain;
     return;

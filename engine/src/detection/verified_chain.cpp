@@ -1,5 +1,6 @@
 #include "bowg/detection/verified_chain.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace bowg {
@@ -9,6 +10,22 @@ namespace {
 // max_missed skipped queries between them, and the queries of a robot
 // standing still.
 constexpr std::size_t kRemembered = 64;
+
+// How far the place that match `e` stands for may lie from `e`'s own
+// odometer: half the wider gap to its neighbouring entries. A query between
+// two keyframes of a sparse pass (15 cm apart) matches either of them, so
+// the matches of two queries can be a keyframe further apart or nearer
+// than the queries are. At most `cap` (a gap across a reset or a lost
+// stretch says nothing of the spacing); 0 where no neighbour's odometer is
+// known.
+double placeUncertainty(EntryId e, const std::vector<double>& odometers, double cap) {
+  double gap = 0.0;
+  if (e > 0 && std::isfinite(odometers[e - 1])) gap = std::fabs(odometers[e] - odometers[e - 1]);
+  if (e + 1 < odometers.size() && std::isfinite(odometers[e + 1])) {
+    gap = std::max(gap, std::fabs(odometers[e + 1] - odometers[e]));
+  }
+  return std::min(0.5 * gap, cap);
+}
 
 // chainStep without the place links.
 bool directStep(EntryId previous_query, double previous_odometer, EntryId previous_match,
@@ -22,7 +39,10 @@ bool directStep(EntryId previous_query, double previous_odometer, EntryId previo
       std::isfinite(next_match_m)) {
     const double driven = next_odometer - previous_odometer;
     const double moved = next_match_m - previous_match_m;
-    return std::fabs(moved - driven) <= tv.max_island_distance_m + c.drift * std::fabs(driven);
+    const double tolerance = tv.max_island_distance_m;
+    const double spacing = placeUncertainty(previous_match, c.entry_odometers, tolerance) +
+                           placeUncertainty(next_match, c.entry_odometers, tolerance);
+    return std::fabs(moved - driven) <= tolerance + spacing + c.drift * std::fabs(driven);
   }
   const double steps = static_cast<double>(next_query) - static_cast<double>(previous_query);
   const double advanced = static_cast<double>(next_match) - static_cast<double>(previous_match);
@@ -34,6 +54,23 @@ bool directStep(EntryId previous_query, double previous_odometer, EntryId previo
 bool uniqueEnough(const ChainMatch& m, int min_unique) {
   return min_unique <= 0 || m.unique_inliers >= min_unique;
 }
+
+// The unique inliers of the matches a chain took (the loop's included).
+struct UniqueTally {
+  int sum = 0, least = 0, count = 0;
+  void add(const ChainMatch& m) {
+    least = count == 0 ? m.unique_inliers : std::min(least, m.unique_inliers);
+    sum += m.unique_inliers;
+    ++count;
+  }
+  // Each has min_unique; or, on_average, min_unique on average and each
+  // at least half of it (rounded down).
+  bool enough(int min_unique, bool on_average) const {
+    if (min_unique <= 0) return true;
+    if (!on_average) return least >= min_unique;
+    return least >= min_unique / 2 && sum >= min_unique * count;
+  }
+};
 
 // The match of `q` that chainStep follows to `last` (preferring one with
 // enough unique inliers); nullptr when none does.
@@ -79,7 +116,8 @@ bool VerifiedChain::passes(const ChainQuery& current, const VerifiedChainOptions
                            const ChainContext& context) const {
   if (current.matches == 0) return false;
   const int min_unique = options.min_unique_inliers;
-  bool all_unique = uniqueEnough(current.match[0], min_unique);
+  UniqueTally unique;
+  unique.add(current.match[0]);
   int length = 0, missed = 0;
   // The last query taken, its match taken in front.
   ChainQuery last = current;
@@ -100,13 +138,13 @@ bool VerifiedChain::passes(const ChainQuery& current, const VerifiedChainOptions
         last.odometer - it->odometer < min_step) {
       continue;
     }
-    if (!uniqueEnough(*m, min_unique)) all_unique = false;
+    unique.add(*m);
     ++length;
     last = *it;
     last.match[0] = *m;
     last.matches = 1;
   }
-  return length >= options.length && all_unique;
+  return length >= options.length && unique.enough(min_unique, context.position_gated);
 }
 
 }  // namespace bowg

@@ -171,7 +171,8 @@ void addDetectionRows(std::vector<Row>* rows) {
   rows->push_back(intRow("min_unique_inliers", det, "chain.min_unique_inliers", 0, 10000, true,
                          BOWG_FIELD(int, detector.chain.min_unique_inliers),
                          "Inliers each match of the chain needs on features the robot's recent "
-                         "past does not repeat (0 = no test)"));
+                         "past does not repeat; on average, each at least half, where the "
+                         "odometry gate judged the loop's match (0 = no test)"));
   rows->push_back(intRow("repeated_texture_keyframes", det, "chain.repeated_texture_keyframes", 1,
                          100, false, BOWG_FIELD(int, detector.chain.repeated_texture_keyframes),
                          "Recent keyframes whose correspondences with the query mark its "

@@ -100,14 +100,15 @@ TEST(LoopDetectorChain, AVerifiedMatchThatDoesNotFollowIsRefused) {
 }
 
 TEST(LoopDetectorChain, WithAnOdometerTheChainIsFollowedInMetres) {
-  // The same revisit with an odometer, a step tolerance of 1.5 m (the
-  // island's best entry is up to a keyframe off its place), then back to
-  // 14.2: 1 m driven, and the match moved about 1 m back, not the 1 m
-  // forward the odometer says.
+  // The same revisit with an odometer and a step tolerance of 0.5 m, to
+  // which each match adds half the 1 m between keyframes (the island's best
+  // entry is up to a keyframe off its place): 1.5 m. Then back to 14.2:
+  // 1 m driven, and the match moved about 1 m back, not the 1 m forward
+  // the odometer says.
   std::vector<double> xs = kRevisit;
   xs.push_back(14.2);
   LoopDetectorOptions o = chainOptions(0);
-  o.temporal_verification.max_island_distance_m = 1.5;
+  o.temporal_verification.max_island_distance_m = 0.5;
   const std::vector<LoopResult> plain = drive(o, xs, true);
   ASSERT_EQ(plain.back().status, LoopStatus::kLoopDetected);
   EXPECT_NEAR(plain.back().match_id, 14.2, 1.0);

@@ -121,6 +121,21 @@ TEST(OdometryGate, WithoutComparablePositionsEverythingPasses) {
   EXPECT_TRUE(withinOdometryGate(query, no_odometer, gate(0.5, 0.1)));
 }
 
+// The gate judges a pair, near or far, only when it is on and both have a
+// position and an odometer of the query's odometry run.
+TEST(OdometryGate, AppliesOnlyToEntriesPlacedInTheQuerysRun) {
+  const DatabaseEntry query = at(0, 0, 0, 30.0);
+  EXPECT_TRUE(odometryGateApplies(query, at(100, 0, 0, 29.0), gate(0.5, 0.1)));
+  EXPECT_TRUE(odometryGateApplies(query, at(0.1, 0, 0, 29.9), gate(0.5, 0.1)));
+  EXPECT_FALSE(odometryGateApplies(query, at(0.1, 0, 0, 29.9), gate(0.0, 0.1)));  // off
+  EXPECT_FALSE(odometryGateApplies(query, DatabaseEntry(), gate(0.5, 0.1)));
+  EXPECT_FALSE(odometryGateApplies(DatabaseEntry(), query, gate(0.5, 0.1)));
+  EXPECT_FALSE(odometryGateApplies(query, at(0.1, 0, 0, 29.9, 1), gate(0.5, 0.1)));
+  DatabaseEntry no_odometer = at(0.1, 0, 0, 29.9);
+  no_odometer.odometer = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_FALSE(odometryGateApplies(query, no_odometer, gate(0.5, 0.1)));
+}
+
 IslandOptions anchor(double anchor_m, double drift) {
   IslandOptions o;
   o.odometry_anchor_m = anchor_m;

@@ -43,17 +43,42 @@ TEST(VerifiedChain, StepInMetresAllowsTheToleranceAndTheDrift) {
   Fixture f;
   f.temporal.max_island_distance_m = 0.25;
   // The query drove 1 m (10 -> 11): the match must move 1 m within
-  // 0.25 + 0.25 * 1 = 0.5 m.
-  f.odometers[3] = 2.0;
-  f.odometers[5] = 3.5;   // moved 1.5: on the bound, follows
-  f.odometers[6] = 3.75;  // moved 1.75: does not
-  f.odometers[7] = 2.5;   // moved 0.5: on the bound, follows
-  f.odometers[8] = 2.25;  // moved 0.25: does not
+  // 0.25 + 0.25 * 1 = 0.5 m. No entry has a neighbour with an odometer, so
+  // nothing is added for the spacing.
+  f.odometers[30] = 2.0;
+  f.odometers[50] = 3.5;   // moved 1.5: on the bound, follows
+  f.odometers[60] = 3.75;  // moved 1.75: does not
+  f.odometers[70] = 2.5;   // moved 0.5: on the bound, follows
+  f.odometers[80] = 2.25;  // moved 0.25: does not
   const ChainContext c = f.context();
-  EXPECT_TRUE(chainStep(40, 10.0, 3, 41, 11.0, 5, c));
-  EXPECT_FALSE(chainStep(40, 10.0, 3, 41, 11.0, 6, c));
-  EXPECT_TRUE(chainStep(40, 10.0, 3, 41, 11.0, 7, c));
-  EXPECT_FALSE(chainStep(40, 10.0, 3, 41, 11.0, 8, c));
+  EXPECT_TRUE(chainStep(40, 10.0, 30, 41, 11.0, 50, c));
+  EXPECT_FALSE(chainStep(40, 10.0, 30, 41, 11.0, 60, c));
+  EXPECT_TRUE(chainStep(40, 10.0, 30, 41, 11.0, 70, c));
+  EXPECT_FALSE(chainStep(40, 10.0, 30, 41, 11.0, 80, c));
+}
+
+TEST(VerifiedChain, StepInMetresAllowsForTheSpacingOfThePass) {
+  Fixture f;
+  f.drift = 0.0;
+  f.temporal.max_island_distance_m = 0.1;
+  // A pass with keyframes 15 cm apart: each match stands for a place within
+  // 0.15 / 2 = 0.075 m of it, so a step allows 0.1 + 0.075 + 0.075 = 0.25.
+  f.odometers[10] = 1.00;
+  f.odometers[11] = 1.15;
+  f.odometers[12] = 1.30;
+  f.odometers[13] = 1.45;
+  const ChainContext c = f.context();
+  // The query drove 0.15 m (5.00 -> 5.15).
+  EXPECT_TRUE(chainStep(40, 5.0, 11, 41, 5.15, 11, c));   // stayed: |0 - 0.15| = 0.15
+  EXPECT_TRUE(chainStep(40, 5.0, 11, 41, 5.15, 13, c));   // two on: |0.30 - 0.15| = 0.15
+  EXPECT_FALSE(chainStep(40, 5.0, 10, 41, 5.15, 13, c));  // three on: |0.45 - 0.15| = 0.30
+  EXPECT_FALSE(chainStep(40, 5.0, 12, 41, 5.15, 11, c));  // back: |-0.15 - 0.15| = 0.30
+  // A gap of 1 m (a lost stretch) adds at most max_island_distance_m per
+  // match: 0.1 + 0.1 + 0.1 = 0.3 for a match that stayed.
+  f.odometers[20] = 2.0;
+  f.odometers[21] = 3.0;
+  EXPECT_TRUE(chainStep(40, 5.0, 20, 41, 5.3, 20, f.context()));
+  EXPECT_FALSE(chainStep(40, 5.0, 20, 41, 5.31, 20, f.context()));
 }
 
 TEST(VerifiedChain, StepInKeyframesAllowsASpeedRatioOfTwoAndOneKeyframe) {
@@ -123,6 +148,34 @@ TEST(VerifiedChain, PassesWhenEnoughUniqueMatchesLeadToTheMatch) {
   // A query without any match fails.
   EXPECT_FALSE(chain.passes(query(14, kNaN, {}), options(0, 0), f.context()));
   EXPECT_TRUE(chain.passes(query(14, kNaN, {match(7)}), options(0, 0), f.context()));
+}
+
+// Where the odometry gate judged the loop's match, the chain's unique
+// inliers count on average (25 here: 125 over five matches), each at least
+// 25 / 2 = 12.
+TEST(VerifiedChain, WhereTheGateJudgedTheMatchUniqueInliersCountOnAverage) {
+  Fixture f;
+  const auto chainOf = [](int a, int b, int c, int d) {
+    VerifiedChain chain;
+    chain.push(query(10, kNaN, {match(3, a)}));
+    chain.push(query(11, kNaN, {match(4, b)}));
+    chain.push(query(12, kNaN, {match(5, c)}));
+    chain.push(query(13, kNaN, {match(6, d)}));
+    return chain;
+  };
+  ChainContext gated = f.context();
+  gated.position_gated = true;
+  const VerifiedChainOptions o = options(4, 25);
+  // 20 + 30 + 13 + 25 + 37 = 125.
+  EXPECT_TRUE(chainOf(20, 30, 13, 25).passes(query(14, kNaN, {match(7, 37)}), o, gated));
+  EXPECT_FALSE(chainOf(20, 30, 13, 25).passes(query(14, kNaN, {match(7, 37)}), o, f.context()));
+  // 124: one short.
+  EXPECT_FALSE(chainOf(20, 30, 13, 25).passes(query(14, kNaN, {match(7, 36)}), o, gated));
+  // 125 with one match at 12 passes, with one at 11 does not.
+  EXPECT_TRUE(chainOf(20, 30, 12, 25).passes(query(14, kNaN, {match(7, 38)}), o, gated));
+  EXPECT_FALSE(chainOf(20, 30, 11, 25).passes(query(14, kNaN, {match(7, 39)}), o, gated));
+  // Every match at 25 passes either way.
+  EXPECT_TRUE(chainOf(25, 25, 25, 25).passes(query(14, kNaN, {match(7, 25)}), o, f.context()));
 }
 
 TEST(VerifiedChain, MissesALookAlikeOrTooFewUniqueInliersEndIt) {

@@ -229,7 +229,10 @@ struct VerifiedChainOptions {
   /// Each match of the chain (and the loop's) needs this many inliers on
   /// query features the robot's recent past does not repeat (the unique
   /// marks, the wall's own grain), unless the chain leads back to a
-  /// published loop. 0 = no such test. >= 0.
+  /// published loop. Where the odometry gate judged the loop's match (both
+  /// placed by positions of one odometry run), look-alikes beyond its
+  /// radius are out already: the matches need this many on average, each
+  /// at least half of it (rounded down). 0 = no such test. >= 0.
   int min_unique_inliers = 0;
   /// The recent past: this many keyframes, spread over the metres driven
   /// from repeated_texture_min_m to IslandOptions::recent_exclusion_m back

@@ -35,6 +35,12 @@ constexpr std::size_t kLoopAnchors = 8;
 /// odometry_gate_m + odometry_gate_drift * driven_m.
 double odometryGateRadius(const IslandOptions& options, double driven_m);
 
+/// Whether the gate judges `entry` as a candidate of `query`: it is on
+/// (odometry_gate_m > 0) and both have a position and an odometer of the
+/// query's odometry run.
+bool odometryGateApplies(const DatabaseEntry& query, const DatabaseEntry& entry,
+                         const IslandOptions& options);
+
 /// Whether `entry` may be a candidate of `query` by the gate: true when the
 /// gate is off (odometry_gate_m 0), when either lacks a position or an
 /// odometer, or when their positions belong to different odometry runs;

@@ -51,12 +51,18 @@ struct ChainContext {
   const TemporalVerificationOptions&
       temporal;      ///< max_island_distance_m, linked_places, min_step_m
   double drift = 0;  ///< relative odometer error between the passes (odometry_gate_drift)
+  /// The odometry gate judged the loop's match (odometryGateApplies): every
+  /// look-alike farther than its radius is out, so the chain's unique
+  /// inliers count on average (VerifiedChain::passes).
+  bool position_gated = false;
 };
 
 /// Whether `next`'s match follows `previous`'s as the robot moved from the
 /// previous query to the next. In metres when all four odometers are known:
-/// the match moved as far as the query, within max_island_distance_m plus
-/// `drift` of the metres driven. Else in keyframe ids: the match advanced
+/// the match moved as far as the query, within max_island_distance_m, plus
+/// `drift` of the metres driven, plus half the wider gap from each match to
+/// its neighbouring entries (each at most max_island_distance_m): a query
+/// between two keyframes of a sparse pass matches either. Else in keyframe ids: the match advanced
 /// by between half and twice the query's step (a speed ratio of at most 2
 /// between the passes), plus or minus one keyframe. With linked_places the
 /// same test is also made between the places' first entries (PlaceLinks::
@@ -78,8 +84,9 @@ class VerifiedChain {
   /// whose matches all fail ends the walk. Passes when the walk reaches a
   /// published loop, or when it takes options.length matches, counted only
   /// once the robot drove min_step_m since the last one counted, all of
-  /// which (and the current) have min_unique_inliers. Always false for a
-  /// query without a match.
+  /// which (and the current) have min_unique_inliers; with
+  /// context.position_gated, min_unique_inliers on average and each at least
+  /// half of it (rounded down). Always false for a query without a match.
   bool passes(const ChainQuery& current, const VerifiedChainOptions& options,
               const ChainContext& context) const;
   void clear() { recent_.clear(); }
