@@ -26,7 +26,8 @@ const char* describeAcceptance(OdometryInput input) {
     case OdometryInput::kPositions:
       return "positions and odometer: windows in metres, the odometry gates (and the heading "
              "gate where the odometry has an orientation); a loop no recent loop places needs "
-             "the verified chain";
+             "the verified chain, its unique inliers counted on average where the gate judged "
+             "the match";
     case OdometryInput::kOdometer:
       return "odometer only: windows in metres (recent_exclusion_odometer_m), every loop needs "
              "the verified chain, followed in metres driven";

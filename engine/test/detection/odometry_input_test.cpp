@@ -42,6 +42,14 @@ TEST(OdometryInput, NamesAndStartUpLines) {
   EXPECT_EQ(std::string(describeAcceptance(OdometryInput::kNone)).find("none: "), 0u);
   EXPECT_NE(std::string(describeAcceptance(OdometryInput::kNone)).find("min_keyframe_interval"),
             std::string::npos);
+  // Only where positions gate the match do the chain's unique inliers count
+  // on average.
+  EXPECT_NE(std::string(describeAcceptance(OdometryInput::kPositions)).find("on average"),
+            std::string::npos);
+  EXPECT_EQ(std::string(describeAcceptance(OdometryInput::kOdometer)).find("on average"),
+            std::string::npos);
+  EXPECT_EQ(std::string(describeAcceptance(OdometryInput::kNone)).find("on average"),
+            std::string::npos);
 }
 
 }  // namespace
