@@ -62,12 +62,13 @@ struct ChainContext {
 /// the match moved as far as the query, within max_island_distance_m, plus
 /// `drift` of the metres driven, plus half the wider gap from each match to
 /// its neighbouring entries (each at most max_island_distance_m): a query
-/// between two keyframes of a sparse pass matches either. Else in keyframe ids: the match advanced
-/// by between half and twice the query's step (a speed ratio of at most 2
-/// between the passes), plus or minus one keyframe. With linked_places the
-/// same test is also made between the places' first entries (PlaceLinks::
-/// root): on a circuit's later laps the re-ranking's match jumps between
-/// the laps it has seen, which published loops join into one place.
+/// between two keyframes of a sparse pass matches either. Else in keyframe
+/// ids: the match advanced by between half and twice the query's step (a
+/// speed ratio of at most 2 between the passes), plus or minus one
+/// keyframe. With linked_places the same test is also made between the
+/// places' first entries (PlaceLinks::root): on a circuit's later laps the
+/// re-ranking's match jumps between the laps it has seen, which published
+/// loops join into one place.
 bool chainStep(EntryId previous_query, double previous_odometer, EntryId previous_match,
                EntryId next_query, double next_odometer, EntryId next_match,
                const ChainContext& context);
