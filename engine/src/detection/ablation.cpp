@@ -33,6 +33,7 @@ LoopDetectorOptions LoopDetectorOptions::ablation(const std::string& row,
     o.distribution.enabled = all;
     o.similarity.normaliser_floor = 0.0;
     o.similarity.normaliser_distance_m = 0.0;
+    o.similarity.normaliser_lookback = 0;
     o.temporal_score.alignment_window = 0;
     o.temporal_score.max_missed_queries = 0;
     o.temporal_verification.max_missed_queries = 0;
@@ -57,8 +58,9 @@ LoopDetectorOptions LoopDetectorOptions::ablation(const std::string& row,
     o.similarity.normaliser_floor = 0.0;
     return o;
   }
-  if (row == "without_normaliser_distance") {
+  if (row == "without_normaliser_distance") {  // in metres, and looked back without odometry
     o.similarity.normaliser_distance_m = 0.0;
+    o.similarity.normaliser_lookback = 0;
     return o;
   }
   if (row == "without_alignment") {

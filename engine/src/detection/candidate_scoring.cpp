@@ -54,6 +54,28 @@ EntryId normaliserEntry(const Database& database, const SimilarityOptions& optio
   return static_cast<EntryId>(behind - 1);
 }
 
+// Without odometry (SimilarityOptions::normaliser_lookback), where the query
+// looks normaliser_lookback_ratio times more like I_{t-1} than the median
+// previous keyframe did (the robot slowed down or stopped): the scores against the newest of the
+// last normaliser_lookback entries that looks no more like it than that median
+// (`usual_word`), the view one keyframe spacing at the robot's usual speed
+// gives; none (the robot stands still): `previous` unchanged.
+EntryScores lookBackNormaliser(const Database& database, const DatabaseQuery& q,
+                               const SimilarityOptions& options, double odometer,
+                               const EntryScores& previous, double usual_word) {
+  if (!std::isnan(odometer) || !(usual_word > 0.0) ||
+      previous.s_w <= options.normaliser_lookback_ratio * usual_word) {
+    return previous;
+  }
+  const std::size_t n = database.size();
+  const std::size_t back = std::min(static_cast<std::size_t>(options.normaliser_lookback), n);
+  for (std::size_t k = 2; k <= back; ++k) {
+    const EntryScores s = database.score(q, static_cast<EntryId>(n - k));
+    if (s.s_w <= usual_word) return s;
+  }
+  return previous;
+}
+
 // True when a normaliser of an enabled component is 0 or below its minimum.
 bool lowNormaliser(const Normalisers& tested, const SimilarityOptions& so, bool with_groups,
                    bool with_distribution) {
@@ -137,10 +159,15 @@ bool scoreCandidates(const QueryContext& ctx, const DatabaseQuery& q,
   // (or the one driven normaliser_distance_m back). They join the history
   // from the first keyframe on, so that the floor has its median ready when
   // the database is large enough to be queried.
-  const EntryScores norm = database.score(q, normaliserEntry(database, so, query_entry.odometer));
-  const Normalisers previous{norm.s_w, norm.s_g, norm.s_d};
+  // The history keeps s(I_t, I_t-1) itself, the lookback's yardstick.
+  const EntryScores adjacent =
+      database.score(q, normaliserEntry(database, so, query_entry.odometer));
   const Normalisers expected = state.normalisers.median();
-  state.normalisers.push(previous, static_cast<std::size_t>(so.normaliser_window));
+  state.normalisers.push({adjacent.s_w, adjacent.s_g, adjacent.s_d},
+                         static_cast<std::size_t>(so.normaliser_window));
+  const EntryScores norm =
+      lookBackNormaliser(database, q, so, query_entry.odometer, adjacent, expected.word);
+  const Normalisers previous{norm.s_w, norm.s_g, norm.s_d};
   r->word_normaliser = norm.s_w;
   r->group_normaliser = with_groups ? norm.s_g : 0.0;
   r->distribution_normaliser = with_distribution ? norm.s_d : 0.0;

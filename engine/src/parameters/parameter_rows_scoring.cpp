@@ -73,6 +73,16 @@ void addScoringRows(std::vector<Row>* rows) {
                             BOWG_FIELD(double, detector.similarity.normaliser_distance_m),
                             "With odometry: normalise by the score against the newest keyframe "
                             "driven at least this far back instead of I_t-1 (0 = I_t-1 always)"));
+  rows->push_back(intRow("normaliser_lookback", det, "similarity.normaliser_lookback", 0, 1000,
+                         false, BOWG_FIELD(int, detector.similarity.normaliser_lookback),
+                         "Without odometry: normalise by the newest of this many keyframes back "
+                         "that looks no more like the query than the median I_t-1 does (a robot "
+                         "that slowed down; 0 = I_t-1 always)"));
+  rows->push_back(doubleRow("normaliser_lookback_ratio", det,
+                            "similarity.normaliser_lookback_ratio", 1.0, 100.0, false,
+                            BOWG_FIELD(double, detector.similarity.normaliser_lookback_ratio),
+                            "The lookback starts where s(I_t, I_t-1) exceeds this times the "
+                            "median (a robot that slowed down, not one keyframe's noise)"));
   // --- Temporal score (eqs. 6-7).
   rows->push_back(boolRow("temporal_score", det, "temporal_score.enabled", true,
                           BOWG_FIELD(bool, detector.temporal_score.enabled),

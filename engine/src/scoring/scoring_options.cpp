@@ -42,6 +42,8 @@ void SimilarityOptions::validate() const {
   requireFiniteAtLeast("similarity.normaliser_floor", normaliser_floor, 0.0);
   requireIntAtLeast("similarity.normaliser_window", normaliser_window, 1);
   requireFiniteAtLeast("similarity.normaliser_distance_m", normaliser_distance_m, 0.0);
+  requireIntAtLeast("similarity.normaliser_lookback", normaliser_lookback, 0);
+  requireFiniteAtLeast("similarity.normaliser_lookback_ratio", normaliser_lookback_ratio, 1.0);
 }
 
 void TemporalScoreOptions::validate() const {

@@ -60,6 +60,7 @@ TEST(Ablation, PaperRowIsTheFullMethodWithoutTheExtensions) {
   base.geometric.candidates = 10;
   base.temporal_verification.hypotheses = 4;
   base.similarity.normaliser_distance_m = 0.05;
+  base.similarity.normaliser_lookback = 8;
   base.temporal_verification.min_step_m = 0.02;
   base.geometric.min_inliers = 25;
   base.temporal_score.alignment_window_m = 0.05;
@@ -81,6 +82,7 @@ TEST(Ablation, PaperRowIsTheFullMethodWithoutTheExtensions) {
   EXPECT_EQ(o.geometric.candidates, 1);
   EXPECT_EQ(o.temporal_verification.hypotheses, 1);
   EXPECT_EQ(o.similarity.normaliser_distance_m, 0.0);
+  EXPECT_EQ(o.similarity.normaliser_lookback, 0);
   EXPECT_EQ(o.temporal_verification.min_step_m, 0.0);
   EXPECT_EQ(o.geometric.min_inliers, 25);  // thresholds are the preset's
   const LoopDetectorOptions pb = LoopDetectorOptions::ablation("paper_bow", base);
@@ -110,6 +112,7 @@ TEST(Ablation, WithoutRowsSwitchOffOneExtensionEach) {
   LoopDetectorOptions base;
   base.similarity.normaliser_floor = 1.0;
   base.similarity.normaliser_distance_m = 0.03;
+  base.similarity.normaliser_lookback = 8;
   base.temporal_score.alignment_window = 1;
   base.temporal_score.alignment_window_m = 0.05;
   base.temporal_verification.max_island_distance_m = 0.1;
@@ -128,7 +131,7 @@ TEST(Ablation, WithoutRowsSwitchOffOneExtensionEach) {
   auto on = [](const LoopDetectorOptions& o) {
     return std::vector<bool>{
         o.similarity.normaliser_floor > 0,
-        o.similarity.normaliser_distance_m > 0,
+        o.similarity.normaliser_distance_m > 0 || o.similarity.normaliser_lookback > 0,
         o.temporal_score.alignment_window > 0 || o.temporal_score.alignment_window_m > 0 ||
             o.temporal_verification.max_island_distance_m > 0,
         o.temporal_score.max_missed_queries > 0 || o.temporal_verification.max_missed_queries > 0,

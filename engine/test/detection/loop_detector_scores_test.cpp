@@ -252,6 +252,20 @@ TEST(LoopDetector, WithTheFloorADissimilarPreviousKeyframeDoesNotSilenceTheQuery
   }
 }
 
+// Runs `det` over keyframes of one corridor seen from x = xs[0], xs[1], ...
+// (odometer = x when `odometry`); the last keyframe's result.
+LoopResult processAt(LoopDetector* det, const std::vector<double>& xs, bool odometry) {
+  const testing::Corridor corridor = testing::makeCorridor(20, 50, 5);
+  std::mt19937_64 rng(2);
+  LoopResult r;
+  for (std::size_t t = 0; t < xs.size(); ++t) {
+    KeyframeInput kf = testing::observeCorridor(corridor, xs[t], 1.0 + t, rng, 2, 0.5);
+    if (odometry) kf.odometer = xs[t];
+    r = det->process(kf);
+  }
+  return r;
+}
+
 // normaliser_distance_m: a robot that stops sends the same view again; the
 // normaliser is then the score against the newest entry driven at least that
 // far back, not against the duplicate. Keyframes 1 m apart (x = odometer =
@@ -270,15 +284,7 @@ TEST(LoopDetector, NormaliserDistanceSkipsTheKeyframesOfAStop) {
     LoopDetectorOptions o = defaultOptions();
     o.similarity.normaliser_distance_m = c.distance;
     LoopDetector det(vocabulary(), o);
-    const testing::Corridor corridor = testing::makeCorridor(20, 50, 5);
-    std::mt19937_64 rng(2);
-    LoopResult r;
-    for (int t = 0; t < 13; ++t) {
-      const double x = std::min(t, 9);
-      KeyframeInput kf = testing::observeCorridor(corridor, x, 1.0 + t, rng, 2, 0.5);
-      if (c.odometry) kf.odometer = x;
-      r = det.process(kf);
-    }
+    const LoopResult r = processAt(&det, {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 9, 9, 9}, c.odometry);
     const DatabaseEntry& q = det.database().entry(r.query_id);
     const DatabaseEntry& e = det.database().entry(c.expected);
     EXPECT_NEAR(r.word_normaliser,
@@ -292,6 +298,58 @@ TEST(LoopDetector, NormaliserDistanceSkipsTheKeyframesOfAStop) {
   }
   LoopDetectorOptions bad = defaultOptions();
   bad.similarity.normaliser_distance_m = -1.0;
+  EXPECT_THROW(LoopDetector(vocabulary(), bad), InvalidParameter);
+}
+
+// normaliser_lookback: without odometry, a robot that slows down sends
+// nearly the same view again; where s(I_t, I_t-1) exceeds
+// normaliser_lookback_ratio times the median s(I_j, I_j-1) of the history,
+// the normaliser is the score against the newest of the last `lookback`
+// entries that looks no more like the query than that median. Keyframes 1 m
+// apart (x = 0..9), then three 5 cm apart (9.05, 9.1, 9.15). The last query
+// scores its previous keyframe (9.1) over 1.1 times the median; 9.05 and 9.0
+// look more like it than the median, 8.0 less: with a lookback of 4 it is
+// normalised by entry 8; with 3 (9.05 and 9.0 only), 1 or 0, with a ratio the
+// previous keyframe does not reach, and with odometers
+// (normaliser_distance_m 0), by entry 11.
+TEST(LoopDetector, NormaliserLookbackSkipsTheKeyframesOfASlowDown) {
+  struct Case {
+    int lookback;
+    double ratio;
+    bool odometry;
+    EntryId expected;
+  };
+  for (const Case c : {Case{4, 1.1, false, 8}, Case{3, 1.1, false, 11}, Case{0, 1.1, false, 11},
+                       Case{1, 1.1, false, 11}, Case{4, 1.1, true, 11}, Case{4, 50, false, 11}}) {
+    SCOPED_TRACE(std::to_string(c.lookback) + " " + std::to_string(c.ratio) +
+                 (c.odometry ? " with odometry" : " without"));
+    LoopDetectorOptions o = defaultOptions();
+    o.similarity.normaliser_lookback = c.lookback;
+    o.similarity.normaliser_lookback_ratio = c.ratio;
+    LoopDetector det(vocabulary(), o);
+    const LoopResult r =
+        processAt(&det, {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 9.05, 9.1, 9.15}, c.odometry);
+    const Database& db = det.database();
+    const auto s_w = [&](EntryId a, EntryId b) {
+      return scoreBowVectors(o.scoring, db.bow(a), db.bow(b));
+    };
+    // The history: s(I_j, I_j-1) of every earlier query (j = 1..11).
+    std::vector<double> adjacent;
+    for (EntryId j = 1; j <= 11; ++j) adjacent.push_back(s_w(j, j - 1));
+    std::nth_element(adjacent.begin(), adjacent.begin() + 5, adjacent.end());
+    const double median = adjacent[5];
+    ASSERT_GT(s_w(r.query_id, 11), 1.1 * median);
+    ASSERT_LT(s_w(r.query_id, 11), 50 * median);
+    ASSERT_GT(s_w(r.query_id, 10), median);
+    ASSERT_GT(s_w(r.query_id, 9), median);
+    ASSERT_LE(s_w(r.query_id, 8), median);
+    EXPECT_NEAR(r.word_normaliser, s_w(r.query_id, c.expected), 1e-12);
+  }
+  LoopDetectorOptions bad = defaultOptions();
+  bad.similarity.normaliser_lookback = -1;
+  EXPECT_THROW(LoopDetector(vocabulary(), bad), InvalidParameter);
+  bad = defaultOptions();
+  bad.similarity.normaliser_lookback_ratio = 0.9;
   EXPECT_THROW(LoopDetector(vocabulary(), bad), InvalidParameter);
 }
 

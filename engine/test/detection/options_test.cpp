@@ -240,6 +240,10 @@ TEST(Options, Geometric) {
                  "temporal_verification.hypotheses");
   expectRejected([](LoopDetectorOptions& o) { o.similarity.normaliser_distance_m = -0.1; },
                  "similarity.normaliser_distance_m");
+  expectRejected([](LoopDetectorOptions& o) { o.similarity.normaliser_lookback = -1; },
+                 "similarity.normaliser_lookback");
+  expectRejected([](LoopDetectorOptions& o) { o.similarity.normaliser_lookback_ratio = 0.5; },
+                 "similarity.normaliser_lookback_ratio");
   expectRejected([](LoopDetectorOptions& o) { o.temporal_verification.min_step_m = -0.1; },
                  "temporal_verification.min_step_m");
   expectAccepted([](LoopDetectorOptions& o) {

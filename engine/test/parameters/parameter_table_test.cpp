@@ -293,7 +293,7 @@ TEST(ParameterTable, TheGfttPresetIsThePipePresetWithGfttCorners) {
   EXPECT_DOUBLE_EQ(gftt.features.gftt_min_distance, 7.0);
   // The values the GFTT preset chose for itself (its comments say why).
   const std::set<std::string> own = {"min_inliers", "min_unique_inliers",
-                                     "images_only_score_margin"};
+                                     "images_only_score_margin", "normaliser_lookback"};
   EXPECT_DOUBLE_EQ(gftt.detector.islands.min_score, 1.0);
   EXPECT_DOUBLE_EQ(gftt.detector.islands.images_only_score_margin, 0.1);
   for (const std::string& name : own) {

@@ -58,6 +58,19 @@ struct SimilarityOptions {
   /// vanishes. In metres it is one estimate whatever the speed and keyframe
   /// spacing. 0 = the previous keyframe always (the paper). >= 0.
   double normaliser_distance_m = 0.0;
+  /// Without odometry (the query has no odometer), the normalisers' I_{t-1}
+  /// is the newest of the last normaliser_lookback keyframes whose word
+  /// score with the query is at most the median s_w(I_t, I_t-1) of the last
+  /// normaliser_window keyframes (docs/method.md): where the robot slowed
+  /// down, its previous keyframe is nearly the same view and would silence
+  /// the query, as normaliser_distance_m prevents with odometry. None of
+  /// them (the robot stands still): the previous keyframe. 0 or 1 = the
+  /// previous keyframe always (the paper). >= 0.
+  int normaliser_lookback = 0;
+  /// The lookback starts where s_w(I_t, I_t-1) exceeds this times that
+  /// median: a robot that slowed down, not a previous keyframe that happens
+  /// to score above the median (half of them do at a constant speed). >= 1.
+  double normaliser_lookback_ratio = 1.0;
   void validate() const;
 };
 
