@@ -54,12 +54,13 @@ EntryId normaliserEntry(const Database& database, const SimilarityOptions& optio
   return static_cast<EntryId>(behind - 1);
 }
 
-// Without odometry (SimilarityOptions::normaliser_lookback), where the query
-// looks normaliser_lookback_ratio times more like I_{t-1} than the median
-// previous keyframe did (the robot slowed down or stopped): the scores against the newest of the
-// last normaliser_lookback entries that looks no more like it than that median
-// (`usual_word`), the view one keyframe spacing at the robot's usual speed
-// gives; none (the robot stands still): `previous` unchanged.
+// Without odometry (SimilarityOptions::normaliser_lookback), where the
+// query looks normaliser_lookback_ratio times more like I_{t-1} than the
+// median previous keyframe did (the robot slowed down or stopped): the
+// scores against the newest of the last normaliser_lookback entries that
+// looks no more like it than that median (`usual_word`), the view one
+// keyframe spacing at the robot's usual speed gives; none (the robot stands
+// still): `previous` unchanged.
 EntryScores lookBackNormaliser(const Database& database, const DatabaseQuery& q,
                                const SimilarityOptions& options, double odometer,
                                const EntryScores& previous, double usual_word) {
@@ -159,7 +160,8 @@ bool scoreCandidates(const QueryContext& ctx, const DatabaseQuery& q,
   // (or the one driven normaliser_distance_m back). They join the history
   // from the first keyframe on, so that the floor has its median ready when
   // the database is large enough to be queried.
-  // The history keeps s(I_t, I_t-1) itself, the lookback's yardstick.
+  // The history keeps the score against that entry, not the lookback's
+  // choice: the lookback's yardstick must not drift with its own choices.
   const EntryScores adjacent =
       database.score(q, normaliserEntry(database, so, query_entry.odometer));
   const Normalisers expected = state.normalisers.median();
