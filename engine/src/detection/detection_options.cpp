@@ -65,6 +65,7 @@ void GeometricVerificationOptions::validate() const {
 void VerifiedChainOptions::validate() const {
   requireIntAtLeast("chain.length", length, 0);
   requireIntAtLeast("chain.max_missed", max_missed, 0);
+  requireIntAtLeast("chain.max_strays", max_strays, 0);
   requireIntAtLeast("chain.min_unique_inliers", min_unique_inliers, 0);
   requireIntAtLeast("chain.repeated_texture_keyframes", repeated_texture_keyframes, 1);
   requireFiniteAtLeast("chain.repeated_texture_min_m", repeated_texture_min_m, 0.0);

@@ -118,7 +118,11 @@ bool VerifiedChain::passes(const ChainQuery& current, const VerifiedChainOptions
   const int min_unique = options.min_unique_inliers;
   UniqueTally unique;
   unique.add(current.match[0]);
-  int length = 0, missed = 0;
+  int length = 0, missed = 0, strays = 0;
+  // Strays only where the steps are in metres: in keyframe ids the advance
+  // a step admits widens with every query stepped over (one query: -0.5 to
+  // 3 keyframes; two: 0 to 5), and so does the room for a look-alike.
+  const int max_strays = std::isfinite(current.odometer) ? options.max_strays : 0;
   // The last query taken, its match taken in front.
   ChainQuery last = current;
   last.matches = 1;
@@ -129,7 +133,12 @@ bool VerifiedChain::passes(const ChainQuery& current, const VerifiedChainOptions
       continue;
     }
     const ChainMatch* m = followingMatch(*it, last, min_unique, context);
-    if (m == nullptr) return false;
+    if (m == nullptr) {
+      // A look-alike won this query: stepped over like a query without a
+      // match, while the chain allows strays.
+      if (++strays > max_strays || ++missed > options.max_missed) return false;
+      continue;
+    }
     missed = 0;
     if (it->published && m == &it->match[0]) return true;  // continues a published loop
     // A robot standing still sends one view again and again: one piece of

@@ -168,6 +168,11 @@ void addDetectionRows(std::vector<Row>* rows) {
   rows->push_back(intRow("verified_chain_missed", det, "chain.max_missed", 0, 10, false,
                          BOWG_FIELD(int, detector.chain.max_missed),
                          "Queries without a verified match the chain steps over, in a row"));
+  rows->push_back(intRow("verified_chain_strays", det, "chain.max_strays", 0, 10, false,
+                         BOWG_FIELD(int, detector.chain.max_strays),
+                         "With an odometer: queries whose verified matches all lead elsewhere "
+                         "the chain steps over, in all; each counts towards "
+                         "verified_chain_missed (0, or no odometer: one ends the chain)"));
   rows->push_back(intRow("min_unique_inliers", det, "chain.min_unique_inliers", 0, 10000, true,
                          BOWG_FIELD(int, detector.chain.min_unique_inliers),
                          "Inliers each match of the chain needs on features the robot's recent "

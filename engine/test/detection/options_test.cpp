@@ -246,6 +246,8 @@ TEST(Options, Geometric) {
                  "similarity.normaliser_lookback_ratio");
   expectRejected([](LoopDetectorOptions& o) { o.temporal_verification.min_step_m = -0.1; },
                  "temporal_verification.min_step_m");
+  expectRejected([](LoopDetectorOptions& o) { o.chain.max_missed = -1; }, "chain.max_missed");
+  expectRejected([](LoopDetectorOptions& o) { o.chain.max_strays = -1; }, "chain.max_strays");
   expectAccepted([](LoopDetectorOptions& o) {
     o.geometric.candidates = 5;
     o.geometric.rerank_ransacs = 0;

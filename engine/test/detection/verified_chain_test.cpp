@@ -225,6 +225,58 @@ TEST(VerifiedChain, MissesALookAlikeOrTooFewUniqueInliersEndIt) {
   }
 }
 
+// A look-alike that won a query is stepped over with strays allowed: it
+// counts against both the strays and the queries missed in a row. Only
+// where the steps are in metres (the current query has an odometer).
+TEST(VerifiedChain, StraysAllowedStepOverALookAlike) {
+  Fixture f;
+  // Entries 10 cm apart, queries too; a step allows 0.1 m plus half a gap
+  // (0.05 m) for each match: 0.2 m.
+  f.drift = 0.0;
+  f.temporal.max_island_distance_m = 0.1;
+  for (EntryId e = 0; e < 60; ++e) f.odometers[e] = 0.1 * e;
+  const auto at = [](EntryId id, std::vector<ChainMatch> matches) {
+    return query(id, 0.1 * id, matches);
+  };
+  const auto withStrays = [](int strays, int max_missed) {
+    VerifiedChainOptions o = options(3, 25, max_missed);
+    o.max_strays = strays;
+    return o;
+  };
+  VerifiedChain chain;
+  chain.push(at(10, {match(3)}));
+  chain.push(at(11, {match(4)}));
+  chain.push(at(12, {match(40)}));  // the look-alike, 3.4 m off
+  chain.push(at(13, {match(6)}));
+  const ChainQuery current = at(14, {match(7)});
+  EXPECT_FALSE(chain.passes(current, withStrays(0, 1), f.context()));
+  // 13 -> 14 follows; 12 stepped over; 11 -> 13: driven 0.2 m, moved
+  // 0.2 m; 10 -> 11 follows: three taken.
+  EXPECT_TRUE(chain.passes(current, withStrays(1, 1), f.context()));
+  // A stray is a missed query too: none allowed in a row, it ends the walk.
+  EXPECT_FALSE(chain.passes(current, withStrays(1, 0), f.context()));
+  // Without an odometer on the current query the steps are in ids: no
+  // strays.
+  EXPECT_FALSE(chain.passes(query(14, kNaN, {match(7)}), withStrays(1, 1), f.context()));
+  // Two look-alikes, one stray allowed: the second ends the walk.
+  chain.push(at(15, {match(50)}));
+  chain.push(at(16, {match(9)}));
+  const ChainQuery later = at(17, {match(10)});
+  EXPECT_FALSE(chain.passes(later, withStrays(1, 1), f.context()));
+  // 16 -> 17; 15 stepped over; 13 -> 16 (0.3 m both); 12 stepped over;
+  // 11 -> 13 (0.2 m both): three taken with two strays.
+  EXPECT_TRUE(chain.passes(later, withStrays(2, 1), f.context()));
+  // A stray next to a query without a match: two missed in a row.
+  VerifiedChain gap;
+  gap.push(at(10, {match(3)}));
+  gap.push(at(11, {match(4)}));
+  gap.push(at(12, {}));
+  gap.push(at(13, {match(40)}));
+  gap.push(at(14, {match(7)}));
+  EXPECT_FALSE(gap.passes(at(15, {match(8)}), withStrays(1, 1), f.context()));
+  EXPECT_TRUE(gap.passes(at(15, {match(8)}), withStrays(1, 2), f.context()));
+}
+
 TEST(VerifiedChain, APublishedLoopCarriesTheChain) {
   Fixture f;
   VerifiedChain chain;

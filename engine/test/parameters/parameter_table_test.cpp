@@ -273,6 +273,8 @@ TEST(ParameterTable, LoadsEveryShippedConfig) {
   EXPECT_EQ(pipe.detector.geometric.ransac_bound_confidence, 0.9999);
   EXPECT_TRUE(pipe.detector.geometric.native_ransac);
   EXPECT_EQ(pipe.detector.geometric.ransac_refits, 3);
+  EXPECT_EQ(pipe.detector.chain.max_missed, 2);
+  EXPECT_EQ(pipe.detector.chain.max_strays, 2);
   const PipelineOptions generic = loadParameterFile(configDir() + "/generic.yaml");
   EXPECT_FALSE(generic.detector.distribution.enabled);
   EXPECT_EQ(generic.features.detector, FeatureOptions::Detector::kOrb);
@@ -293,7 +295,8 @@ TEST(ParameterTable, TheGfttPresetIsThePipePresetWithGfttCorners) {
   EXPECT_DOUBLE_EQ(gftt.features.gftt_min_distance, 7.0);
   // The values the GFTT preset chose for itself (its comments say why).
   const std::set<std::string> own = {"min_inliers", "min_unique_inliers",
-                                     "images_only_score_margin", "normaliser_lookback"};
+                                     "images_only_score_margin", "normaliser_lookback",
+                                     "verified_chain_strays"};
   EXPECT_DOUBLE_EQ(gftt.detector.islands.min_score, 1.0);
   EXPECT_DOUBLE_EQ(gftt.detector.islands.images_only_score_margin, 0.1);
   for (const std::string& name : own) {

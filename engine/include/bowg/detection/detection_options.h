@@ -226,6 +226,13 @@ struct VerifiedChainOptions {
   int length = 0;
   /// Queries without a verified match the chain steps over, in a row. >= 0.
   int max_missed = 1;
+  /// Queries whose verified matches all lead elsewhere (a look-alike won
+  /// the re-ranking there) the walk steps over, at most this many in all;
+  /// each also counts as a query without a match towards max_missed. Only
+  /// where the current query has an odometer (steps in metres): in keyframe
+  /// ids a step's tolerance widens with every query stepped over. 0 = such
+  /// a query ends the walk. >= 0.
+  int max_strays = 0;
   /// Each match of the chain (and the loop's) needs this many inliers on
   /// query features the robot's recent past does not repeat (the unique
   /// marks, the wall's own grain), unless the chain leads back to a
