@@ -27,16 +27,24 @@ double placeUncertainty(EntryId e, const std::vector<double>& odometers, double 
   return std::min(0.5 * gap, cap);
 }
 
+// Whether a step between two queries and their matches is measured in
+// metres: the chain has a distance tolerance and all four odometers are
+// known. Else it is measured in keyframe ids.
+bool stepInMetres(double previous_odometer, EntryId previous_match, double next_odometer,
+                  EntryId next_match, const ChainContext& c) {
+  return c.temporal.max_island_distance_m > 0.0 && std::isfinite(previous_odometer) &&
+         std::isfinite(next_odometer) && std::isfinite(c.entry_odometers[previous_match]) &&
+         std::isfinite(c.entry_odometers[next_match]);
+}
+
 // chainStep without the place links.
 bool directStep(EntryId previous_query, double previous_odometer, EntryId previous_match,
                 EntryId next_query, double next_odometer, EntryId next_match,
                 const ChainContext& c) {
   const TemporalVerificationOptions& tv = c.temporal;
-  const double previous_match_m = c.entry_odometers[previous_match];
-  const double next_match_m = c.entry_odometers[next_match];
-  if (tv.max_island_distance_m > 0.0 && std::isfinite(previous_odometer) &&
-      std::isfinite(next_odometer) && std::isfinite(previous_match_m) &&
-      std::isfinite(next_match_m)) {
+  if (stepInMetres(previous_odometer, previous_match, next_odometer, next_match, c)) {
+    const double previous_match_m = c.entry_odometers[previous_match];
+    const double next_match_m = c.entry_odometers[next_match];
     const double driven = next_odometer - previous_odometer;
     const double moved = next_match_m - previous_match_m;
     const double tolerance = tv.max_island_distance_m;
@@ -119,10 +127,8 @@ bool VerifiedChain::passes(const ChainQuery& current, const VerifiedChainOptions
   UniqueTally unique;
   unique.add(current.match[0]);
   int length = 0, missed = 0, strays = 0;
-  // Strays only where the steps are in metres: in keyframe ids the advance
-  // a step admits widens with every query stepped over (one query: -0.5 to
-  // 3 keyframes; two: 0 to 5), and so does the room for a look-alike.
-  const int max_strays = std::isfinite(current.odometer) ? options.max_strays : 0;
+  // Whether the walk stepped over a stray since the last match it took.
+  bool bridging = false;
   // The last query taken, its match taken in front.
   ChainQuery last = current;
   last.matches = 1;
@@ -136,9 +142,18 @@ bool VerifiedChain::passes(const ChainQuery& current, const VerifiedChainOptions
     if (m == nullptr) {
       // A look-alike won this query: stepped over like a query without a
       // match, while the chain allows strays.
-      if (++strays > max_strays || ++missed > options.max_missed) return false;
+      if (++strays > options.max_strays || ++missed > options.max_missed) return false;
+      bridging = true;
       continue;
     }
+    // Strays only across a step in metres: in keyframe ids the advance a
+    // step admits widens with every query stepped over (one query: -0.5 to
+    // 3 keyframes; two: 0 to 5), and so does the room for a look-alike.
+    if (bridging &&
+        !stepInMetres(it->odometer, m->entry, last.odometer, last.match[0].entry, context)) {
+      return false;
+    }
+    bridging = false;
     missed = 0;
     if (it->published && m == &it->match[0]) return true;  // continues a published loop
     // A robot standing still sends one view again and again: one piece of

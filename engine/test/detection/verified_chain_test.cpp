@@ -255,9 +255,22 @@ TEST(VerifiedChain, StraysAllowedStepOverALookAlike) {
   EXPECT_TRUE(chain.passes(current, withStrays(1, 1), f.context()));
   // A stray is a missed query too: none allowed in a row, it ends the walk.
   EXPECT_FALSE(chain.passes(current, withStrays(1, 0), f.context()));
-  // Without an odometer on the current query the steps are in ids: no
-  // strays.
-  EXPECT_FALSE(chain.passes(query(14, kNaN, {match(7)}), withStrays(1, 1), f.context()));
+  // Without odometers on the queries the steps are in ids: no strays.
+  VerifiedChain images_only;
+  for (const ChainQuery& q :
+       {at(10, {match(3)}), at(11, {match(4)}), at(12, {match(40)}), at(13, {match(6)})}) {
+    images_only.push(query(q.query, kNaN, {q.match[0]}));
+  }
+  EXPECT_FALSE(images_only.passes(query(14, kNaN, {match(7)}), withStrays(1, 1), f.context()));
+  // Nor without a distance tolerance, odometers or not.
+  f.temporal.max_island_distance_m = 0.0;
+  EXPECT_FALSE(chain.passes(current, withStrays(1, 1), f.context()));
+  f.temporal.max_island_distance_m = 0.1;
+  // Nor where the match after the stray has no odometer.
+  f.odometers[4] = kNaN;
+  EXPECT_FALSE(chain.passes(current, withStrays(1, 1), f.context()));
+  f.odometers[4] = 0.4;
+  EXPECT_TRUE(chain.passes(current, withStrays(1, 1), f.context()));
   // Two look-alikes, one stray allowed: the second ends the walk.
   chain.push(at(15, {match(50)}));
   chain.push(at(16, {match(9)}));

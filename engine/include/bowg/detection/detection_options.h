@@ -229,7 +229,8 @@ struct VerifiedChainOptions {
   /// Queries whose verified matches all lead elsewhere (a look-alike won
   /// the re-ranking there) the walk steps over, at most this many in all;
   /// each also counts as a query without a match towards max_missed. Only
-  /// where the current query has an odometer (steps in metres): in keyframe
+  /// where the step across them is in metres (chainStep: a distance
+  /// tolerance and odometers on both queries and both matches): in keyframe
   /// ids a step's tolerance widens with every query stepped over. 0 = such
   /// a query ends the walk. >= 0.
   int max_strays = 0;

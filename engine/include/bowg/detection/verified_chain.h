@@ -82,15 +82,15 @@ class VerifiedChain {
   /// each previous query has a verified match that chainStep follows to the
   /// last one taken (preferring one with min_unique_inliers), queries
   /// without any are skipped up to options.max_missed in a row, and a query
-  /// whose matches all fail is skipped too where `current` has an odometer,
-  /// up to options.max_strays in all (each counting towards max_missed); the
-  /// next one ends the walk. Passes
-  /// when the walk reaches a published loop, or when it takes
+  /// whose matches all fail (a stray) is skipped too, up to
+  /// options.max_strays in all (each counting towards max_missed), where the
+  /// step across it is in metres (chainStep); the next one ends the walk.
+  /// Passes when the walk reaches a published loop, or when it takes
   /// options.length matches, counted only once the robot drove min_step_m
   /// since the last one counted, all of which (and the current) have
-  /// min_unique_inliers; with
-  /// context.position_gated, min_unique_inliers on average and each at least
-  /// half of it (rounded down). Always false for a query without a match.
+  /// min_unique_inliers; with context.position_gated, min_unique_inliers on
+  /// average and each at least half of it (rounded down). Always false for
+  /// a query without a match.
   bool passes(const ChainQuery& current, const VerifiedChainOptions& options,
               const ChainContext& context) const;
   void clear() { recent_.clear(); }
