@@ -98,6 +98,24 @@ const ChainMatch* followingMatch(const ChainQuery& q, const ChainQuery& last, in
   return found;
 }
 
+// A step in keyframe ids across stepped-over queries, from `previous`'s
+// match `entry` to `last`'s: the match must advance as the walk's matches
+// advanced per query from `last` back to `current`'s, within 1.5 keyframes,
+// where chainStep's band (half to twice the queries' step) would widen with
+// every query stepped over. The rate needs two queries or more behind it.
+bool bridgesInIds(const ChainQuery& current, const ChainQuery& last, EntryId previous,
+                  EntryId entry) {
+  const double measured_queries =
+      static_cast<double>(current.query) - static_cast<double>(last.query);
+  if (measured_queries < 2.0) return false;
+  const double rate =
+      (static_cast<double>(current.match[0].entry) - static_cast<double>(last.match[0].entry)) /
+      measured_queries;
+  const double steps = static_cast<double>(last.query) - static_cast<double>(previous);
+  const double advanced = static_cast<double>(last.match[0].entry) - static_cast<double>(entry);
+  return std::fabs(advanced - rate * steps) <= 1.5;
+}
+
 }  // namespace
 
 bool chainStep(EntryId previous_query, double previous_odometer, EntryId previous_match,
@@ -146,11 +164,13 @@ bool VerifiedChain::passes(const ChainQuery& current, const VerifiedChainOptions
       bridging = true;
       continue;
     }
-    // Strays only across a step in metres: in keyframe ids the advance a
-    // step admits widens with every query stepped over (one query: -0.5 to
-    // 3 keyframes; two: 0 to 5), and so does the room for a look-alike.
+    // Across strays a step in metres keeps its tolerance; in keyframe ids
+    // the advance a step admits widens with every query stepped over (one
+    // query: -0.5 to 3 keyframes; two: 0 to 5), and so does the room for a
+    // look-alike: there the match must advance at the walk's own rate.
     if (bridging &&
-        !stepInMetres(it->odometer, m->entry, last.odometer, last.match[0].entry, context)) {
+        !stepInMetres(it->odometer, m->entry, last.odometer, last.match[0].entry, context) &&
+        !bridgesInIds(current, last, it->query, m->entry)) {
       return false;
     }
     bridging = false;

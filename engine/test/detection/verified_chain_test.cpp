@@ -255,7 +255,9 @@ TEST(VerifiedChain, StraysAllowedStepOverALookAlike) {
   EXPECT_TRUE(chain.passes(current, withStrays(1, 1), f.context()));
   // A stray is a missed query too: none allowed in a row, it ends the walk.
   EXPECT_FALSE(chain.passes(current, withStrays(1, 0), f.context()));
-  // Without odometers on the queries the steps are in ids: no strays.
+  // Without odometers on the queries the steps are in ids, and a stray
+  // needs the rate of two queries or more behind it
+  // (StraysInIdsFollowTheChainsRate): here one.
   VerifiedChain images_only;
   for (const ChainQuery& q :
        {at(10, {match(3)}), at(11, {match(4)}), at(12, {match(40)}), at(13, {match(6)})}) {
@@ -288,6 +290,34 @@ TEST(VerifiedChain, StraysAllowedStepOverALookAlike) {
   gap.push(at(14, {match(7)}));
   EXPECT_FALSE(gap.passes(at(15, {match(8)}), withStrays(1, 1), f.context()));
   EXPECT_TRUE(gap.passes(at(15, {match(8)}), withStrays(1, 2), f.context()));
+}
+
+TEST(VerifiedChain, StraysInIdsFollowTheChainsRate) {
+  Fixture f;  // no odometers: every step in keyframe ids
+  VerifiedChainOptions o = options(3, 25, 1);
+  o.max_strays = 1;
+  // Queries 10-14 with the matches given, query 11's a look-alike's.
+  const auto walk = [&](EntryId m10, EntryId m12 = 15, EntryId m13 = 16, EntryId m14 = 17) {
+    VerifiedChain chain;
+    chain.push(query(10, kNaN, {match(m10)}));
+    chain.push(query(11, kNaN, {match(40)}));
+    chain.push(query(12, kNaN, {match(m12)}));
+    chain.push(query(13, kNaN, {match(m13)}));
+    return chain.passes(query(14, kNaN, {match(m14)}), o, f.context());
+  };
+  // 13 -> 14 and 12 -> 13 follow; 11 stepped over. The matches advanced
+  // (17 - 15) / (14 - 12) = 1 keyframe a query, so across 12 -> 10 (two
+  // queries) entry 15 - 2 = 13 is expected, within 1.5 keyframes.
+  EXPECT_TRUE(walk(13));
+  EXPECT_TRUE(walk(12));  // advanced 3: off by 1
+  // Advanced 4: off by 2, though chainStep's band (0-5 keyframes across
+  // two queries) allows it.
+  EXPECT_FALSE(walk(11));
+  EXPECT_TRUE(chainStep(10, kNaN, 11, 12, kNaN, 15, f.context()));
+  EXPECT_FALSE(walk(10));  // advanced 5
+  // The rate of a robot standing still: nothing may advance across.
+  EXPECT_TRUE(walk(17, 17, 17, 17));
+  EXPECT_FALSE(walk(15, 17, 17, 17));
 }
 
 TEST(VerifiedChain, APublishedLoopCarriesTheChain) {

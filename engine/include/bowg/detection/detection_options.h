@@ -228,11 +228,12 @@ struct VerifiedChainOptions {
   int max_missed = 1;
   /// Queries whose verified matches all lead elsewhere (a look-alike won
   /// the re-ranking there) the walk steps over, at most this many in all;
-  /// each also counts as a query without a match towards max_missed. Only
-  /// where the step across them is in metres (chainStep: a distance
-  /// tolerance and odometers on both queries and both matches): in keyframe
-  /// ids a step's tolerance widens with every query stepped over. 0 = such
-  /// a query ends the walk. >= 0.
+  /// each also counts as a query without a match towards max_missed. Where
+  /// the step across them is in keyframe ids (no odometer or no
+  /// max_island_distance_m), the match must also advance at the chain's own
+  /// rate, within 1.5 keyframes (VerifiedChain::passes): the step's band in
+  /// ids widens with every query stepped over. 0 = such a query ends the
+  /// walk. >= 0.
   int max_strays = 0;
   /// Each match of the chain (and the loop's) needs this many inliers on
   /// query features the robot's recent past does not repeat (the unique

@@ -83,8 +83,12 @@ class VerifiedChain {
   /// last one taken (preferring one with min_unique_inliers), queries
   /// without any are skipped up to options.max_missed in a row, and a query
   /// whose matches all fail (a stray) is skipped too, up to
-  /// options.max_strays in all (each counting towards max_missed), where the
-  /// step across it is in metres (chainStep); the next one ends the walk.
+  /// options.max_strays in all (each counting towards max_missed); the next
+  /// one ends the walk. The step across strays is chainStep's and, where it
+  /// is in keyframe ids, also at the rate the walk's matches advanced per
+  /// query since `current` (measured over two queries or more), within 1.5
+  /// keyframes: chainStep's band in ids widens with every query stepped
+  /// over.
   /// Passes when the walk reaches a published loop, or when it takes
   /// options.length matches, counted only once the robot drove min_step_m
   /// since the last one counted, all of which (and the current) have
